@@ -1,0 +1,100 @@
+// Shared helpers of the benchmarks: wall-clock timing, medians, a printed table and the
+// JSON file in bench/results/. Benchmarks measure ratios against a baseline in the same
+// run, because machines here are shared and noisy.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace lapis::bench {
+
+inline double now_ms() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double, std::milli>(clock::now().time_since_epoch()).count();
+}
+
+// Runs f() and returns its wall time in milliseconds.
+template <class F>
+double time_ms(F&& f) {
+  const double t0 = now_ms();
+  f();
+  return now_ms() - t0;
+}
+
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// A plain fixed-width table printed to stdout.
+class Table {
+ public:
+  explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
+  void row(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
+  void print() const {
+    std::vector<size_t> w(header_.size(), 0);
+    auto widen = [&](const std::vector<std::string>& r) {
+      for (size_t i = 0; i < r.size() && i < w.size(); ++i) w[i] = std::max(w[i], r[i].size());
+    };
+    widen(header_);
+    for (const auto& r : rows_) widen(r);
+    auto line = [&](const std::vector<std::string>& r) {
+      for (size_t i = 0; i < w.size(); ++i)
+        std::printf("%*s  ", static_cast<int>(w[i]), i < r.size() ? r[i].c_str() : "");
+      std::printf("\n");
+    };
+    line(header_);
+    for (const auto& r : rows_) line(r);
+    std::fflush(stdout);
+  }
+
+ private:
+  std::vector<std::string> header_;
+  std::vector<std::vector<std::string>> rows_;
+};
+
+inline std::string fmt(double v, int digits = 1) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+// Writes bench/results/<name>.json (atomically: temporary file, then rename).
+inline std::filesystem::path write_results(const std::string& name, const nlohmann::json& j) {
+  const std::filesystem::path dir = std::filesystem::path(LAPIS_SOURCE_DIR) / "bench" / "results";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / (name + ".json");
+  const auto tmp = dir / (name + ".json.tmp");
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+  }
+  std::filesystem::rename(tmp, path);
+  std::printf("wrote %s\n", path.string().c_str());
+  return path;
+}
+
+// Peak resident set size of this process in MiB (Linux /proc).
+inline double peak_rss_mib() {
+  std::ifstream status("/proc/self/status");
+  std::string key;
+  while (status >> key) {
+    if (key == "VmHWM:") {
+      double kb = 0;
+      status >> kb;
+      return kb / 1024.0;
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace lapis::bench

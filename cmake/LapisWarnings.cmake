@@ -1,0 +1,11 @@
+# Warning and sanitizer flags shared by every Lapis target (applied through lapis_target_defaults).
+add_library(lapis_build_flags INTERFACE)
+target_compile_options(lapis_build_flags INTERFACE -Wall -Wextra -Wpedantic)
+if(LAPIS_SANITIZE)
+  target_compile_options(lapis_build_flags INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer)
+  target_link_options(lapis_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
+function(lapis_target_defaults target)
+  target_link_libraries(${target} PRIVATE lapis_build_flags)
+endfunction()
