@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "lapis/core/error.h"
+
 namespace lapis::solver {
 
 // Column-major sparse matrix with int indices: what Eigen's sparse solvers and CHOLMOD's

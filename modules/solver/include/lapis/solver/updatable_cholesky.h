@@ -47,6 +47,10 @@ class UpdatableCholesky {
   // A  n by n SPD. Factorizes (supernodal, then converted to the simplicial LDL' that
   // cholmod_updown needs). Diagonal weights start at zero: A already contains them.
   void compute(const SparseMatrix& A);
+  // Factorizes A₀ + diag(w) and remembers w as the current diagonal weights: A₀ may be
+  // singular on its own (the grid bi-Laplacian DᵀD is), the weights make it definite.
+  // A₀ must store its diagonal. w  n entries, finite and ≥ 0.
+  void compute(const SparseMatrix& A0, const Eigen::VectorXd& diagonal_weights);
 
   // A += C Cᵀ and A -= C Cᵀ for C  n by r. A downdate that would make A indefinite throws
   // NotPositiveDefinite and leaves the object solving the previous A.
