@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "csr.h"
+#include "lapis/geometry/connectivity.h"
 #include "lapis/core/error.h"
 
 namespace lapis::geometry {
@@ -160,7 +160,7 @@ ValidationReport validate(const TriMesh& m, const ValidationOptions& o) {
   if (o.check_manifold) {
     Faces in_range(good.size(), 3);
     for (size_t i = 0; i < good.size(); ++i) in_range.row(i) = m.F.row(good[i]);
-    const detail::Csr vf = detail::vertex_face_csr(in_range, m.num_vertices());
+    const AdjacencyLists vf = vertex_face_lists(in_range, m.num_vertices());
     for (int v = 0; v < m.num_vertices(); ++v)
       if (!single_fan(in_range, v, vf[v])) r.non_manifold_vertices.push_back(v);
   }
