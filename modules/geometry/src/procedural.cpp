@@ -50,9 +50,9 @@ TriMesh make_plane_grid(int nx, int ny, double width, double height) {
 }
 
 TriMesh make_irregular_grid(int nx, int ny, double jitter, std::uint32_t seed, double width, double height) {
-  if (!(jitter >= 0 && jitter <= 0.45))
+  if (!(jitter >= 0 && jitter < 0.25))
     throw InvalidArgument("geometry::make_irregular_grid(): jitter = " + std::to_string(jitter) +
-                          ", expected [0, 0.45] (larger can fold triangles)");
+                          ", expected [0, 0.25) (larger can fold triangles)");
   TriMesh m = make_plane_grid(nx, ny, width, height);
   m.F = lattice_faces(nx, ny, [&](int i, int j) { return j * (nx + 1) + i; }, true);
   std::mt19937 rng(seed);
