@@ -1,0 +1,54 @@
+// Weighted sparse linear least squares with hard constraints:
+//   min_x  Σ_b w_b ‖A_b x − r_b‖²   subject to  x_i = c_i for fixed i,
+// the shape of every Laplacian / Poisson editing system in Lapis (thesis Eq. 2.1, 2.8, 4.x).
+// Precompute once (assemble and factorize the normal matrix of the free unknowns), then
+// solve() per frame for new right-hand sides r_b and fixed values c, several columns at once.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lapis/solver/cholesky.h"
+
+namespace lapis::solver {
+
+class LeastSquares {
+ public:
+  // n  number of unknowns (per column).
+  explicit LeastSquares(int n, CholeskyOptions options = {});
+  ~LeastSquares();
+  LeastSquares(LeastSquares&&) noexcept;
+  LeastSquares& operator=(LeastSquares&&) noexcept;
+
+  // A  m_b by n block of rows, weight w_b > 0 (squared-norm weight). Returns the block's id,
+  // the position of its right-hand side in solve(). Invalidates the precomputation.
+  int add_block(const SparseMatrix& A, double weight, std::string name = {});
+  // Unknowns held at given values (eliminated, not penalized). Invalidates the precomputation.
+  void set_fixed(std::vector<int> indices);
+
+  // Assembles Σ w_b A_bᵀ A_b over the free unknowns and factorizes it. Throws
+  // NotPositiveDefinite when the free unknowns are under-determined.
+  void precompute();
+  bool precomputed() const;
+
+  // rhs[b]  m_b by k right-hand side of block b (an empty matrix means zero);
+  // fixed_values  #fixed by k, in set_fixed's order. Returns x, n by k.
+  DenseMatrix solve(const std::vector<DenseMatrix>& rhs, const DenseMatrix& fixed_values) const;
+
+  // Assembles Σ w_b A_bᵀ r_b restricted to free unknowns, minus the fixed coupling: the
+  // right-hand side solve() factors, exposed for callers that batch several solves.
+  DenseMatrix normal_rhs(const std::vector<DenseMatrix>& rhs, const DenseMatrix& fixed_values) const;
+
+  int unknowns() const;
+  int num_blocks() const;
+  const std::vector<int>& fixed() const;
+  const std::vector<int>& free() const;
+  const Cholesky& factor() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lapis::solver

@@ -1,0 +1,175 @@
+#include "cholmod_factor.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "checks.h"
+
+namespace lapis::solver::detail {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+CholmodFactor::~CholmodFactor() {
+  free_factor();
+  if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
+}
+
+void CholmodFactor::free_factor() {
+  if (L_) cholmod_free_factor(&L_, context_.get());
+  factorized_ = false;
+}
+
+void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats,
+                            const char* function) {
+  free_factor();
+  if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
+  cholmod_common* c = context_.get();
+  c->supernodal = kind == FactorKind::Supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+  c->final_ll = kind == FactorKind::Supernodal;  // simplicial stays LDL' (updown's form)
+  // nmethods = 0: AMD, then METIS / nested dissection when AMD's fill is poor (CHOLMOD's
+  // default rule); the best found is kept.
+  c->nmethods = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  cholmod_sparse a = sparse_view(A, -1);
+  symbolic_ = cholmod_analyze(&a, c);
+  context_.check(function, "cholmod_analyze");
+  if (!symbolic_) throw SolverFailure(std::string(function) + ": cholmod_analyze returned no factor");
+  stats.analyze_ms = ms_since(t0);
+  stats.ordering = ordering_name(c->method[c->selected].ordering);
+  stats.nnz_L = static_cast<std::int64_t>(c->lnz);
+  stats.flops = c->fl;
+  stats.kind = kind;
+  n_ = static_cast<int>(A.rows());
+  pattern_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+  pattern_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  const int* perm = static_cast<const int*>(symbolic_->Perm);
+  inverse_perm_.resize(static_cast<size_t>(n_));
+  for (int k = 0; k < n_; ++k) inverse_perm_[static_cast<size_t>(perm[k])] = k;
+}
+
+bool CholmodFactor::analyzed_for(const SparseMatrix& A) const {
+  return symbolic_ && same_pattern(A, pattern_outer_, pattern_inner_);
+}
+
+void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const char* function) {
+  cholmod_common* c = context_.get();
+  if (!L_) {
+    L_ = cholmod_copy_factor(symbolic_, c);
+    context_.check(function, "cholmod_copy_factor");
+  } else if (!L_->is_super && symbolic_->is_super) {
+    // A simplicial LDL' factor (after updown) would be refactorized simplicially, which is
+    // an order of magnitude slower on 3D problems: start again from the supernodal analysis.
+    free_factor();
+    L_ = cholmod_copy_factor(symbolic_, c);
+    context_.check(function, "cholmod_copy_factor");
+  }
+  factorized_ = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  cholmod_sparse a = sparse_view(A, -1);
+  cholmod_factorize(&a, L_, c);
+  context_.check(function, "cholmod_factorize");
+  stats.factorize_ms = ms_since(t0);
+  if (c->status == CHOLMOD_NOT_POSDEF) {
+    const std::ptrdiff_t column = failed_column(L_);
+    throw NotPositiveDefinite(std::string(function) + ": matrix is not positive definite (pivot " +
+                                  std::to_string(column) + " is not positive)",
+                              column);
+  }
+  stats.nnz_L = static_cast<std::int64_t>(c->lnz);
+  stats.flops = c->fl;
+  factorized_ = true;
+}
+
+DenseMatrix CholmodFactor::solve(const DenseMatrix& B, const char* function) const {
+  cholmod_dense b = dense_view(B);
+  cholmod_common* c = context_.get();
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, L_, &b, c);
+  if (!x) context_.check(function, "cholmod_solve");
+  if (!x) throw SolverFailure(std::string(function) + ": cholmod_solve returned nothing");
+  DenseMatrix out = to_eigen(*x);
+  cholmod_free_dense(&x, c);
+  return out;
+}
+
+void CholmodFactor::to_simplicial_ldl(const char* function) {
+  if (!L_->is_super && !L_->is_ll) return;
+  cholmod_change_factor(CHOLMOD_REAL, /*to_ll=*/0, /*to_super=*/0, /*to_packed=*/1,
+                        /*to_monotonic=*/1, L_, context_.get());
+  context_.check(function, "cholmod_change_factor");
+}
+
+void CholmodFactor::updown(bool update, const SparseMatrix& C, const char* function) {
+  // cholmod_updown works on the permuted matrix P A P': C's rows must be permuted alike,
+  // and sorted within each column.
+  SparseMatrix Cp(C.rows(), C.cols());
+  {
+    std::vector<Eigen::Triplet<double, int>> t;
+    t.reserve(static_cast<size_t>(C.nonZeros()));
+    for (int j = 0; j < C.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(C, j); it; ++it)
+        t.emplace_back(permuted(static_cast<int>(it.row())), j, it.value());
+    Cp.setFromTriplets(t.begin(), t.end());
+    Cp.makeCompressed();
+  }
+  cholmod_sparse cs = sparse_view(Cp, 0);
+  cholmod_updown(update ? 1 : 0, &cs, L_, context_.get());
+  context_.check(function, "cholmod_updown");
+}
+
+std::ptrdiff_t CholmodFactor::first_bad_pivot() const {
+  const int* Lp = static_cast<const int*>(L_->p);
+  const double* Lx = static_cast<const double*>(L_->x);
+  const int* perm = static_cast<const int*>(L_->Perm);
+  for (size_t j = 0; j < L_->n; ++j) {
+    const double d = Lx[Lp[j]];
+    if (!(std::isfinite(d) && d > 0)) return perm ? perm[j] : static_cast<std::ptrdiff_t>(j);
+  }
+  return -1;
+}
+
+std::vector<double> CholmodFactor::path_work() const {
+  // In a simplicial factor the parent of column j is its smallest off-diagonal row index;
+  // parents have larger indices than children, so one backward sweep sums the paths.
+  const int* Lp = static_cast<const int*>(L_->p);
+  const int* Li = static_cast<const int*>(L_->i);
+  const int* Lnz = static_cast<const int*>(L_->nz);
+  const size_t n = L_->n;
+  std::vector<double> work(n, 0.0);
+  for (size_t jj = n; jj-- > 0;) {
+    int parent = -1;
+    for (int k = Lp[jj] + 1; k < Lp[jj] + Lnz[jj]; ++k)
+      if (parent < 0 || Li[k] < parent) parent = Li[k];
+    work[jj] = static_cast<double>(Lnz[jj]) + (parent >= 0 ? work[static_cast<size_t>(parent)] : 0.0);
+  }
+  return work;
+}
+
+void CholmodFactor::take_factor_from(CholmodFactor& other) {
+  // Factors belong to their common's allocator only in name (malloc underneath), so a factor
+  // made with another context may be freed with this one.
+  free_factor();
+  L_ = other.L_;
+  other.L_ = nullptr;
+  factorized_ = other.factorized_;
+  other.factorized_ = false;
+}
+
+std::unique_ptr<CholmodFactor> CholmodFactor::clone_symbolic(const char* function) const {
+  auto out = std::make_unique<CholmodFactor>();
+  out->symbolic_ = cholmod_copy_factor(symbolic_, out->context_.get());
+  out->context_.check(function, "cholmod_copy_factor");
+  out->n_ = n_;
+  out->pattern_outer_ = pattern_outer_;
+  out->pattern_inner_ = pattern_inner_;
+  out->inverse_perm_ = inverse_perm_;
+  out->context_.get()->supernodal = context_.get()->supernodal;
+  out->context_.get()->final_ll = context_.get()->final_ll;
+  return out;
+}
+
+}  // namespace lapis::solver::detail

@@ -1,0 +1,64 @@
+// Private: one CHOLMOD factor with its own workspace. Analysis, numeric factorization,
+// solve, conversion to simplicial LDL' and rank-k update/downdate; both public factor
+// classes are built on it so the CHOLMOD calls live in one place.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "cholmod_context.h"
+
+namespace lapis::solver::detail {
+
+class CholmodFactor {
+ public:
+  CholmodFactor() = default;
+  ~CholmodFactor();
+  CholmodFactor(const CholmodFactor&) = delete;
+  CholmodFactor& operator=(const CholmodFactor&) = delete;
+
+  // Symbolic analysis of A (lower triangle read) for a factor of the given kind; fills
+  // stats.ordering, nnz_L, flops, analyze_ms. Keeps A's pattern to detect changes.
+  void analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function);
+  bool analyzed_for(const SparseMatrix& A) const;
+  // Numeric factorization into the analyzed structure. Throws NotPositiveDefinite naming the
+  // (un-permuted) column; the factor is then unusable until the next factorize().
+  void factorize(const SparseMatrix& A, FactorStats& stats, const char* function);
+  bool factorized() const { return factorized_; }
+
+  DenseMatrix solve(const DenseMatrix& B, const char* function) const;
+
+  // Converts the numeric factor to simplicial LDL' (what cholmod_updown modifies).
+  void to_simplicial_ldl(const char* function);
+  // L·D·L' ± C·C' where C's rows are in the caller's (un-permuted) ordering; permutes them.
+  void updown(bool update, const SparseMatrix& C, const char* function);
+  // First column j of the simplicial LDL' factor whose pivot D(j,j) is not finite and
+  // positive, un-permuted; -1 if all are.
+  std::ptrdiff_t first_bad_pivot() const;
+
+  // Per permuted column k: the sum of column counts of L along the elimination-tree path
+  // from k to its root — the entries a rank-1 update starting at k touches (Davis & Hager).
+  std::vector<double> path_work() const;
+  // Position in the factor's ordering of original row i.
+  int permuted(int i) const { return inverse_perm_[static_cast<size_t>(i)]; }
+
+  // Moves `other`'s numeric factor into this one (same analysis assumed).
+  void take_factor_from(CholmodFactor& other);
+  // A new factor object sharing nothing, holding a copy of this symbolic analysis.
+  std::unique_ptr<CholmodFactor> clone_symbolic(const char* function) const;
+
+  int n() const { return n_; }
+
+ private:
+  void free_factor();
+
+  mutable CholmodContext context_;
+  cholmod_factor* L_ = nullptr;
+  cholmod_factor* symbolic_ = nullptr;  // the analysis, kept for refactorization
+  bool factorized_ = false;
+  int n_ = 0;
+  std::vector<int> pattern_outer_, pattern_inner_;
+  std::vector<int> inverse_perm_;
+};
+
+}  // namespace lapis::solver::detail

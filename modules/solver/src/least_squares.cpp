@@ -1,0 +1,171 @@
+#include "lapis/solver/least_squares.h"
+
+#include <algorithm>
+
+#include "checks.h"
+
+namespace lapis::solver {
+namespace {
+
+// n by cols.size() matrix selecting the given columns: A * S = A(:, cols).
+SparseMatrix column_selector(int n, const std::vector<int>& cols) {
+  std::vector<Eigen::Triplet<double, int>> t;
+  t.reserve(cols.size());
+  for (size_t j = 0; j < cols.size(); ++j) t.emplace_back(cols[j], static_cast<int>(j), 1.0);
+  SparseMatrix S(n, static_cast<int>(cols.size()));
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+}  // namespace
+
+struct LeastSquares::Impl {
+  struct Block {
+    SparseMatrix A;
+    double weight;
+    std::string name;
+  };
+  int n = 0;
+  std::vector<Block> blocks;
+  std::vector<int> fixed, free;
+  Cholesky chol;
+  std::vector<SparseMatrix> weighted_free_t;  // w_b A_b(:, free)'   (#free by m_b)
+  SparseMatrix free_fixed;                    // Σ w_b A_b(:, free)' A_b(:, fixed)
+  bool precomputed = false;
+
+  explicit Impl(CholeskyOptions o) : chol(o) {}
+};
+
+LeastSquares::LeastSquares(int n, CholeskyOptions options) : impl_(std::make_unique<Impl>(options)) {
+  if (n <= 0)
+    throw InvalidArgument("solver::LeastSquares::LeastSquares(): " + std::to_string(n) +
+                          " unknowns, expected at least one");
+  impl_->n = n;
+  set_fixed({});
+}
+LeastSquares::~LeastSquares() = default;
+LeastSquares::LeastSquares(LeastSquares&&) noexcept = default;
+LeastSquares& LeastSquares::operator=(LeastSquares&&) noexcept = default;
+
+int LeastSquares::add_block(const SparseMatrix& A, double weight, std::string name) {
+  constexpr const char* fn = "solver::LeastSquares::add_block()";
+  if (A.cols() != impl_->n)
+    throw InvalidArgument(std::string(fn) + ": block is " + detail::dims(A.rows(), A.cols()) +
+                          ", expected " + std::to_string(impl_->n) + " columns");
+  if (!(std::isfinite(weight) && weight > 0))
+    throw InvalidArgument(std::string(fn) + ": weight " + std::to_string(weight) + " is not finite and > 0");
+  detail::require_finite(A, fn);
+  impl_->blocks.push_back({A, weight, std::move(name)});
+  impl_->precomputed = false;
+  return static_cast<int>(impl_->blocks.size()) - 1;
+}
+
+void LeastSquares::set_fixed(std::vector<int> indices) {
+  constexpr const char* fn = "solver::LeastSquares::set_fixed()";
+  const int n = impl_->n;
+  std::vector<char> is_fixed(static_cast<size_t>(n), 0);
+  for (int i : indices) {
+    if (i < 0 || i >= n)
+      throw InvalidArgument(std::string(fn) + ": index " + std::to_string(i) + " out of range [0, " +
+                            std::to_string(n) + ")");
+    if (is_fixed[static_cast<size_t>(i)])
+      throw InvalidArgument(std::string(fn) + ": index " + std::to_string(i) + " given twice");
+    is_fixed[static_cast<size_t>(i)] = 1;
+  }
+  impl_->fixed = std::move(indices);
+  impl_->free.clear();
+  for (int i = 0; i < n; ++i)
+    if (!is_fixed[static_cast<size_t>(i)]) impl_->free.push_back(i);
+  impl_->precomputed = false;
+}
+
+void LeastSquares::precompute() {
+  constexpr const char* fn = "solver::LeastSquares::precompute()";
+  Impl& m = *impl_;
+  if (m.blocks.empty()) throw InvalidArgument(std::string(fn) + ": no blocks added");
+  if (m.free.empty()) throw InvalidArgument(std::string(fn) + ": every unknown is fixed; nothing to solve");
+  const SparseMatrix S_free = column_selector(m.n, m.free);
+  const SparseMatrix S_fixed = column_selector(m.n, m.fixed);
+  const int nf = static_cast<int>(m.free.size());
+  SparseMatrix N(nf, nf);
+  m.free_fixed = SparseMatrix(nf, static_cast<int>(m.fixed.size()));
+  m.weighted_free_t.clear();
+  for (const auto& b : m.blocks) {
+    const SparseMatrix Af = b.A * S_free;
+    SparseMatrix AfT = b.weight * SparseMatrix(Af.transpose());
+    N += AfT * Af;
+    if (!m.fixed.empty()) m.free_fixed += AfT * (b.A * S_fixed);
+    AfT.makeCompressed();
+    m.weighted_free_t.push_back(std::move(AfT));
+  }
+  N.makeCompressed();
+  try {
+    m.chol.compute(N);
+  } catch (const NotPositiveDefinite& e) {
+    throw NotPositiveDefinite(std::string(fn) +
+                                  ": the free unknowns are not determined by the blocks "
+                                  "(normal matrix not positive definite): " + e.what(),
+                              e.column() >= 0 ? m.free[static_cast<size_t>(e.column())] : -1);
+  }
+  m.precomputed = true;
+}
+
+bool LeastSquares::precomputed() const { return impl_->precomputed; }
+
+DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
+                                     const DenseMatrix& fixed_values) const {
+  constexpr const char* fn = "solver::LeastSquares::solve()";
+  const Impl& m = *impl_;
+  if (!m.precomputed) throw InvalidArgument(std::string(fn) + ": call precompute() first");
+  if (rhs.size() != m.blocks.size())
+    throw InvalidArgument(std::string(fn) + ": " + std::to_string(rhs.size()) +
+                          " right-hand sides, expected one per block (" +
+                          std::to_string(m.blocks.size()) + ")");
+  Eigen::Index k = -1;
+  for (const auto& r : rhs)
+    if (r.size() > 0) k = r.cols();
+  if (k < 0) k = fixed_values.size() > 0 ? fixed_values.cols() : 1;
+  DenseMatrix b = DenseMatrix::Zero(static_cast<Eigen::Index>(m.free.size()), k);
+  for (size_t i = 0; i < rhs.size(); ++i) {
+    if (rhs[i].size() == 0) continue;
+    const auto rows = m.blocks[i].A.rows();
+    if (rhs[i].rows() != rows || rhs[i].cols() != k)
+      throw InvalidArgument(std::string(fn) + ": right-hand side of block " + std::to_string(i) +
+                            (m.blocks[i].name.empty() ? "" : " ('" + m.blocks[i].name + "')") + " is " +
+                            detail::dims(rhs[i].rows(), rhs[i].cols()) + ", expected " +
+                            detail::dims(rows, k));
+    if (!rhs[i].allFinite())
+      throw InvalidArgument(std::string(fn) + ": right-hand side of block " + std::to_string(i) +
+                            " has a non-finite entry");
+    b += m.weighted_free_t[i] * rhs[i];
+  }
+  if (!m.fixed.empty()) {
+    if (fixed_values.rows() != static_cast<Eigen::Index>(m.fixed.size()) || fixed_values.cols() != k)
+      throw InvalidArgument(std::string(fn) + ": fixed values are " +
+                            detail::dims(fixed_values.rows(), fixed_values.cols()) + ", expected " +
+                            detail::dims(static_cast<Eigen::Index>(m.fixed.size()), k));
+    if (!fixed_values.allFinite())
+      throw InvalidArgument(std::string(fn) + ": fixed values have a non-finite entry");
+    b -= m.free_fixed * fixed_values;
+  }
+  return b;
+}
+
+DenseMatrix LeastSquares::solve(const std::vector<DenseMatrix>& rhs, const DenseMatrix& fixed_values) const {
+  const Impl& m = *impl_;
+  const DenseMatrix b = normal_rhs(rhs, fixed_values);
+  const DenseMatrix x_free = m.chol.solve(b);
+  DenseMatrix x(m.n, b.cols());
+  for (size_t j = 0; j < m.free.size(); ++j) x.row(m.free[j]) = x_free.row(static_cast<Eigen::Index>(j));
+  for (size_t j = 0; j < m.fixed.size(); ++j)
+    x.row(m.fixed[j]) = fixed_values.row(static_cast<Eigen::Index>(j));
+  return x;
+}
+
+int LeastSquares::unknowns() const { return impl_->n; }
+int LeastSquares::num_blocks() const { return static_cast<int>(impl_->blocks.size()); }
+const std::vector<int>& LeastSquares::fixed() const { return impl_->fixed; }
+const std::vector<int>& LeastSquares::free() const { return impl_->free; }
+const Cholesky& LeastSquares::factor() const { return impl_->chol; }
+
+}  // namespace lapis::solver

@@ -1,0 +1,187 @@
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "grid_matrices.h"
+#include "lapis/solver/cholesky.h"
+#include "lapis/solver/updatable_cholesky.h"
+
+using namespace lapis;
+using namespace lapis::solver;
+using namespace lapis::solver::testing;
+
+namespace {
+
+double relative_difference(const DenseMatrix& X, const DenseMatrix& Y) {
+  return (X - Y).norm() / Y.norm();
+}
+
+// A sparse n by r matrix with a few random entries per column, scaled so that an update
+// is of the size of the matrix's own entries.
+SparseMatrix random_columns(int n, int r, std::mt19937& rng, double scale) {
+  std::uniform_int_distribution<int> row(0, n - 1), count(1, 3);
+  std::uniform_real_distribution<double> value(-scale, scale);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (int j = 0; j < r; ++j) {
+    const int c = count(rng);
+    for (int k = 0; k < c; ++k) t.emplace_back(row(rng), j, value(rng));
+  }
+  SparseMatrix C(n, r);
+  C.setFromTriplets(t.begin(), t.end());
+  return C;
+}
+
+}  // namespace
+
+TEST_CASE("solver: updown matches refactor after 50 random mixed modifications") {
+  const int N = 9, n = N * N * N;
+  const SparseMatrix A0 = hair_normal_matrix(N, {});  // weights come through set_diagonal_weights
+  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  for (ModifyMethod method : {ModifyMethod::UpdateDowndate, ModifyMethod::Refactorize, ModifyMethod::Auto}) {
+    CAPTURE(std::string(to_string(method)));
+    // DᵀD alone is singular (constants are in D's null space): start from a few constraints.
+    SparseMatrix start = A0;
+    for (int i : spread_nodes(n, 10)) start.coeffRef(i, i) += 1e4;
+    UpdatableCholesky chol({Backend::Cholmod, method});
+    chol.compute(start);
+    std::mt19937 rng(42);
+    std::uniform_int_distribution<int> kind(0, 2), node(0, n - 1), rank(1, 12);
+    std::vector<SparseMatrix> applied;  // updates that may later be downdated
+    int downdates = 0;
+    for (int step = 0; step < 50; ++step) {
+      const int k = kind(rng);
+      if (k == 0 || (k == 1 && applied.empty())) {
+        applied.push_back(random_columns(n, rank(rng), rng, 3.0));
+        chol.update(applied.back());
+      } else if (k == 1) {
+        chol.downdate(applied.back());  // removes an earlier update exactly: stays SPD
+        applied.pop_back();
+        ++downdates;
+      } else {
+        std::vector<int> idx;
+        std::vector<double> w;
+        for (int j = rank(rng) * 4; j > 0; --j) {
+          idx.push_back(node(rng));
+          w.push_back(std::uniform_int_distribution<int>(0, 2)(rng) == 0 ? 0.0 : 1e4);
+        }
+        chol.set_diagonal_weights(idx, w);
+      }
+      if (method != ModifyMethod::Auto) CHECK(chol.last_report().method == method);
+    }
+    CHECK(downdates > 5);
+    Cholesky fresh;
+    fresh.compute(chol.matrix());
+    CHECK(relative_difference(chol.solve(B), fresh.solve(B)) <= 1e-8);
+    // And the tracked matrix really is A₀ + Σ modifications: cross-check with Eigen's LDLᵀ.
+    CHECK(relative_difference(chol.solve(B), solve_spd(chol.matrix(), B, {Backend::Eigen})) <= 1e-8);
+  }
+}
+
+TEST_CASE("solver: set_diagonal_weights equals a fresh factorization of the weighted matrix") {
+  const int N = 10, n = N * N * N;
+  const SparseMatrix base = hair_normal_matrix(N, {});
+  SparseMatrix A = base;
+  const std::vector<int> first = spread_nodes(n, 30, 0);
+  for (int i : first) A.coeffRef(i, i) += 1e-6;  // keep A₀ definite; weights carry ω²
+  UpdatableCholesky chol;
+  chol.compute(A);
+  chol.set_diagonal_weights(first, std::vector<double>(first.size(), 1e4));
+  const std::vector<int> second = spread_nodes(n, 30, 7);
+  std::vector<int> idx = second;
+  std::vector<double> w(second.size(), 1e4);
+  for (int i : first) {  // remove the first set, add the second: one update + one downdate
+    idx.push_back(i);
+    w.push_back(0.0);
+  }
+  const ModifyReport report = chol.set_diagonal_weights(idx, w);
+  CHECK(report.rank == static_cast<int>(first.size() + second.size()));
+  for (int i : second) A.coeffRef(i, i) += 1e4;
+  CHECK(chol.diagonal_weight(second[3]) == 1e4);
+  CHECK(chol.diagonal_weight(first[3]) == 0.0);
+  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  CHECK(relative_difference(chol.solve(B), solve_spd(A, B)) <= 1e-8);
+  CHECK((chol.matrix() - A).norm() <= 1e-9 * A.norm());
+}
+
+TEST_CASE("solver: a downdate that makes the matrix indefinite throws and keeps the previous system") {
+  const SparseMatrix A = random_spd(200, 0.03, 11);
+  const DenseMatrix B = DenseMatrix::Random(200, 2);
+  for (ModifyMethod method : {ModifyMethod::UpdateDowndate, ModifyMethod::Refactorize}) {
+    CAPTURE(std::string(to_string(method)));
+    UpdatableCholesky chol({Backend::Cholmod, method});
+    chol.compute(A);
+    const DenseMatrix before = chol.solve(B);
+    SparseMatrix C(200, 1);
+    C.insert(57, 0) = 2.0 * std::sqrt(A.coeff(57, 57));  // removes 4× the diagonal entry
+    try {
+      chol.downdate(C);
+      FAIL("downdate to an indefinite matrix did not throw");
+    } catch (const NotPositiveDefinite& e) {
+      CHECK(std::string(e.what()).find("solver::UpdatableCholesky::downdate()") == 0);
+      CHECK(e.column() >= 0);
+    }
+    CHECK(relative_difference(chol.solve(B), before) <= 1e-10);
+    CHECK((chol.matrix() - A).norm() == 0.0);
+    // Still modifiable afterwards.
+    chol.update(C);
+    SparseMatrix A2 = A;
+    A2.coeffRef(57, 57) += C.coeff(57, 0) * C.coeff(57, 0);
+    CHECK(relative_difference(chol.solve(B), solve_spd(A2, B)) <= 1e-9);
+  }
+}
+
+TEST_CASE("solver: the eigen backend refactorizes and agrees with cholmod updown") {
+  const int N = 8, n = N * N * N;
+  SparseMatrix A = hair_normal_matrix(N, spread_nodes(n, 12));
+  UpdatableCholesky cholmod({Backend::Cholmod, ModifyMethod::UpdateDowndate});
+  UpdatableCholesky eigen({Backend::Eigen, ModifyMethod::Auto});
+  cholmod.compute(A);
+  eigen.compute(A);
+  const std::vector<int> idx = spread_nodes(n, 20, 3);
+  const std::vector<double> w(idx.size(), 1e4);
+  cholmod.set_diagonal_weights(idx, w);
+  CHECK(eigen.set_diagonal_weights(idx, w).method == ModifyMethod::Refactorize);
+  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  CHECK(relative_difference(cholmod.solve(B), eigen.solve(B)) <= 1e-9);
+}
+
+TEST_CASE("solver: the automatic choice reports its predictions and picks the cheaper one") {
+  const int N = 14, n = N * N * N;
+  UpdatableCholesky chol;
+  chol.compute(hair_normal_matrix(N, spread_nodes(n, 60)));
+  // One constraint: update/downdate touches one path of the elimination tree.
+  const int one[] = {n / 2};
+  const double w[] = {1e4};
+  ModifyReport small = chol.set_diagonal_weights(one, w);
+  CHECK(small.method == ModifyMethod::UpdateDowndate);
+  CHECK(small.predicted_updown_ms < small.predicted_refactor_ms);
+  CHECK(small.rank == 1);
+  // Every node changes: a refactorization is cheaper than n rank-1 modifications.
+  std::vector<int> all(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) all[static_cast<size_t>(i)] = i;
+  ModifyReport big = chol.set_diagonal_weights(all, std::vector<double>(all.size(), 5.0));
+  CHECK(big.method == ModifyMethod::Refactorize);
+  CHECK(big.predicted_refactor_ms < big.predicted_updown_ms);
+  CHECK(big.ms > 0);
+}
+
+TEST_CASE("solver: updatable cholesky rejects bad arguments naming the function") {
+  UpdatableCholesky chol;
+  CHECK_THROWS_WITH_AS(chol.update(SparseMatrix(5, 1)),
+                       "solver::UpdatableCholesky::update(): C is 5x1, expected 0 rows", InvalidArgument);
+  chol.compute(random_spd(30, 0.1, 12));
+  CHECK_THROWS_WITH_AS(chol.downdate(SparseMatrix(29, 2)),
+                       "solver::UpdatableCholesky::downdate(): C is 29x2, expected 30 rows",
+                       InvalidArgument);
+  const int idx[] = {3, 30};
+  const double w[] = {1.0, 1.0};
+  CHECK_THROWS_WITH_AS(chol.set_diagonal_weights(idx, w),
+                       "solver::UpdatableCholesky::set_diagonal_weights(): index 30 out of range [0, 30)",
+                       InvalidArgument);
+  const int idx2[] = {3};
+  const double neg[] = {-1.0};
+  CHECK_THROWS_AS(chol.set_diagonal_weights(idx2, neg), InvalidArgument);
+  CHECK_THROWS_WITH_AS(chol.set_diagonal_weights(idx2, w),
+                       "solver::UpdatableCholesky::set_diagonal_weights(): 1 indices but 2 weights",
+                       InvalidArgument);
+}
