@@ -198,6 +198,8 @@ void Viewer::handle_camera(const InputEvent& e) {
   if (e.type == EventType::Scroll) camera_.zoom(e.y);
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_F && e.mods == 0) frame_scene();
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_Q && e.mods == GLFW_MOD_CONTROL) close();
+  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_P && e.mods == GLFW_MOD_CONTROL)
+    request_screenshot(options_.screenshot.empty() ? std::filesystem::path("screenshot.png") : options_.screenshot);
 }
 
 void Viewer::draw_overlay() {

@@ -1,8 +1,8 @@
 // The shell every Lapis app runs in: a GLFW window with an OpenGL 3.3 core context and
 // MSAA, Dear ImGui, an orbit camera (right-drag orbit, middle-drag pan, wheel zoom, F to
-// frame, Ctrl+Q to quit), a frame-time overlay, screenshots, and recording / replay of the input stream.
-// `--headless` renders into a hidden window (Xvfb + Mesa work). Apps implement ViewerApp;
-// all their logic lives in the modules.
+// frame), Ctrl+P screenshot, Ctrl+Q quit, a frame-time overlay, and recording / replay of
+// the input stream. `--headless` renders into a hidden window (Xvfb + Mesa work). Apps
+// implement ViewerApp; all their logic lives in the modules.
 #pragma once
 
 #include <filesystem>
