@@ -69,7 +69,8 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v) {
     ImGui::PushID(static_cast<int>(i));
     bool visible = !hidden_.count(static_cast<int>(i));
     if (ImGui::Checkbox("##visible", &visible)) {
-      visible ? hidden_.erase(static_cast<int>(i)) : (void)hidden_.insert(static_cast<int>(i));
+      if (visible) hidden_.erase(static_cast<int>(i));
+      else hidden_.insert(static_cast<int>(i));
       curves_dirty_ = true;
     }
     ImGui::SameLine();
