@@ -58,7 +58,7 @@ void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const 
   Field L(n, 3);
   Y.resize(n, 3);
   // L = D X: mean of the neighbours minus the node.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {
@@ -68,7 +68,7 @@ void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const 
         L.row(row) = s / c - X.row(row);
       }
   // Y = Dᵀ L + diag(w) X: column j of D holds 1/|N(i)| at each neighbour i of j.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int k = 0; k < g.dims[2]; ++k)
     for (int j = 0; j < g.dims[1]; ++j)
       for (int i = 0; i < g.dims[0]; ++i) {

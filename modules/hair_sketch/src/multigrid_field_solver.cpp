@@ -4,15 +4,12 @@
 #include <cmath>
 #include <string>
 
+#include "field_report.h"
 #include "lapis/core/error.h"
 #include "multigrid_hierarchy.h"
 
 namespace lapis::hair_sketch {
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 Eigen::RowVector3d column_dots(const Field& a, const Field& b) {
   return (a.array() * b.array()).colwise().sum();
@@ -45,16 +42,9 @@ int MultigridFieldSolver::levels() const { return mg_->levels(); }
 FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
                                              const ConstraintSet& current) {
   const auto t0 = std::chrono::steady_clock::now();
-  FieldSolveReport rep;
-  rep.method = FieldMethod::Multigrid;
-  rep.added = static_cast<int>(diff.added.size());
-  rep.removed = static_cast<int>(diff.removed.size());
-  rep.changed = static_cast<int>(diff.changed.size());
   const int n = static_cast<int>(field_.rows());
-  if (current.max_node() >= n)
-    throw InvalidArgument("hair_sketch::MultigridFieldSolver::apply(): constraint node " +
-                          std::to_string(current.max_node()) + " outside the grid of " +
-                          std::to_string(n) + " nodes");
+  FieldSolveReport rep = detail::start_report(FieldMethod::Multigrid, diff, current, n,
+                                              "hair_sketch::MultigridFieldSolver::apply()");
   const double w = opt_.omega * opt_.omega;
   std::vector<std::pair<int, double>> changes;
   changes.reserve(diff.added.size() + diff.removed.size());
@@ -70,7 +60,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   }
   for (const Constraint& c : diff.changed) targets_.row(c.node) = c.direction.transpose();
   if (!changes.empty()) mg_->add_to_diagonal(changes);
-  rep.update_ms = ms_since(t0);
+  rep.update_ms = detail::ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
 
   if (current.empty()) {
@@ -78,8 +68,8 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     // minimizer is the zero field.
     field_.setZero();
     rep.detail = "no constraints: zero field";
-    rep.solve_ms = ms_since(t1);
-    rep.total_ms = ms_since(t0);
+    rep.solve_ms = detail::ms_since(t1);
+    rep.total_ms = detail::ms_since(t0);
     return rep;
   }
 
@@ -135,8 +125,8 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   rep.error_estimate = est;
   rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels, " + std::to_string(it) +
                " iterations";
-  rep.solve_ms = ms_since(t1);
-  rep.total_ms = ms_since(t0);
+  rep.solve_ms = detail::ms_since(t1);
+  rep.total_ms = detail::ms_since(t0);
   return rep;
 }
 

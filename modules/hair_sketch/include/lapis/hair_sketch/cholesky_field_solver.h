@@ -1,0 +1,43 @@
+// The thesis' field path (§4.4.2): factorize DᵀD + WᵀW once, then turn each constraint
+// edit into a Cholesky update (added nodes) and downdate (removed nodes) through
+// solver::UpdatableCholesky, and back-substitute the three right-hand sides together.
+// Target-only changes touch the right-hand side alone.
+#pragma once
+
+#include <memory>
+
+#include "lapis/hair_sketch/field_solver.h"
+
+namespace lapis::solver {
+class UpdatableCholesky;
+}
+
+namespace lapis::hair_sketch {
+
+class CholeskyFieldSolver final : public FieldSolver {
+ public:
+  // refactorize_always: force a numeric refactorization per edit (the baseline the
+  // benchmark compares against) instead of the cost model's choice.
+  // Throws ResourceLimit when estimate_cholesky_bytes(n) exceeds options.memory_limit_bytes.
+  CholeskyFieldSolver(const Grid& grid, const FieldSolverOptions& options = {},
+                      bool refactorize_always = false);
+  ~CholeskyFieldSolver() override;
+
+  FieldSolveReport apply(const ConstraintDiff& diff, const ConstraintSet& current) override;
+  const Field& field() const override { return field_; }
+  FieldMethod method() const override {
+    return refactorize_always_ ? FieldMethod::Refactorize : FieldMethod::Thesis;
+  }
+
+ private:
+  Grid grid_;
+  double omega_;
+  bool refactorize_always_;
+  SparseMatrix DtD_;
+  Eigen::VectorXd weights_;  // ω² at constrained nodes
+  Field targets_;
+  Field field_;
+  std::unique_ptr<solver::UpdatableCholesky> factor_;  // null until a constraint exists
+};
+
+}  // namespace lapis::hair_sketch

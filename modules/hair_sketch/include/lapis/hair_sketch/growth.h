@@ -1,0 +1,55 @@
+// Hair growth along the field (thesis §4.6): from each root, append segments l·v(p) with
+// l = 0.5 d and v the trilinearly interpolated field, until |v| < 0.05, the strand leaves
+// the grid, or reaches its maximum length. Strands grow in parallel (OpenMP) into a
+// float field copy laid out node-major for cache-friendly lookups; the result does not
+// depend on the thread count.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_sketch/head.h"
+
+namespace lapis::hair_sketch {
+
+// The field as growth reads it: float, x y z of a node contiguous.
+class SampledField {
+ public:
+  SampledField(const Grid& grid, const Field& field);
+  // Trilinear interpolation; zero outside the grid.
+  Eigen::Vector3f operator()(const Eigen::Vector3f& p) const;
+  const Grid& grid() const { return grid_; }
+
+ private:
+  Grid grid_;
+  Eigen::Vector3f origin_;
+  float inv_spacing_;
+  std::vector<float> data_;  // 3 per node
+};
+
+struct GrowthOptions {
+  double step = 0.5;          // segment length l in grid spacings d (thesis §4.6: l = 0.5d)
+  double min_magnitude = 0.05;  // stop when |v(p)| < this (thesis §4.6)
+  double max_length = 120;    // in grid spacings (the thesis stops only at the box; a cap
+                              // keeps circulating flow from growing forever)
+};
+
+// Polylines: strand s has points [offsets[s], offsets[s+1]).
+struct Strands {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<int> offsets{0};
+  int count() const { return static_cast<int>(offsets.size()) - 1; }
+  int segments() const { return static_cast<int>(points.size()) - count(); }
+};
+
+Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
+                     const GrowthOptions& options = {});
+
+// Segments that cross the head surface or lie inside it (one BVH ray cast per segment,
+// crossing parity from the outside root), in parallel.
+int count_penetrating_segments(const Strands& strands, const Head& head);
+
+}  // namespace lapis::hair_sketch

@@ -1,0 +1,66 @@
+#include "curve_sampling.h"
+
+#include <cmath>
+#include <string>
+
+#include "lapis/core/error.h"
+
+namespace lapis::hair_sketch::detail {
+
+std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, double h,
+                                      const char* who) {
+  if (poly.size() < 2)
+    throw InvalidArgument(std::string(who) + ": a curve needs at least 2 points, got " +
+                          std::to_string(poly.size()));
+  double length = 0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    if (!poly[i].allFinite())
+      throw InvalidArgument(std::string(who) + ": point " + std::to_string(i) + " is not finite");
+    if (i) length += (poly[i] - poly[i - 1]).norm();
+  }
+  if (!(length > 0)) throw InvalidArgument(std::string(who) + ": the curve has zero length");
+  std::vector<Eigen::Vector3d> out{poly.front()};
+  double next = h, along = 0;
+  for (size_t i = 1; i < poly.size(); ++i) {
+    const double seg = (poly[i] - poly[i - 1]).norm();
+    while (seg > 0 && next <= along + seg) {
+      out.push_back(poly[i - 1] + (next - along) / seg * (poly[i] - poly[i - 1]));
+      next += h;
+    }
+    along += seg;
+  }
+  if (length - (next - h) > 0.5 * h) out.push_back(poly.back());
+  if (out.size() < 2) out.push_back(poly.back());
+  return out;
+}
+
+void constrain_cell(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                    std::vector<Constraint>& out) {
+  const Eigen::Vector3d q = grid.to_grid(p);
+  const int i0 = static_cast<int>(std::floor(q.x())), j0 = static_cast<int>(std::floor(q.y())),
+            k0 = static_cast<int>(std::floor(q.z()));
+  for (int c = 0; c < 8; ++c) {
+    const int i = i0 + (c & 1), j = j0 + ((c >> 1) & 1), k = k0 + (c >> 2);
+    if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2])
+      continue;
+    out.push_back({grid.index(i, j, k), dir});
+  }
+}
+
+void constrain_nearest(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                       std::vector<Constraint>& out) {
+  const Eigen::Vector3d q = grid.to_grid(p);
+  const int i = static_cast<int>(std::lround(q.x())), j = static_cast<int>(std::lround(q.y())),
+            k = static_cast<int>(std::lround(q.z()));
+  if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2])
+    return;
+  out.push_back({grid.index(i, j, k), dir});
+}
+
+void orthonormal_frame(const Eigen::Vector3d& t, Eigen::Vector3d& u, Eigen::Vector3d& v) {
+  const Eigen::Vector3d a = std::abs(t.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  u = t.cross(a).normalized();
+  v = t.cross(u).normalized();
+}
+
+}  // namespace lapis::hair_sketch::detail

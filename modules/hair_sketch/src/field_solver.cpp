@@ -1,0 +1,44 @@
+#include "lapis/hair_sketch/field_solver.h"
+
+#include "lapis/core/error.h"
+#include "lapis/hair_sketch/cholesky_field_solver.h"
+#include "lapis/hair_sketch/multigrid_field_solver.h"
+
+namespace lapis::hair_sketch {
+
+const char* to_string(FieldMethod m) {
+  switch (m) {
+    case FieldMethod::Auto: return "auto";
+    case FieldMethod::Thesis: return "thesis-updown";
+    case FieldMethod::Refactorize: return "refactorize";
+    case FieldMethod::Multigrid: return "multigrid";
+  }
+  return "?";
+}
+
+FieldMethod choose_field_method(const Grid& grid, const FieldSolverOptions& options) {
+  return estimate_cholesky_bytes(grid.num_nodes()) <= options.thesis_max_factor_bytes
+             ? FieldMethod::Thesis
+             : FieldMethod::Multigrid;
+}
+
+std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod method,
+                                               const FieldSolverOptions& options) {
+  if (method == FieldMethod::Auto) method = choose_field_method(grid, options);
+  switch (method) {
+    case FieldMethod::Thesis:
+      return std::make_unique<CholeskyFieldSolver>(grid, options, false);
+    case FieldMethod::Refactorize:
+      return std::make_unique<CholeskyFieldSolver>(grid, options, true);
+    default: {
+      if (estimate_multigrid_bytes(grid.num_nodes()) > options.memory_limit_bytes)
+        throw ResourceLimit("hair_sketch::make_field_solver(): the multigrid field of " +
+                            std::to_string(grid.num_nodes()) + " unknowns exceeds the memory limit");
+      MultigridFieldOptions mo;
+      mo.omega = options.omega;
+      return std::make_unique<MultigridFieldSolver>(grid, mo);
+    }
+  }
+}
+
+}  // namespace lapis::hair_sketch

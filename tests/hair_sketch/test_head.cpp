@@ -1,0 +1,97 @@
+// Head loading, scalp, roots and growth determinism.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <omp.h>
+
+#include "fixture.h"
+#include "lapis/core/error.h"
+#include "lapis/hair_sketch/stream_curve.h"
+
+using namespace hair_test;
+
+namespace {
+
+std::filesystem::path temp_file(const std::string& name, const std::string& text) {
+  const auto p = std::filesystem::temp_directory_path() / ("lapis_hair_" + name);
+  std::ofstream(p) << text;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("hair_sketch: the bundled head is a closed mesh with a scalp cap above the face") {
+  const Head& head = bundled_head();
+  CHECK(head.mesh.num_faces() > 10000);
+  const int scalp = head.scalp_face_count();
+  CHECK(scalp > head.mesh.num_faces() / 6);
+  CHECK(scalp < head.mesh.num_faces() / 2);
+  CHECK(head.inside(head.center));
+  // Neck below, crown above the centre.
+  CHECK(head.box.min().y() < head.center.y() - 1.5);
+  CHECK(head.box.max().y() > head.center.y() + 0.5);
+}
+
+TEST_CASE("hair_sketch: roots lie on the scalp, never inside the head, deterministic per seed") {
+  const Head& head = bundled_head();
+  RootOptions o;
+  o.count = 5000;
+  const auto a = sample_roots(head, o);
+  const auto b = sample_roots(head, o);
+  CHECK(a.size() > 0.8 * o.count);
+  CHECK(a.size() < 1.2 * o.count);
+  REQUIRE(a.size() == b.size());
+  for (size_t i = 0; i < a.size(); ++i) REQUIRE(a[i] == b[i]);
+  int inside = 0;
+  for (const auto& r : a) inside += head.inside(r);
+  CHECK(inside == 0);
+  for (size_t i = 0; i < a.size(); i += 97) {
+    const auto c = head.bvh->closest_point(a[i]);
+    CHECK(c.distance < 0.01);
+    CHECK(head.scalp_face[c.face]);
+  }
+  o.seed = 2;
+  const auto c = sample_roots(head, o);
+  CHECK((c.size() != a.size() || c[0] != a[0]));
+}
+
+TEST_CASE("hair_sketch: growth is deterministic and independent of the thread count") {
+  const Grid g = small_grid(6000);
+  StreamCurve s;
+  s.points = {{0, 1.3, 0}, {0, 0.8, -1.2}, {0, -1.0, -1.3}};
+  const ConstraintSet set = ConstraintSet::from(s.constraints(g));
+  const SampledField field(g, solve_exact(g, set));
+  RootOptions ro;
+  ro.count = 2000;
+  const auto roots = sample_roots(bundled_head(), ro);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Strands one = grow_strands(field, roots);
+  omp_set_num_threads(std::max(2, threads));
+  const Strands two = grow_strands(field, roots);
+  omp_set_num_threads(threads);
+  REQUIRE(one.offsets == two.offsets);
+  CHECK(one.points == two.points);
+  CHECK(one.segments() > 10 * one.count());  // strands actually grew
+  for (int i = 0; i < one.count(); ++i) CHECK_FALSE(bundled_head().inside(one.points[one.offsets[i]].cast<double>()));
+}
+
+TEST_CASE("hair_sketch: malformed head and scalp files give clear errors") {
+  CHECK_THROWS_AS(load_head(temp_file("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n")), lapis::Error);
+  CHECK_THROWS_AS(load_head(temp_file("garbage.obj", "this is not a mesh\n")), lapis::Error);
+  CHECK_THROWS_AS(load_head("/nonexistent/head.obj"), lapis::IoError);
+  const auto mask = temp_file("mask.txt", "# ok\n1\n2 3\n");
+  try {
+    read_scalp_mask(mask, 10);
+    FAIL("expected IoError");
+  } catch (const lapis::IoError& e) {
+    CHECK(std::string(e.what()).find("hair_sketch::read_scalp_mask(): ") == 0);
+    CHECK(std::string(e.what()).find(":3: expected one vertex index") != std::string::npos);
+  }
+  CHECK_THROWS_AS(read_scalp_mask(temp_file("mask2.txt", "12\n"), 10), lapis::IoError);
+  // Without a mask the scalp is the cap above a plane.
+  const Head h = load_head(std::filesystem::path(LAPIS_SOURCE_DIR) / "assets" / "head.obj");
+  CHECK(h.scalp_face_count() > 0);
+  CHECK(h.scalp_face_count() < h.mesh.num_faces() / 2);
+}

@@ -1,0 +1,138 @@
+// The thesis path (UpdatableCholesky update/downdate) against fresh factorizations and the
+// fast path against both, over random sequences of primitive additions, edits, removals.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include "fixture.h"
+#include "lapis/core/error.h"
+#include "lapis/hair_sketch/cholesky_field_solver.h"
+#include "lapis/hair_sketch/multigrid_field_solver.h"
+#include "lapis/hair_sketch/stream_curve.h"
+#include "lapis/solver/cholesky.h"
+
+using namespace hair_test;
+
+namespace {
+
+Field fresh_factorization(const Grid& g, const ConstraintSet& s, double omega = 100) {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(g.num_nodes());
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(g.num_nodes(), 3);
+  for (const auto& c : s.items()) {
+    w[c.node] = omega * omega;
+    b.row(c.node) = omega * omega * c.direction.transpose();
+  }
+  return lapis::solver::solve_spd(normal_matrix(g, w), b);
+}
+
+StreamCurve random_stream_curve(const Grid& g, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.15, 0.85), t(-1, 1);
+  const Eigen::Vector3d span = g.max_corner() - g.origin;
+  Eigen::Vector3d p = g.origin + Eigen::Vector3d(u(rng), u(rng), u(rng)).cwiseProduct(span);
+  Eigen::Vector3d dir(t(rng), t(rng), t(rng));
+  StreamCurve c;
+  c.tail_segments = static_cast<int>(rng() % 3);
+  for (int i = 0; i < 6; ++i) {
+    c.points.push_back(p);
+    dir = (dir.normalized() + 0.4 * Eigen::Vector3d(t(rng), t(rng), t(rng))).normalized();
+    p += 1.7 * g.spacing * dir;
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("hair_sketch: constraint diff lists added, removed and changed nodes") {
+  const ConstraintSet a = ConstraintSet::from({{1, {1, 0, 0}}, {4, {0, 1, 0}}, {7, {0, 0, 1}}});
+  const ConstraintSet b = ConstraintSet::from({{4, {0, 1, 0}}, {7, {0, 1, 1}}, {9, {1, 1, 0}}});
+  const ConstraintDiff d = diff(a, b);
+  REQUIRE(d.added.size() == 1);
+  CHECK(d.added[0].node == 9);
+  CHECK(d.removed == std::vector<int>{1});
+  REQUIRE(d.changed.size() == 1);
+  CHECK(d.changed[0].node == 7);
+  CHECK(d.weight_changes() == 2);
+  // Two primitives on one node average their directions.
+  const std::vector<std::vector<Constraint>> groups{{{3, {1, 0, 0}}}, {{3, {0, 1, 0}}}};
+  const ConstraintSet m = ConstraintSet::merge(groups);
+  REQUIRE(m.size() == 1);
+  CHECK((*m.find(3) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-15);
+  CHECK_THROWS_WITH_AS(ConstraintSet::from({{-2, {1, 0, 0}}}),
+                       "hair_sketch::ConstraintSet::merge(): negative node -2",
+                       lapis::InvalidArgument);
+}
+
+TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 random edits; "
+          "multigrid stays within 1e-6") {
+  Grid g;
+  g.dims = {12, 14, 11};
+  g.spacing = 0.1;
+  CholeskyFieldSolver thesis(g);
+  MultigridFieldSolver fast(g);
+  std::mt19937 rng(11);
+  std::vector<StreamCurve> curves;
+  ConstraintSet prev;
+  double worst_thesis = 0, worst_fast = 0;
+  int updowns = 0;
+  for (int step = 0; step < 100; ++step) {
+    const unsigned op = rng() % 4;
+    if (curves.empty() || op == 0 || (op == 1 && curves.size() < 4)) {
+      curves.push_back(random_stream_curve(g, rng));
+    } else if (op == 1 || op == 2) {
+      curves[rng() % curves.size()] = random_stream_curve(g, rng);  // edit
+    } else {
+      curves.erase(curves.begin() + rng() % curves.size());
+    }
+    std::vector<std::vector<Constraint>> groups;
+    for (const auto& c : curves) groups.push_back(c.constraints(g));
+    const ConstraintSet cur = ConstraintSet::merge(groups);
+    const ConstraintDiff d = diff(prev, cur);
+    const auto rt = thesis.apply(d, cur);
+    fast.apply(d, cur);
+    prev = cur;
+    updowns += rt.detail.rfind("update/downdate", 0) == 0;
+    if (cur.empty()) {
+      CHECK(thesis.field().norm() == 0.0);
+      continue;
+    }
+    const Field ref = fresh_factorization(g, cur);
+    worst_thesis = std::max(worst_thesis, (thesis.field() - ref).norm() / ref.norm());
+    worst_fast = std::max(worst_fast, (fast.field() - ref).norm() / ref.norm());
+  }
+  MESSAGE("worst relative error: thesis " << worst_thesis << ", multigrid " << worst_fast
+                                          << ", update/downdate edits " << updowns);
+  CHECK(worst_thesis <= 1e-8);
+  CHECK(worst_fast <= 1e-6);
+  CHECK(updowns > 50);  // the factor was modified, not rebuilt, on most edits
+}
+
+TEST_CASE("hair_sketch: target-only changes touch the right-hand side alone") {
+  Grid g;
+  g.dims = {8, 9, 7};
+  CholeskyFieldSolver thesis(g);
+  const ConstraintSet a = ConstraintSet::from({{20, {1, 0, 0}}, {200, {0, 1, 0}}});
+  const ConstraintSet b = ConstraintSet::from({{20, {0, 0, 1}}, {200, {0, 1, 0}}});
+  thesis.apply(diff(ConstraintSet(), a), a);
+  const auto r = thesis.apply(diff(a, b), b);
+  CHECK(r.detail == "right-hand side only");
+  CHECK(cosine(thesis.field().row(20).transpose(), {0, 0, 1}) > 0.999);
+}
+
+TEST_CASE("hair_sketch: grids that would not fit in memory are refused before allocation") {
+  GridOptions o;
+  o.target_unknowns = 5e9;
+  CHECK_THROWS_AS(make_grid(bundled_head().box, o), lapis::ResourceLimit);
+  o.target_unknowns = 1e6;
+  o.memory_limit_bytes = 64.0 * (1 << 20);
+  try {
+    make_grid(bundled_head().box, o);
+    FAIL("expected ResourceLimit");
+  } catch (const lapis::ResourceLimit& e) {
+    CHECK(std::string(e.what()).rfind("hair_sketch::make_grid(): a grid of 1000000 unknowns", 0) == 0);
+  }
+  // The thesis path's factor at 1M unknowns (≈ 28 GiB) does not fit 16 GiB.
+  Grid big;
+  big.dims = {100, 100, 100};
+  CHECK_THROWS_AS(CholeskyFieldSolver{big}, lapis::ResourceLimit);
+  CHECK(choose_field_method(big) == FieldMethod::Multigrid);
+}
