@@ -114,7 +114,11 @@ std::vector<Case> corpus() {
        "element 'face' has no list property 'vertex_indices'"},
       {"nan.ply", kPlyFloatHeader + ply_triangle_body(std::nanf("")), "non-finite coordinate x of vertex 1"},
       {"bad_index.ply", kPlyFloatHeader + ply_triangle_body(0, 3), "face 0 index 3.000000 out of range [0, 3)"},
-      {"list_bomb.ply", kPlyFloatHeader + ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1), "list count 255 of face 0 exceeds the remaining 8 bytes"},
+      {"list_bomb.ply", kPlyFloatHeader + ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1) + i32(2),
+       "list count 255 of face 0 exceeds the remaining 12 bytes"},
+      {"face_bomb.ply", kPlyFloatHeader.substr(0, kPlyFloatHeader.find("element face 1")) + "element face 1000\n" +
+           kPlyFloatHeader.substr(kPlyFloatHeader.find("property list")) + ply_triangle_body(),
+       "element 'face' claims 1000 instances, more than the remaining 49 bytes can hold"},
       {"extra.ply", kPlyFloatHeader + ply_triangle_body() + "junk", "unexpected data after the last element"},
       {"trunc_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0",
        "file ends early, expected y of vertex 2"},

@@ -8,6 +8,7 @@
 
 #include "lapis/core/error.h"
 #include "lapis/geometry/bvh.h"
+#include "parallel.h"
 
 namespace lapis::geometry {
 
@@ -42,11 +43,9 @@ struct BvhBuilder {
 
   // Returns the split position in (begin, end), kLeaf, or kMedian (split at the centroid
   // median: SAH found nothing, e.g. all centroids in one bin).
-  int split(int begin, int end, const Box& bounds) {
+  int split(int begin, int end, const Box& bounds, const Box& cb) {
     const int n = end - begin;
     const BvhOptions& o = bvh.options_;
-    Box cb;
-    for (int i = begin; i < end; ++i) cb.grow(centroids[bvh.order_[i]]);
     int axis = 0;
     (cb.hi - cb.lo).maxCoeff(&axis);
     const double lo = cb.lo[axis], extent = cb.hi[axis] - lo;
@@ -92,9 +91,13 @@ struct BvhBuilder {
   static constexpr int kSahDepth = 64;
 
   void build(int node, int begin, int end, int depth) {
-    Box bounds;
-    for (int i = begin; i < end; ++i) bounds.grow(boxes[bvh.order_[i]]);
-    int mid = depth < kSahDepth ? split(begin, end, bounds)
+    Box bounds, cb;  // of the triangles, of their centroids: one pass for both
+    for (int i = begin; i < end; ++i) {
+      const int f = bvh.order_[i];
+      bounds.grow(boxes[f]);
+      cb.grow(centroids[f]);
+    }
+    int mid = depth < kSahDepth ? split(begin, end, bounds, cb)
               : end - begin <= bvh.options_.max_leaf_size ? kLeaf : kMedian;
     if (mid == kLeaf) return set_node(node, bounds, begin, end - begin);
     if (mid == kMedian) {
@@ -127,7 +130,7 @@ Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_
   if (options.max_leaf_size < 1) throw InvalidArgument("geometry::Bvh(): max_leaf_size must be at least 1");
   const int nf = mesh.num_faces();
   BvhBuilder b{*this, std::vector<Box>(nf), std::vector<Eigen::Vector3d>(nf)};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nf >= detail::kParallelMin)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) b.boxes[f].grow(Eigen::Vector3d(mesh.V.row(mesh.F(f, k))));
     b.centroids[f] = 0.5 * (b.boxes[f].lo + b.boxes[f].hi);
@@ -136,7 +139,7 @@ Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_
   for (int f = 0; f < nf; ++f) order_[f] = f;
   nodes_.resize(std::max(1, 2 * nf - 1));  // a binary tree with at most nf leaves
   if (nf == 0) return;  // queries check for an empty mesh before touching the tree
-#pragma omp parallel
+#pragma omp parallel if (nf >= detail::kParallelMin)
 #pragma omp single
   b.build(0, 0, nf, 0);
   nodes_.resize(b.next_node.load());

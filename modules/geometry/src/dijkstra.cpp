@@ -8,7 +8,7 @@
 
 namespace lapis::geometry {
 
-ShortestPaths dijkstra(const Connectivity& conn, std::span<const int> sources, const EdgeCost& cost,
+ShortestPaths dijkstra(const Connectivity& conn, const std::vector<int>& sources, const EdgeCost& cost,
                        const DijkstraOptions& options) {
   const int n = conn.num_vertices();
   ShortestPaths out;
@@ -55,8 +55,9 @@ EdgeCost edge_length_cost(const TriMesh& mesh) {
   return [&mesh](int, int from, int to) { return (mesh.V.row(from) - mesh.V.row(to)).norm(); };
 }
 
-ShortestPaths dijkstra(const TriMesh& mesh, std::span<const int> sources, const DijkstraOptions& options) {
-  return dijkstra(Connectivity(mesh), sources, edge_length_cost(mesh), options);
+ShortestPaths dijkstra(const TriMesh& mesh, const std::vector<int>& sources, const EdgeCost& cost,
+                       const DijkstraOptions& options) {
+  return dijkstra(Connectivity(mesh), sources, cost ? cost : edge_length_cost(mesh), options);
 }
 
 std::vector<int> extract_path(const ShortestPaths& paths, int target) {

@@ -1,11 +1,10 @@
-// Shortest paths over mesh edges with a caller-given cost per edge: optimal merging
-// boundaries (thesis §3.5 uses per-edge costs) and geodesic-ish distance fields for region
-// growing (edge-length costs).
+// Shortest paths over mesh edges with a caller-given cost per edge: the optimal merging
+// boundary (thesis §3.4.3: a shortest closed path under per-edge boundary energy) and
+// geodesic-ish distance fields for transition regions (§3.3.3, edge-length costs).
 #pragma once
 
 #include <functional>
 #include <limits>
-#include <span>
 #include <vector>
 
 #include "lapis/geometry/connectivity.h"
@@ -29,11 +28,13 @@ struct DijkstraOptions {
 
 // Multi-source Dijkstra with a binary heap (lazy deletion). Throws InvalidArgument for a
 // source out of range or a negative / NaN edge cost (naming the edge).
-ShortestPaths dijkstra(const Connectivity& conn, std::span<const int> sources, const EdgeCost& cost,
+ShortestPaths dijkstra(const Connectivity& conn, const std::vector<int>& sources, const EdgeCost& cost,
                        const DijkstraOptions& options = {});
 
-// Edge-length costs: distances along edges, an upper bound of the geodesic distance.
-ShortestPaths dijkstra(const TriMesh& mesh, std::span<const int> sources, const DijkstraOptions& options = {});
+// Builds the connectivity of mesh first. An empty cost means edge lengths: distances along
+// edges, an upper bound of the geodesic distance.
+ShortestPaths dijkstra(const TriMesh& mesh, const std::vector<int>& sources, const EdgeCost& cost = {},
+                       const DijkstraOptions& options = {});
 
 // Cost functor of Euclidean edge lengths of mesh (keeps a reference to mesh).
 EdgeCost edge_length_cost(const TriMesh& mesh);
