@@ -11,14 +11,20 @@ namespace {
 
 double max_difference(const Field& a, const Field& b) { return (a - b).cwiseAbs().maxCoeff(); }
 
+// An empty document with the small test settings, and its grid.
+struct Fresh {
+  const Head& head = bundled_head();
+  Document doc{Hairstyle{small_settings(), {}, {}, {}}};
+  Grid grid = hairstyle_grid(head, doc.style().settings);
+};
+
 }  // namespace
 
 TEST_CASE("hair_sketch: undo of every command restores the document and the field; redo re-applies") {
-  const Head& head = bundled_head();
-  Hairstyle start;
-  start.settings = small_settings();
-  Document doc(start);
-  const Grid grid = hairstyle_grid(head, start.settings);
+  Fresh f;
+  const Head& head = f.head;
+  Document& doc = f.doc;
+  const Grid& grid = f.grid;
   StyleField field(head, grid, FieldMethod::Thesis);
   field.update(doc.style().primitives);
 
@@ -97,11 +103,10 @@ TEST_CASE("hair_sketch: undo of every command restores the document and the fiel
 }
 
 TEST_CASE("hair_sketch: a rejected stroke or command leaves the document unchanged") {
-  const Head& head = bundled_head();
-  Hairstyle start;
-  start.settings = small_settings();
-  Document doc(start);
-  const Grid grid = hairstyle_grid(head, start.settings);
+  Fresh f;
+  const Head& head = f.head;
+  Document& doc = f.doc;
+  const Grid& grid = f.grid;
   const auto cam = right_camera();
   apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2)}), head, grid);
   const Hairstyle before = doc.style();

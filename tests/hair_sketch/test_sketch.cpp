@@ -141,7 +141,6 @@ TEST_CASE("hair_sketch: supporting surfaces follow Fig. 4.3 (a) ruled through th
 TEST_CASE("hair_sketch: hint strokes are classified as in Fig. 4.3") {
   const auto c = straight_curve();  // length 1, d = 0.05, near = 0.075, width = 0.3
   const SketchOptions o = options();
-  const CameraMatrices cam = front_camera();
   const auto hint = [&](const std::vector<Eigen::Vector3d>& pts, SupportMode m = SupportMode::Strip,
                         const CameraMatrices& camera = front_camera()) {
     return interpret_hint(c, kFrontEye, m, screen(camera, pts), camera, o);
