@@ -4,9 +4,11 @@
 // 2 OpenMP threads (median of repeats), printed as a table and saved to
 // bench/results/geometry.json.
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <Eigen/SVD>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 
 #include "lapis/geometry/bvh.h"
@@ -22,13 +24,29 @@ namespace bench = lapis::bench;
 
 namespace {
 
-// Median wall time of f() over repeats runs, with `threads` OpenMP threads.
+double cpu_ms() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return 1e3 * (u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-3 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Timing {
+  double wall_ms;    // median over repeats
+  double cpu_share;  // process CPU time / (wall time x threads): below 1 when others use the cores
+};
+
+// Median wall time of f() over repeats runs, with `threads` OpenMP threads, and how much of
+// the requested cores the process actually got (the machine is shared: the share says how
+// far the wall times are inflated).
 template <class F>
-double timed(int threads, int repeats, F&& f) {
+Timing timed(int threads, int repeats, F&& f) {
   omp_set_num_threads(threads);
   std::vector<double> t;
+  const double cpu0 = cpu_ms();
   for (int r = 0; r < repeats; ++r) t.push_back(bench::time_ms(f));
-  return bench::median(t);
+  double total = 0;
+  for (double x : t) total += x;
+  return {bench::median(t), (cpu_ms() - cpu0) / (total * threads)};
 }
 
 struct Rays {
@@ -71,19 +89,21 @@ int main() {
   write_off(off, big);
   const std::string size = std::to_string(big.num_vertices()) + " V, " + std::to_string(big.num_faces()) + " F";
 
-  bench::Table table({"step", "size", "1 thread ms", "2 threads ms", "speedup"});
+  bench::Table table({"step", "size", "1 thread ms", "CPU share", "2 threads ms", "CPU share", "speedup"});
   nlohmann::json results;
   results["mesh"] = {{"source", "armadillo.off Loop-subdivided 3 times"},
                      {"vertices", big.num_vertices()},
                      {"faces", big.num_faces()}};
   auto run = [&](const std::string& step, const std::string& what, int repeats, auto&& f) {
-    double t[3] = {0, 0, 0};
+    Timing t[3] = {};
     for (int threads = 1; threads <= max_threads; ++threads) t[threads] = timed(threads, repeats, f);
-    const double speedup = t[max_threads] > 0 ? t[1] / t[max_threads] : 0;
-    table.row({step, what, bench::fmt(t[1]), bench::fmt(t[max_threads]), bench::fmt(speedup, 2)});
-    results["steps"].push_back({{"step", step}, {"size", what}, {"ms_1_thread", t[1]},
-                                {"ms_2_threads", t[max_threads]}, {"speedup", speedup}});
-    std::printf("  %-28s %10.1f ms / %10.1f ms\n", step.c_str(), t[1], t[max_threads]);
+    const double speedup = t[max_threads].wall_ms > 0 ? t[1].wall_ms / t[max_threads].wall_ms : 0;
+    table.row({step, what, bench::fmt(t[1].wall_ms), bench::fmt(t[1].cpu_share, 2), bench::fmt(t[max_threads].wall_ms),
+               bench::fmt(t[max_threads].cpu_share, 2), bench::fmt(speedup, 2)});
+    results["steps"].push_back({{"step", step}, {"size", what}, {"ms_1_thread", t[1].wall_ms},
+                                {"cpu_share_1_thread", t[1].cpu_share}, {"ms_2_threads", t[max_threads].wall_ms},
+                                {"cpu_share_2_threads", t[max_threads].cpu_share}, {"speedup", speedup}});
+    std::printf("  %-28s %10.1f ms / %10.1f ms\n", step.c_str(), t[1].wall_ms, t[max_threads].wall_ms);
     std::fflush(stdout);
   };
 
@@ -146,6 +166,8 @@ int main() {
               bench::peak_rss_mib(), sink);
   results["peak_rss_mib"] = bench::peak_rss_mib();
   results["hardware_threads"] = omp_get_num_procs();
+  double load[3] = {0, 0, 0};
+  if (getloadavg(load, 3) > 0) results["load_average_1min"] = load[0];
   bench::write_results("geometry", results);
   std::filesystem::remove_all(dir);
   return 0;

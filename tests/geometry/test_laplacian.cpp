@@ -80,6 +80,28 @@ TEST_CASE("geometry: mass matrices sum to the surface area and mixed areas stay 
   CHECK((Eigen::SparseMatrix<double>(a.asDiagonal() * N) - L).norm() < 1e-12 * L.norm());
 }
 
+TEST_CASE("geometry: mixed areas split obtuse triangles 1/2, 1/4, 1/4 and use Voronoi cells otherwise") {
+  TriMesh obtuse;
+  obtuse.V.resize(3, 3);
+  obtuse.V << 0, 0, 0, 4, 0, 0, 2, 0.5, 0;  // obtuse at vertex 2, area 1
+  obtuse.F.resize(1, 3);
+  obtuse.F << 0, 1, 2;
+  const Eigen::VectorXd mixed = vertex_areas(obtuse, MassType::Mixed);
+  CHECK(mixed[2] == doctest::Approx(0.5));
+  CHECK(mixed[0] == doctest::Approx(0.25));
+  CHECK(mixed[1] == doctest::Approx(0.25));
+  // Right isosceles triangle with legs 1 (area 1/2): the circumcentre is the hypotenuse
+  // midpoint, so the right-angle corner's cell is 1/4 and the other two 1/8 each.
+  TriMesh right = obtuse;
+  right.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  const Eigen::VectorXd cells = vertex_areas(right, MassType::Voronoi);
+  CHECK(cells[0] == doctest::Approx(0.25));
+  CHECK(cells[1] == doctest::Approx(0.125));
+  CHECK(cells[2] == doctest::Approx(0.125));
+  const Eigen::VectorXd thirds = vertex_areas(right, MassType::Barycentric);
+  CHECK(thirds[1] == doctest::Approx(0.5 / 3));
+}
+
 TEST_CASE("geometry: uniform Laplacian has edge ones and minus degree on the diagonal") {
   const TriMesh m = make_icosphere(1);
   const Connectivity conn(m);

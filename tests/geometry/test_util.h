@@ -11,15 +11,21 @@
 
 namespace lapis::geometry::test {
 
-// A fresh directory under the system temp dir, unique to this process.
+// A fresh directory under the system temp dir, unique to this process, removed at exit.
 inline std::filesystem::path scratch_dir() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("lapis_geometry_test_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(d);
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Scratch {
+    std::filesystem::path dir;
+    Scratch() : dir(std::filesystem::temp_directory_path() / ("lapis_geometry_test_" + std::to_string(::getpid()))) {
+      std::filesystem::remove_all(dir);
+      std::filesystem::create_directories(dir);
+    }
+    ~Scratch() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static const Scratch scratch;
+  return scratch.dir;
 }
 
 inline std::filesystem::path write_bytes(const std::string& name, const std::string& bytes) {

@@ -136,3 +136,26 @@ TEST_CASE("hair_sketch: grids that would not fit in memory are refused before al
   CHECK_THROWS_AS(CholeskyFieldSolver{big}, lapis::ResourceLimit);
   CHECK(choose_field_method(big) == FieldMethod::Multigrid);
 }
+
+TEST_CASE("hair_sketch: Auto picks the method from the grid size and the report names it") {
+  Grid g;
+  g.dims = {9, 10, 8};
+  const ConstraintSet s = ConstraintSet::from({{5, {1, 0, 0}}, {300, {0, 1, 0}}});
+  auto small = make_field_solver(g, FieldMethod::Auto);
+  const FieldSolveReport r = small->apply(diff(ConstraintSet(), s), s);
+  CHECK(r.method == FieldMethod::Thesis);
+  CHECK(r.detail == "factorize");
+  CHECK(r.added == 2);
+  FieldSolverOptions o;
+  o.thesis_max_factor_bytes = 0;  // as if the factor were too large
+  auto fast = make_field_solver(g, FieldMethod::Auto, o);
+  const FieldSolveReport f = fast->apply(diff(ConstraintSet(), s), s);
+  CHECK(f.method == FieldMethod::Multigrid);
+  CHECK(f.iterations > 0);
+  CHECK((fast->field() - small->field()).norm() <= 1e-6 * small->field().norm());
+  CHECK_THROWS_WITH_AS(small->apply(diff(s, ConstraintSet::from({{5000, {1, 0, 0}}})),
+                                    ConstraintSet::from({{5000, {1, 0, 0}}})),
+                       "hair_sketch::CholeskyFieldSolver::apply(): constraint node 5000 outside "
+                       "the grid of 720 nodes",
+                       lapis::InvalidArgument);
+}

@@ -8,6 +8,7 @@
 
 #include "lapis/core/error.h"
 #include "lapis/geometry/bvh.h"
+#include "parallel.h"
 
 namespace lapis::geometry {
 
@@ -129,7 +130,7 @@ Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_
   if (options.max_leaf_size < 1) throw InvalidArgument("geometry::Bvh(): max_leaf_size must be at least 1");
   const int nf = mesh.num_faces();
   BvhBuilder b{*this, std::vector<Box>(nf), std::vector<Eigen::Vector3d>(nf)};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nf >= detail::kParallelMin)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) b.boxes[f].grow(Eigen::Vector3d(mesh.V.row(mesh.F(f, k))));
     b.centroids[f] = 0.5 * (b.boxes[f].lo + b.boxes[f].hi);
@@ -138,7 +139,7 @@ Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_
   for (int f = 0; f < nf; ++f) order_[f] = f;
   nodes_.resize(std::max(1, 2 * nf - 1));  // a binary tree with at most nf leaves
   if (nf == 0) return;  // queries check for an empty mesh before touching the tree
-#pragma omp parallel
+#pragma omp parallel if (nf >= detail::kParallelMin)
 #pragma omp single
   b.build(0, 0, nf, 0);
   nodes_.resize(b.next_node.load());

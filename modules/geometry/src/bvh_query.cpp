@@ -91,14 +91,19 @@ std::optional<RayHit> Bvh::intersect(const Eigen::Vector3d& origin, const Eigen:
                                      double t_max) const {
   if (mesh_.num_faces() == 0 || !origin.allFinite() || !direction.allFinite() || direction.isZero()) return std::nullopt;
   const Eigen::Vector3d inv = direction.cwiseInverse();
+  constexpr double kMiss = std::numeric_limits<double>::infinity();
   RayHit best;
   best.t = t_max;
-  int stack[128];
+  // Each stack entry keeps its box entry distance, tested when pushed: on pop it is only
+  // compared with the best hit found since, instead of intersecting the box again.
+  std::pair<int, double> stack[128];
   int top = 0;
-  stack[top++] = 0;
+  const double t_root = ray_box(nodes_[0].lo, nodes_[0].hi, origin, inv, t_max);
+  if (t_root != kMiss) stack[top++] = {0, t_root};
   while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (ray_box(n.lo, n.hi, origin, inv, best.t) == std::numeric_limits<double>::infinity()) continue;
+    const auto [index, t_enter] = stack[--top];
+    if (t_enter > best.t) continue;
+    const Node& n = nodes_[index];
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
         const int f = order_[i];
@@ -118,8 +123,8 @@ std::optional<RayHit> Bvh::intersect(const Eigen::Vector3d& origin, const Eigen:
     const double tl = ray_box(l.lo, l.hi, origin, inv, best.t), tr = ray_box(r.lo, r.hi, origin, inv, best.t);
     const bool left_first = tl <= tr;
     const double t_near = left_first ? tl : tr, t_far = left_first ? tr : tl;
-    if (t_far != std::numeric_limits<double>::infinity()) stack[top++] = left_first ? n.first + 1 : n.first;
-    if (t_near != std::numeric_limits<double>::infinity()) stack[top++] = left_first ? n.first : n.first + 1;
+    if (t_far != kMiss) stack[top++] = {left_first ? n.first + 1 : n.first, t_far};
+    if (t_near != kMiss) stack[top++] = {left_first ? n.first : n.first + 1, t_near};
   }
   if (best.face < 0) return std::nullopt;
   best.point = origin + best.t * direction;

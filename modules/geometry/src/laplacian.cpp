@@ -8,6 +8,7 @@
 
 #include "lapis/core/error.h"
 #include "lapis/geometry/connectivity.h"
+#include "parallel.h"
 
 namespace lapis::geometry {
 namespace {
@@ -39,7 +40,7 @@ Eigen::SparseMatrix<double> assemble(const TriMesh& m, const Weight& weight, boo
   using Entry = std::pair<int, double>;
   std::vector<Entry> slots(2 * vf.items.size() + static_cast<size_t>(n));
   std::vector<int> used(n);
-#pragma omp parallel for schedule(dynamic, 1024)
+#pragma omp parallel for schedule(dynamic, 1024) if (n >= detail::kParallelMin)
   for (int v = 0; v < n; ++v) {
     Entry* col = slots.data() + 2 * static_cast<size_t>(vf.offsets[v]) + v;
     int size = 0;
@@ -71,7 +72,7 @@ Eigen::SparseMatrix<double> assemble(const TriMesh& m, const Weight& weight, boo
   outer[0] = 0;
   for (int v = 0; v < n; ++v) outer[v + 1] = outer[v] + used[v];
   L.resizeNonZeros(outer[n]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= detail::kParallelMin)
   for (int v = 0; v < n; ++v) {
     const Entry* col = slots.data() + 2 * static_cast<size_t>(vf.offsets[v]) + v;
     for (int i = 0; i < used[v]; ++i) {
@@ -88,7 +89,7 @@ Eigen::SparseMatrix<double> cotan_laplacian(const TriMesh& mesh) {
   std::vector<std::array<double, 3>> cot(mesh.num_faces());
   const auto weight = [&](int f, int k) { return 0.5 * cot[f][k]; };
   require_indices_in_range(mesh, "geometry::cotan_laplacian()");
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.num_faces() >= detail::kParallelMin)
   for (int f = 0; f < mesh.num_faces(); ++f) cot[f] = corner_cotangents(mesh, f);
   return assemble(mesh, weight, false, "geometry::cotan_laplacian()");
 }

@@ -1,6 +1,7 @@
 #include "lapis/geometry/normals.h"
 
 #include <Eigen/Geometry>
+#include "parallel.h"
 
 namespace lapis::geometry {
 namespace {
@@ -14,7 +15,7 @@ Eigen::RowVector3d area_normal(const TriMesh& m, Eigen::Index f) {
 Vertices face_normals(const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::face_normals()");
   Vertices N(mesh.num_faces(), 3);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.F.rows() >= detail::kParallelMin)
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
     const Eigen::RowVector3d n = area_normal(mesh, f);
     const double len = n.norm();
@@ -26,7 +27,7 @@ Vertices face_normals(const TriMesh& mesh) {
 Eigen::VectorXd face_areas(const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::face_areas()");
   Eigen::VectorXd A(mesh.num_faces());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (mesh.F.rows() >= detail::kParallelMin)
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) A[f] = 0.5 * area_normal(mesh, f).norm();
   return A;
 }
@@ -38,7 +39,7 @@ Vertices vertex_normals(const TriMesh& mesh) {
     const Eigen::RowVector3d n = area_normal(mesh, f);
     for (int k = 0; k < 3; ++k) N.row(mesh.F(f, k)) += n;
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N.rows() >= detail::kParallelMin)
   for (Eigen::Index v = 0; v < N.rows(); ++v) {
     const double len = N.row(v).norm();
     if (len > 0) N.row(v) /= len;

@@ -7,6 +7,7 @@
 #include "lapis/core/error.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/procedural.h"
+#include "parallel.h"
 
 namespace lapis::geometry {
 namespace {
@@ -21,7 +22,7 @@ double loop_beta(int n) {
 Faces split_faces(const Connectivity& conn, const Faces& F, int nv) {
   const Eigen::Index nf = F.rows();
   Faces out(4 * nf, 3);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nf >= detail::kParallelMin)
   for (Eigen::Index f = 0; f < nf; ++f) {
     const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
     const int i = static_cast<int>(f);
@@ -40,7 +41,7 @@ TriMesh loop_once(const TriMesh& m) {
   TriMesh out;
   out.V.resize(nv + ne, 3);
   // Odd (edge) points: 3/8 of the ends + 1/8 of the two opposite corners; midpoint on creases.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ne >= detail::kParallelMin)
   for (int e = 0; e < ne; ++e) {
     const auto [a, b] = conn.edges()[e];
     if (conn.edge_face_count(e) != 2) {
@@ -54,7 +55,7 @@ TriMesh loop_once(const TriMesh& m) {
     out.V.row(nv + e) = p;
   }
   // Even (vertex) points: Loop's beta mask inside, (1/8, 3/4, 1/8) along boundaries/creases.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nv >= detail::kParallelMin)
   for (int v = 0; v < nv; ++v) {
     const auto neighbors = conn.vertex_neighbors(v);
     const auto edges = conn.vertex_edges(v);

@@ -10,6 +10,7 @@
 
 #include "lapis/geometry/connectivity.h"
 #include "lapis/core/error.h"
+#include "parallel.h"
 
 namespace lapis::geometry {
 namespace {
@@ -154,7 +155,7 @@ ValidationReport validate(const TriMesh& m, const ValidationOptions& o) {
     for (size_t i = 0; i < good.size(); ++i) in_range.row(i) = m.F.row(good[i]);
     const AdjacencyLists vf = vertex_face_lists(in_range, m.num_vertices());
     std::vector<char> bad(m.num_vertices(), 0);
-#pragma omp parallel
+#pragma omp parallel if (m.num_vertices() >= detail::kParallelMin)
     {
       std::vector<int> scratch;
 #pragma omp for schedule(dynamic, 4096)

@@ -1,9 +1,10 @@
 // Galerkin geometric multigrid for the field's normal matrix A = DᵀD + ω²·diag(w) on the
 // uniform grid: trilinear prolongation, coarse operators Pᵀ A P (so the soft constraints'
 // huge diagonal reaches every level correctly), Chebyshev–Jacobi smoothing (a polynomial in
-// diag(A)⁻¹A: parallel, and the ω² = 10⁴ rows are simply scaled away), dense LDLᵀ on the
-// coarsest level. A changed fine weight is a rank-1 change p pᵀ of each coarse operator,
-// so edits update the hierarchy in place instead of rebuilding it.
+// diag(A)⁻¹A: parallel, and the ω² = 10⁴ rows are simply scaled away) plus Gauss–Seidel on
+// the rows next to constraints, dense LDLᵀ on the coarsest level. A changed fine weight is
+// a rank-1 change p pᵀ of each coarse operator, so edits update the hierarchy in place
+// instead of rebuilding it.
 #pragma once
 
 #include <array>

@@ -46,9 +46,10 @@ class FieldSolver {
 struct FieldSolverOptions {
   double omega = 100;  // constraint weight ω, thesis §4.4.1
   // Auto uses the thesis path while its factor (estimate_cholesky_bytes) stays under this
-  // size, the multigrid path beyond: at 50K unknowns the factor is ~460 MB and an edit
-  // costs ~0.4–0.9 s (issue 5's measurements), far above the interactive budget.
-  double thesis_max_factor_bytes = 64.0 * (1 << 20);
+  // size (≈ 70K unknowns), the multigrid path beyond. Measured on the bundled head
+  // (bench_hair_sketch): at 50K unknowns an edit costs ~0.9–1.8 s by update/downdate and
+  // ~2.5–3.5 s by multigrid; at 1M the factor (~28 GiB) does not fit at all.
+  double thesis_max_factor_bytes = 1024.0 * (1 << 20);
   double memory_limit_bytes = 16.0 * (1ull << 30);
 };
 

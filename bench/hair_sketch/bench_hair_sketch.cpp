@@ -1,0 +1,161 @@
+// The interactive loop of hair sketching, per edit, on the bundled head: constraint diff,
+// field update, regrowth, for a new stream curve of ~30 segments (a stroke) and for editing
+// it (old constraints removed, new ones added), by the multigrid fast path, the thesis'
+// update/downdate path and refactorization, in the same run.
+//   bench_hair_sketch [--sizes 50000,250000,1000000] [--thesis-max N]
+// Paths whose factor would not fit in memory are skipped (and said so).
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "lapis/core/error.h"
+#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_sketch/growth.h"
+#include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/stream_curve.h"
+#include "lapis_bench.h"
+
+using namespace lapis::hair_sketch;
+namespace bench = lapis::bench;
+
+namespace {
+
+// A stroke over the head at 1.2 head radii from the centre: from near the crown at
+// azimuth phi over the side of the head down to the ear line, then straight down; `bend`
+// turns its azimuth along the way. `segments` grid spacings long.
+StreamCurve curve_at(const Head& head, const Grid& g, double phi, int segments, double bend) {
+  StreamCurve c;
+  const double R = 1.2 * 0.5 * head.box.sizes().x();
+  const double len = segments * g.spacing, arc = std::min(len, 1.3 * R);
+  const int n = 40;
+  for (int i = 0; i <= n; ++i) {
+    const double a = 0.3 + (arc / R) * i / n;  // polar angle from the top
+    const double p = phi + bend * i / n;
+    c.points.push_back(head.center + R * Eigen::Vector3d(std::sin(a) * std::cos(p), std::cos(a),
+                                                         std::sin(a) * std::sin(p)));
+  }
+  if (len > arc) c.points.push_back(c.points.back() - Eigen::Vector3d(0, len - arc, 0));
+  return c;
+}
+
+struct Stage {
+  double diff_ms = 0, update_ms = 0, solve_ms = 0, grow_ms = 0;
+  int changed = 0, iterations = 0;
+  std::string detail;
+};
+
+std::vector<int> parse_list(const char* s) {
+  std::vector<int> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(std::stoi(item));
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{50000, 250000, 1000000};
+  int thesis_max = 60000;  // the thesis path at 250K costs minutes per run (30 s factorization)
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--sizes")) sizes = parse_list(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--thesis-max")) thesis_max = std::stoi(argv[i + 1]);
+  }
+  const Head head = load_bundled_head(LAPIS_SOURCE_DIR);
+  const std::vector<int> strand_counts{10000, 20000, 100000};
+  std::vector<std::vector<Eigen::Vector3d>> roots;
+  for (int c : strand_counts) {
+    RootOptions ro;
+    ro.count = c;
+    roots.push_back(sample_roots(head, ro));
+  }
+  nlohmann::json out;
+  out["threads"] = omp_get_max_threads();
+  bench::Table table({"unknowns", "method", "edit", "nodes +/-", "diff ms", "update ms",
+                      "solve ms", "iters", "grow20K ms", "total20K ms", "detail"});
+  bench::Table growth({"unknowns", "strands", "segments", "grow ms"});
+  for (int n : sizes) {
+    GridOptions go;
+    go.target_unknowns = n;
+    const Grid g = make_grid(head.box, go);
+    // The style the stroke lands in: six stream curves around the head.
+    std::vector<std::vector<Constraint>> base;
+    for (int k = 0; k < 6; ++k)
+      base.push_back(curve_at(head, g, 2 * M_PI * k / 6 + 0.3, 60, 0.2).constraints(g));
+    const ConstraintSet base_set = ConstraintSet::merge(base);
+    const StreamCurve stroke = curve_at(head, g, -M_PI / 2 - 0.25, 30, 0.0);
+    const StreamCurve edited = curve_at(head, g, -M_PI / 2 - 0.25, 30, 0.35);
+    for (FieldMethod m : {FieldMethod::Multigrid, FieldMethod::Thesis, FieldMethod::Refactorize}) {
+      if (m != FieldMethod::Multigrid && n > thesis_max) {
+        table.row({std::to_string(g.num_nodes()), to_string(m), "-", "", "", "", "", "", "", "",
+                   "skipped: factor ~" +
+                       bench::fmt(estimate_cholesky_bytes(g.num_nodes()) / (1 << 30), 1) +
+                       " GiB (--thesis-max)"});
+        continue;
+      }
+      std::unique_ptr<FieldSolver> solver;
+      double setup_ms = bench::time_ms([&] { solver = make_field_solver(g, m); });
+      setup_ms += bench::time_ms([&] { solver->apply(diff(ConstraintSet(), base_set), base_set); });
+      ConstraintSet current = base_set;
+      auto run = [&](const StreamCurve& curve, const char* name) {
+        Stage st;
+        ConstraintSet next;
+        ConstraintDiff d;
+        st.diff_ms = bench::time_ms([&] {
+          auto groups = base;
+          groups.push_back(curve.constraints(g));
+          next = ConstraintSet::merge(groups);
+          d = diff(current, next);
+        });
+        const FieldSolveReport r = solver->apply(d, next);
+        current = next;
+        st.update_ms = r.update_ms;
+        st.solve_ms = r.solve_ms;
+        st.iterations = r.iterations;
+        st.detail = r.detail;
+        st.grow_ms = bench::time_ms([&] {
+          const SampledField f(g, solver->field());
+          const Strands s = grow_strands(f, roots[1]);
+        });
+        const double total = st.diff_ms + r.total_ms + st.grow_ms;
+        table.row({std::to_string(g.num_nodes()), to_string(m), name,
+                   std::to_string(r.added) + "/" + std::to_string(r.removed),
+                   bench::fmt(st.diff_ms), bench::fmt(st.update_ms), bench::fmt(st.solve_ms),
+                   std::to_string(st.iterations), bench::fmt(st.grow_ms), bench::fmt(total),
+                   st.detail});
+        out["runs"].push_back({{"unknowns", g.num_nodes()}, {"method", to_string(m)},
+                               {"edit", name}, {"added", r.added}, {"removed", r.removed},
+                               {"diff_ms", st.diff_ms}, {"update_ms", st.update_ms},
+                               {"solve_ms", st.solve_ms}, {"iterations", st.iterations},
+                               {"error_estimate", r.error_estimate}, {"grow_20k_ms", st.grow_ms},
+                               {"total_20k_ms", total}, {"setup_ms", setup_ms},
+                               {"detail", st.detail}});
+      };
+      run(stroke, "stroke");
+      run(edited, "edit");
+      if (m == FieldMethod::Multigrid) {
+        const SampledField f(g, solver->field());
+        for (size_t k = 0; k < roots.size(); ++k) {
+          Strands s;
+          std::vector<double> t;
+          for (int rep = 0; rep < 3; ++rep) t.push_back(bench::time_ms([&] { s = grow_strands(f, roots[k]); }));
+          growth.row({std::to_string(g.num_nodes()), std::to_string(roots[k].size()),
+                      std::to_string(s.segments()), bench::fmt(bench::median(t))});
+          out["growth"].push_back({{"unknowns", g.num_nodes()}, {"strands", roots[k].size()},
+                                   {"segments", s.segments()}, {"ms", bench::median(t)}});
+        }
+      }
+    }
+    table.print();
+    std::printf("\n");
+  }
+  growth.print();
+  out["peak_rss_mib"] = bench::peak_rss_mib();
+  bench::write_results("hair_sketch", out);
+  return 0;
+}
