@@ -98,6 +98,7 @@ class Viewer {
  private:
   struct Window;
   void handle_camera(const InputEvent& e);
+  bool over_gui(double x, double y) const;  // inside an ImGui window (last frame's layout)
   void draw_overlay();
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
@@ -112,6 +113,7 @@ class Viewer {
   int width_ = 0, height_ = 0;
   Eigen::Vector2d cursor_ = Eigen::Vector2d::Zero(), drag_from_ = Eigen::Vector2d::Zero();
   bool buttons_[8] = {};
+  int app_drags_ = 0;  // buttons pressed outside the panels and not yet released
   long frame_ = 0;
   double last_frame_ms_ = 0;
   std::vector<double> frame_ms_;
