@@ -1,6 +1,8 @@
 #include <doctest/doctest.h>
 
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -82,4 +84,54 @@ TEST_CASE("cli: failures exit non-zero with one line naming the cause") {
   const Result usage = lapis_cli("mesh --in");
   CHECK(usage.status == 2);
   CHECK(usage.output.find("lapis mesh: --in needs a value") == 0);
+}
+
+// `lapis hair`: replaying a bundled session writes a .hair file and a report whose counts
+// match the session's stored report; failures are one line.
+namespace {
+nlohmann::json read_cli_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+}  // namespace
+
+TEST_CASE("cli: lapis hair replays a bundled session into .hair, OBJ and a report") {
+  const fs::path d = fs::temp_directory_path() / ("lapis_cli_hair_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const fs::path sessions = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
+  const Result replay = lapis_cli("hair --session " + (sessions / "parting.json").string() + " --out-hair " +
+                                       (d / "p.hair").string() + " --out-obj " + (d / "p.obj").string() +
+                                       " --report " + (d / "r.json").string());
+  REQUIRE_MESSAGE(replay.status == 0, replay.output);
+  const auto report = read_cli_json(d / "r.json"), expected = read_cli_json(sessions / "parting.report.json");
+  CHECK(report["strands"] == expected["strands"]);
+  CHECK(report["segments"] == expected["segments"]);
+  CHECK(report["penetrating_segments"] == expected["penetrating_segments"]);
+  CHECK(report["solves"].size() == 2);  // the style, then scalp avoidance (§4.6)
+  // The .hair file: header counts, then uint16 segments and float xyz points.
+  std::ifstream hair(d / "p.hair", std::ios::binary);
+  char header[128];
+  hair.read(header, 128);
+  REQUIRE(hair);
+  std::uint32_t strands = 0, points = 0;
+  std::memcpy(&strands, header + 4, 4);
+  std::memcpy(&points, header + 8, 4);
+  CHECK(std::string(header, 4) == "HAIR");
+  CHECK(strands == report["strands"].get<std::uint32_t>());
+  CHECK(points == report["segments"].get<std::uint32_t>() + strands);
+  CHECK(fs::file_size(d / "p.hair") == 128 + 2ull * strands + 12ull * points);
+  CHECK(fs::file_size(d / "p.obj") > 0);
+}
+
+TEST_CASE("cli: lapis hair fails with one line naming the cause") {
+  const Result bad = lapis_cli("hair --session /nonexistent/s.json --out-hair /tmp/x.hair");
+  CHECK(bad.status == 1);
+  CHECK(bad.output.find("lapis hair: error: hair_sketch::load_session(): /nonexistent/s.json: cannot read") == 0);
+  CHECK(std::count(bad.output.begin(), bad.output.end(), '\n') == 1);
+  const Result missing = lapis_cli("hair --out-hair /tmp/x.hair");
+  CHECK(missing.status == 2);
+  CHECK(missing.output.find("--session") != std::string::npos);
+  const Result help = lapis_cli("hair --help");
+  CHECK(help.status == 0);
+  CHECK(help.output.find("usage: lapis hair --session FILE.json") == 0);
 }

@@ -12,6 +12,19 @@ void LineItem::add_strip(const std::vector<Eigen::Vector3f>& strip) {
   ++version;
 }
 
+void LineItem::add_strip(const std::vector<Eigen::Vector3d>& strip, const Eigen::Vector3f& color) {
+  const Eigen::Index old = points.rows();
+  if (colors.rows() != old) colors = base_color.transpose().replicate(old, 1);
+  points.conservativeResize(old + static_cast<Eigen::Index>(strip.size()), 3);
+  colors.conservativeResize(points.rows(), 3);
+  for (size_t k = 0; k < strip.size(); ++k) {
+    points.row(old + static_cast<Eigen::Index>(k)) = strip[k].cast<float>().transpose();
+    colors.row(old + static_cast<Eigen::Index>(k)) = color.transpose();
+  }
+  strip_offsets.push_back(static_cast<int>(points.rows()));
+  ++version;
+}
+
 void LineItem::clear() {
   points.resize(0, 3);
   colors.resize(0, 3);

@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <algorithm>
 #include <chrono>
@@ -147,6 +148,7 @@ void Viewer::frame_scene() {
 }
 
 void Viewer::flash(std::string message) {
+  std::fprintf(stderr, "%s: %s\n", options_.title.c_str(), message.c_str());  // logs of batch runs
   flash_message_ = std::move(message);
   flash_until_ = time() + 4.0;
 }
@@ -178,13 +180,33 @@ void Viewer::dispatch(const InputEvent& e) {
     case EventType::Char: if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint); break;
     case EventType::Resize: break;
   }
-  const bool mouse = e.type == EventType::MouseMove || e.type == EventType::MouseButton || e.type == EventType::Scroll;
   const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
-  // A release always reaches the app, so a drag that ends over a panel still ends.
-  const bool release = e.type == EventType::MouseButton && e.action == GLFW_RELEASE;
-  if (!release && ((mouse && io.WantCaptureMouse) || (keyboard && io.WantCaptureKeyboard))) return;
+  if (keyboard && io.WantCaptureKeyboard) return;
+  // Mouse events go to the panels when they are over one (tested at the event's own
+  // position: io.WantCaptureMouse still describes the previous frame's cursor). A drag that
+  // started in the 3D view stays with the app until its release, even across a panel.
+  if (e.type == EventType::MouseButton) {
+    if (e.action == GLFW_PRESS) {
+      if (over_gui(e.x, e.y)) return;
+      ++app_drags_;
+    } else if (e.action == GLFW_RELEASE) {
+      if (app_drags_ == 0) return;
+      --app_drags_;
+    }
+  } else if ((e.type == EventType::MouseMove && app_drags_ == 0 && over_gui(e.x, e.y)) ||
+             (e.type == EventType::Scroll && over_gui(cursor_.x(), cursor_.y()))) {
+    return;
+  }
   if (app_ && app_->on_event(*this, e)) return;
   handle_camera(e);
+}
+
+bool Viewer::over_gui(double x, double y) const {
+  const ImVec2 p(static_cast<float>(x), static_cast<float>(y));
+  for (const ImGuiWindow* w : GImGui->Windows)
+    if (w->WasActive && !w->Hidden && !(w->Flags & ImGuiWindowFlags_NoMouseInputs) && w->Rect().Contains(p))
+      return true;
+  return false;
 }
 
 void Viewer::handle_camera(const InputEvent& e) {
@@ -198,6 +220,8 @@ void Viewer::handle_camera(const InputEvent& e) {
   if (e.type == EventType::Scroll) camera_.zoom(e.y);
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_F && e.mods == 0) frame_scene();
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_Q && e.mods == GLFW_MOD_CONTROL) close();
+  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_P && e.mods == GLFW_MOD_CONTROL)
+    request_screenshot(options_.screenshot.empty() ? std::filesystem::path("screenshot.png") : options_.screenshot);
 }
 
 void Viewer::draw_overlay() {

@@ -46,6 +46,8 @@ struct LineItem {
   int num_strips() const { return static_cast<int>(strip_offsets.size()) - 1; }
   // Appends one strip.
   void add_strip(const std::vector<Eigen::Vector3f>& strip);
+  // Appends one strip of one colour (colours of earlier strips default to base_color).
+  void add_strip(const std::vector<Eigen::Vector3d>& strip, const Eigen::Vector3f& color);
   void clear();
 };
 

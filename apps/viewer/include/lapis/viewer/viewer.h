@@ -1,8 +1,8 @@
 // The shell every Lapis app runs in: a GLFW window with an OpenGL 3.3 core context and
 // MSAA, Dear ImGui, an orbit camera (right-drag orbit, middle-drag pan, wheel zoom, F to
-// frame, Ctrl+Q to quit), a frame-time overlay, screenshots, and recording / replay of the input stream.
-// `--headless` renders into a hidden window (Xvfb + Mesa work). Apps implement ViewerApp;
-// all their logic lives in the modules.
+// frame), Ctrl+P screenshot, Ctrl+Q quit, a frame-time overlay, and recording / replay of
+// the input stream. `--headless` renders into a hidden window (Xvfb + Mesa work). Apps
+// implement ViewerApp; all their logic lives in the modules.
 #pragma once
 
 #include <filesystem>
@@ -98,6 +98,7 @@ class Viewer {
  private:
   struct Window;
   void handle_camera(const InputEvent& e);
+  bool over_gui(double x, double y) const;  // inside an ImGui window (last frame's layout)
   void draw_overlay();
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
@@ -112,6 +113,7 @@ class Viewer {
   int width_ = 0, height_ = 0;
   Eigen::Vector2d cursor_ = Eigen::Vector2d::Zero(), drag_from_ = Eigen::Vector2d::Zero();
   bool buttons_[8] = {};
+  int app_drags_ = 0;  // buttons pressed outside the panels and not yet released
   long frame_ = 0;
   double last_frame_ms_ = 0;
   std::vector<double> frame_ms_;

@@ -4,6 +4,8 @@
 // starts from screen points is testable without a window.
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -47,6 +49,36 @@ inline Ray unproject_ray(const CameraMatrices& camera, double x, double y) {
 // The eye position (camera centre) in world coordinates.
 inline Eigen::Vector3d eye_position(const CameraMatrices& camera) {
   return -camera.view.block<3, 3>(0, 0).transpose() * camera.view.block<3, 1>(0, 3);
+}
+
+}  // namespace lapis::geometry
+
+namespace lapis::geometry {
+
+// A perspective camera at eye looking at target (gluLookAt + gluPerspective conventions):
+// what tests and asset generators use to draw synthetic strokes.
+inline CameraMatrices look_at_camera(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+                                     const Eigen::Vector3d& up = Eigen::Vector3d::UnitY(),
+                                     double fov_y = 0.8, double width = 800, double height = 600,
+                                     double near_plane = 0.1, double far_plane = 50) {
+  CameraMatrices c;
+  const Eigen::Vector3d f = (target - eye).normalized(), s = f.cross(up).normalized(), u = s.cross(f);
+  c.view.setIdentity();
+  c.view.block<1, 3>(0, 0) = s.transpose();
+  c.view.block<1, 3>(1, 0) = u.transpose();
+  c.view.block<1, 3>(2, 0) = -f.transpose();
+  c.view(0, 3) = -s.dot(eye);
+  c.view(1, 3) = -u.dot(eye);
+  c.view(2, 3) = f.dot(eye);
+  const double t = 1 / std::tan(fov_y / 2);
+  c.projection.setZero();
+  c.projection(0, 0) = t * height / width;
+  c.projection(1, 1) = t;
+  c.projection(2, 2) = -(far_plane + near_plane) / (far_plane - near_plane);
+  c.projection(2, 3) = -2 * far_plane * near_plane / (far_plane - near_plane);
+  c.projection(3, 2) = -1;
+  c.viewport = {0, 0, width, height};
+  return c;
 }
 
 }  // namespace lapis::geometry

@@ -1,0 +1,385 @@
+#include "hair_sketch_app.h"
+
+#include <GLFW/glfw3.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "lapis/hair_sketch/export.h"
+#include "lapis/hair_sketch/hair_file.h"
+#include "lapis/hair_sketch/session.h"
+#include "lapis/hair_sketch/sketch.h"
+#include "lapis/hair_sketch/stroke_commands.h"
+#include "lapis/hair_sketch/style_field.h"
+#include "primitive_geometry.h"
+
+namespace lapis::hair_app {
+
+const char* tool_name(Tool t) {
+  switch (t) {
+    case Tool::StreamCurve: return "stream curve";
+    case Tool::DividingCurve: return "dividing curve";
+    case Tool::Ponytail: return "ponytail";
+    case Tool::Hint: return "hint edit";
+    case Tool::Tilt: return "tilt edit";
+    case Tool::Select: return "select";
+  }
+  return "?";
+}
+
+HairSketchApp::HairSketchApp(Head head, Hairstyle style, AppPaths paths)
+    : head_(std::move(head)), document_(std::move(style)), paths_(std::move(paths)) {
+  grid_ = hairstyle_grid(head_, document_.style().settings);
+}
+
+HairSketchApp::~HairSketchApp() = default;
+
+void HairSketchApp::on_start(viewer::Viewer& v) {
+  update_head_item(v);
+  const auto& cam = document_.style().camera;
+  const bool has_camera = !cam.view.isIdentity() && cam.viewport[2] > 1;
+  v.frame_scene();
+  if (has_camera) {
+    // A session's camera: place the orbit camera at its eye, looking at the head.
+    const Eigen::Vector3d eye = geometry::eye_position(cam);
+    const Eigen::Vector3d d = eye - v.camera().target;
+    v.camera().distance = d.norm();
+    v.camera().yaw = std::atan2(d.x(), d.z());
+    v.camera().pitch = std::asin(std::clamp(d.y() / d.norm(), -1.0, 1.0));
+  }
+  last_autosave_ = v.time();
+  request_regrowth();
+}
+
+bool HairSketchApp::busy() const {
+  if (!engine_error_.empty()) return false;  // nothing more is coming
+  return worker_.busy() || !last_ || last_->revision != document_.revision() ||
+         last_->settings_epoch != settings_epoch_;
+}
+
+// ---------------------------------------------------------------- input
+
+bool HairSketchApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
+  using viewer::EventType;
+  if (e.type == EventType::Key) return handle_key(v, e);
+  if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
+    const Eigen::Vector2d p(e.x, e.y);
+    if (e.action == GLFW_PRESS) {
+      if (tool_ == Tool::Select) select_at(v, p);
+      else begin_stroke(v, p);
+      return true;
+    }
+    if (e.action == GLFW_RELEASE && drawing_) {
+      finish_stroke(v);
+      return true;
+    }
+  }
+  if (e.type == EventType::MouseMove && drawing_) {
+    extend_stroke(v, {e.x, e.y});
+    return true;
+  }
+  return false;
+}
+
+bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
+  if (e.action != GLFW_PRESS) return false;
+  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
+  if (ctrl && e.key == GLFW_KEY_Z) {
+    shift ? redo(v) : undo(v);
+    return true;
+  }
+  if (ctrl && e.key == GLFW_KEY_Y) return redo(v), true;
+  if (ctrl && e.key == GLFW_KEY_S) return save(v, paths_.session), true;
+  if (ctrl && e.key == GLFW_KEY_O) return load(v, paths_.session), true;
+  if (ctrl && e.key == GLFW_KEY_E) return export_strands(v), true;
+  if (ctrl) return false;
+  const Tool tools[] = {Tool::StreamCurve, Tool::DividingCurve, Tool::Ponytail, Tool::Hint, Tool::Tilt, Tool::Select};
+  if (e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_6) {
+    tool_ = tools[e.key - GLFW_KEY_1];
+    ponytail_strokes_.clear();
+    curves_dirty_ = true;
+    return true;
+  }
+  if (e.key == GLFW_KEY_DELETE || e.key == GLFW_KEY_BACKSPACE) return delete_selected(v), true;
+  if (e.key == GLFW_KEY_ESCAPE) {
+    drawing_ = false;
+    stroke_.clear();
+    ponytail_strokes_.clear();
+    preview_.clear();
+    return true;
+  }
+  return false;
+}
+
+void HairSketchApp::begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
+  if ((tool_ == Tool::Hint || tool_ == Tool::Tilt) && selected_ < 0) {
+    v.flash(std::string(tool_name(tool_)) + ": select a curve first (tool 6, or click it in the list)");
+    return;
+  }
+  drawing_ = true;
+  stroke_.assign(1, p);
+  preview_.clear();
+}
+
+void HairSketchApp::extend_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
+  if ((p - stroke_.back()).norm() < 2.0) return;  // a mouse at rest adds nothing
+  stroke_.push_back(p);
+  // The preview follows the mouse: the stroke's 3D curve where it can already be
+  // interpreted, the raw stroke otherwise.
+  preview_.clear();
+  if (tool_ == Tool::StreamCurve && stroke_.size() >= 2) {
+    try {
+      preview_ = stream_curve_from_stroke(stroke_, v.camera_matrices(), head_,
+                                          sketch_options(grid_, document_.style().settings))
+                     .points;
+    } catch (const StrokeRejected&) {
+    }
+  }
+  update_preview_item(v);
+}
+
+void HairSketchApp::finish_stroke(viewer::Viewer& v) {
+  drawing_ = false;
+  preview_.clear();
+  RecordedStroke rec;
+  rec.camera = v.camera_matrices();
+  switch (tool_) {
+    case Tool::StreamCurve: rec.action = StrokeAction::StreamCurve; break;
+    case Tool::DividingCurve: rec.action = StrokeAction::DividingCurve; break;
+    case Tool::Ponytail: rec.action = StrokeAction::Ponytail; break;
+    case Tool::Hint: rec.action = StrokeAction::Hint, rec.target = selected_; break;
+    case Tool::Tilt: rec.action = StrokeAction::Tilt, rec.target = selected_; break;
+    case Tool::Select: return;
+  }
+  if (tool_ == Tool::Ponytail) {
+    ponytail_strokes_.push_back(stroke_);
+    stroke_.clear();
+    if (ponytail_strokes_.size() < 4) {
+      curves_dirty_ = true;
+      update_preview_item(v);
+      return;
+    }
+    rec.strokes = std::move(ponytail_strokes_);
+    ponytail_strokes_.clear();
+  } else {
+    rec.strokes = {std::move(stroke_)};
+    stroke_.clear();
+  }
+  try {
+    const size_t before = document_.style().primitives.size();
+    apply_stroke(document_, rec, head_, grid_);
+    if (document_.style().primitives.size() > before) selected_ = static_cast<int>(before);
+    last_edit_time_ = v.time();
+    curves_dirty_ = true;
+    request_regrowth();
+  } catch (const StrokeRejected& e) {
+    // "hair_sketch::stream_curve_from_stroke(): stroke must start on the scalp" → the reason.
+    std::string why = e.what();
+    const auto colon = why.find("(): ");
+    v.flash("stroke rejected: " + (colon == std::string::npos ? why : why.substr(colon + 4)));
+  }
+  update_preview_item(v);
+}
+
+void HairSketchApp::select_at(viewer::Viewer& v, const Eigen::Vector2d& p) {
+  const auto cam = v.camera_matrices();
+  double best = 12.0;  // pixels
+  int found = -1;
+  const auto& prims = document_.style().primitives;
+  for (size_t i = 0; i < prims.size(); ++i) {
+    if (hidden_.count(static_cast<int>(i))) continue;
+    for (const auto& line : primitive_polylines(prims[i]))
+      for (const auto& q : line) {
+        const Eigen::Vector3d s = geometry::project(cam, q);
+        const double d = (s.head<2>() - p).norm();
+        if (s.z() > 0 && s.z() < 1 && d < best) best = d, found = static_cast<int>(i);
+      }
+  }
+  selected_ = found;
+  curves_dirty_ = true;
+}
+
+void HairSketchApp::execute(viewer::Viewer& v, Command command) {
+  try {
+    document_.execute(std::move(command));
+  } catch (const Error& e) {
+    v.flash(e.what());
+    return;
+  }
+  last_edit_time_ = v.time();
+  curves_dirty_ = true;
+  request_regrowth();
+}
+
+void HairSketchApp::undo(viewer::Viewer& v) {
+  if (!document_.can_undo()) return v.flash("nothing to undo");
+  document_.undo();
+  selected_ = std::min(selected_, static_cast<int>(document_.style().primitives.size()) - 1);
+  last_edit_time_ = v.time();
+  curves_dirty_ = true;
+  request_regrowth();
+}
+
+void HairSketchApp::redo(viewer::Viewer& v) {
+  if (!document_.can_redo()) return v.flash("nothing to redo");
+  document_.redo();
+  last_edit_time_ = v.time();
+  curves_dirty_ = true;
+  request_regrowth();
+}
+
+void HairSketchApp::delete_selected(viewer::Viewer& v) {
+  if (selected_ < 0) return;
+  execute(v, Command{"delete primitive", RemovePrimitive{selected_}, std::nullopt});
+  hidden_.erase(selected_);
+  selected_ = -1;
+}
+
+// ---------------------------------------------------------------- files
+
+void HairSketchApp::save(viewer::Viewer& v, const std::filesystem::path& path) {
+  try {
+    Hairstyle style = document_.style();
+    style.camera = v.camera_matrices();
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    save_session(path, style);
+    v.flash("saved " + path.string());
+    std::printf("saved session: %s\n", path.string().c_str());
+  } catch (const Error& e) {
+    v.flash(std::string("save failed: ") + e.what());
+  }
+}
+
+void HairSketchApp::load(viewer::Viewer& v, const std::filesystem::path& path) {
+  try {
+    Hairstyle style = load_session(path);
+    Head head = load_session_head(style, path);
+    worker_.wait();  // jobs read head_ and the engine: replace them only when idle
+    (void)worker_.take();
+    head_ = std::move(head);
+    document_ = Document(std::move(style));
+    selected_ = -1;
+    hidden_.clear();
+    head_dirty_ = curves_dirty_ = true;
+    settings_changed();
+    v.flash("opened " + path.string());
+  } catch (const Error& e) {
+    v.flash(std::string("open failed: ") + e.what());
+  }
+}
+
+void HairSketchApp::export_strands(viewer::Viewer& v) {
+  if (!last_) return v.flash("no strands yet");
+  try {
+    for (const auto* p : {&paths_.export_hair, &paths_.export_obj})
+      if (p->has_parent_path()) std::filesystem::create_directories(p->parent_path());
+    write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
+    write_strands_obj(paths_.export_obj, last_->update.strands);
+    v.flash("exported " + paths_.export_hair.string() + " and " + paths_.export_obj.string());
+  } catch (const Error& e) {
+    v.flash(std::string("export failed: ") + e.what());
+  }
+}
+
+void HairSketchApp::autosave_if_due(viewer::Viewer& v) {
+  if (v.time() - last_autosave_ < 60.0) return;
+  last_autosave_ = v.time();
+  try {
+    save_session(paths_.autosave, document_.style());
+  } catch (const Error& e) {
+    v.flash(std::string("autosave failed: ") + e.what());
+  }
+}
+
+void HairSketchApp::on_exit(viewer::Viewer& v) {
+  worker_.wait();
+  receive_regrowth(v);
+  if (paths_.export_on_exit) {
+    export_strands(v);
+    std::printf("exported %s and %s\n", paths_.export_hair.string().c_str(), paths_.export_obj.string().c_str());
+  }
+  try {
+    Hairstyle style = document_.style();
+    style.camera = v.camera_matrices();
+    if (paths_.autosave.has_parent_path()) std::filesystem::create_directories(paths_.autosave.parent_path());
+    save_session(paths_.autosave, style);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "lapis-hair-sketch: autosave on exit failed: %s\n", e.what());
+  }
+}
+
+// ---------------------------------------------------------------- engine
+
+void HairSketchApp::settings_changed() {
+  ++settings_epoch_;
+  grid_ = hairstyle_grid(head_, document_.style().settings);
+  request_regrowth();
+}
+
+void HairSketchApp::request_regrowth() {
+  if (requested_revision_ == document_.revision() && requested_epoch_ == settings_epoch_) return;
+  requested_revision_ = document_.revision();
+  requested_epoch_ = settings_epoch_;
+  auto slot = engine_;
+  const Head* head = &head_;
+  const HairstyleSettings settings = document_.style().settings;
+  const std::vector<StylePrimitive> primitives = document_.style().primitives;
+  const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
+  worker_.submit([slot, head, settings, primitives, revision, epoch] {
+    if (!slot->live || slot->epoch != epoch) {
+      slot->live.reset();  // free the old solver before building the new one
+      slot->live = std::make_unique<LiveHairstyle>(*head, settings);
+      slot->epoch = epoch;
+    }
+    Regrowth r;
+    r.revision = revision;
+    r.settings_epoch = epoch;
+    r.update = slot->live->update(primitives);
+    r.grid = slot->live->grid();
+    r.field = std::make_shared<const Field>(slot->live->field());
+    return r;
+  });
+}
+
+void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
+  std::optional<Regrowth> r;
+  try {
+    r = worker_.take();
+  } catch (const Error& e) {
+    engine_error_ = e.what();
+    v.flash(std::string("field update failed: ") + e.what());
+    return;
+  }
+  if (!r) return;
+  engine_error_.clear();
+  if (r->revision == document_.revision() && last_edit_time_ > 0)
+    latencies_ms_.push_back((v.time() - last_edit_time_) * 1000.0);
+  update_strand_item(v, r->update.strands);
+  last_ = std::move(r);
+  if (show_glyphs_) update_glyph_item(v);
+}
+
+void HairSketchApp::on_frame(viewer::Viewer& v) {
+  receive_regrowth(v);
+  request_regrowth();  // no-op unless the document or settings moved on
+  if (head_dirty_) update_head_item(v);
+  if (curves_dirty_) update_curve_items(v);
+  autosave_if_due(v);
+}
+
+void HairSketchApp::benchmark_fields(nlohmann::json& j) const {
+  j["app"] = "lapis-hair-sketch";
+  j["edit_to_strands_ms"] = latencies_ms_;
+  if (last_) {
+    j["strands"] = last_->update.strands.count();
+    j["segments"] = last_->update.strands.segments();
+    j["grid_unknowns"] = last_->grid.num_nodes();
+    j["last_solve_ms"] = last_->update.solve_ms;
+    j["last_growth_ms"] = last_->update.growth_ms;
+    j["last_total_ms"] = last_->update.total_ms;
+    if (!last_->update.solves.empty()) j["field_method"] = to_string(last_->update.solves.front().method);
+  }
+  j["primitives"] = document_.style().primitives.size();
+}
+
+}  // namespace lapis::hair_app

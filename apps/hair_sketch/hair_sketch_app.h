@@ -1,0 +1,128 @@
+// lapis-hair-sketch: sketch a hairstyle on a head and watch the strands follow (thesis ch. 4).
+// The app only wires the viewer's input and panels to the hair_sketch module: strokes become
+// document commands (stroke_commands.h), the field and strands are brought up to date by a
+// LiveHairstyle on a worker thread, and the newest strands are drawn when they are ready.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lapis/hair_sketch/document.h"
+#include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/live_hairstyle.h"
+#include "lapis/viewer/latest_worker.h"
+#include "lapis/viewer/viewer.h"
+
+namespace lapis::hair_app {
+
+using namespace lapis::hair_sketch;
+
+enum class Tool { StreamCurve, DividingCurve, Ponytail, Hint, Tilt, Select };
+const char* tool_name(Tool t);
+
+// What the worker hands back for one document revision.
+struct Regrowth {
+  std::uint64_t revision = 0;
+  std::uint64_t settings_epoch = 0;
+  LiveUpdate update;
+  Grid grid;
+  std::shared_ptr<const Field> field;  // for glyphs
+};
+
+struct AppPaths {
+  std::filesystem::path session;   // Ctrl+S / Ctrl+O
+  std::filesystem::path autosave;  // every minute and on exit
+  std::filesystem::path export_hair, export_obj;
+  bool export_on_exit = false;     // batch runs: write the exports when the app closes
+};
+
+class HairSketchApp final : public viewer::ViewerApp {
+ public:
+  HairSketchApp(Head head, Hairstyle style, AppPaths paths);
+  ~HairSketchApp() override;
+
+  void on_start(viewer::Viewer& v) override;
+  bool on_event(viewer::Viewer& v, const viewer::InputEvent& e) override;
+  void on_frame(viewer::Viewer& v) override;
+  void on_gui(viewer::Viewer& v) override;
+  void on_exit(viewer::Viewer& v) override;
+  bool busy() const override;
+  void benchmark_fields(nlohmann::json& j) const override;
+
+  const Document& document() const { return document_; }
+
+ private:
+  // Input.
+  void begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p);
+  void extend_stroke(viewer::Viewer& v, const Eigen::Vector2d& p);
+  void finish_stroke(viewer::Viewer& v);
+  void select_at(viewer::Viewer& v, const Eigen::Vector2d& p);
+  bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
+  void execute(viewer::Viewer& v, Command command);
+  void undo(viewer::Viewer& v);
+  void redo(viewer::Viewer& v);
+  void delete_selected(viewer::Viewer& v);
+
+  // Files.
+  void save(viewer::Viewer& v, const std::filesystem::path& path);
+  void load(viewer::Viewer& v, const std::filesystem::path& path);
+  void export_strands(viewer::Viewer& v);
+  void autosave_if_due(viewer::Viewer& v);
+
+  // Engine.
+  void settings_changed();
+  void request_regrowth();
+  void receive_regrowth(viewer::Viewer& v);
+
+  // Drawing (hair_scene.cpp) and panels (hair_panels.cpp).
+  void update_head_item(viewer::Viewer& v);
+  void update_strand_item(viewer::Viewer& v, const Strands& strands);
+  void update_curve_items(viewer::Viewer& v);
+  void update_preview_item(viewer::Viewer& v);
+  void update_glyph_item(viewer::Viewer& v);
+  void draw_toolbar(viewer::Viewer& v);
+  void draw_primitive_panel(viewer::Viewer& v);
+  void draw_settings_panel(viewer::Viewer& v);
+  void draw_file_panel(viewer::Viewer& v);
+  void draw_overlay(viewer::Viewer& v);
+
+  Head head_;
+  Document document_;
+  AppPaths paths_;
+  Grid grid_;  // of the current settings: strokes are resampled at its spacing
+
+  Tool tool_ = Tool::StreamCurve;
+  int selected_ = -1;
+  std::set<int> hidden_;
+  bool drawing_ = false;
+  Stroke stroke_;                       // the stroke being drawn
+  std::vector<Stroke> ponytail_strokes_;  // spine, cross section, profile a, profile b
+  std::vector<Eigen::Vector3d> preview_;  // 3D preview of the stroke's curve
+
+  // Display.
+  bool show_scalp_ = false, show_glyphs_ = false, show_curves_ = true, show_strands_ = true;
+  Eigen::Vector3f root_color_{0.16f, 0.09f, 0.05f}, tip_color_{0.55f, 0.36f, 0.20f};
+  float strand_width_ = 1.0f;
+  bool curves_dirty_ = true, head_dirty_ = true;
+
+  // Worker: regrowth never blocks input; the previous strands stay until new ones arrive.
+  struct EngineSlot {
+    std::unique_ptr<LiveHairstyle> live;
+    std::uint64_t epoch = ~0ull;
+  };
+  std::shared_ptr<EngineSlot> engine_ = std::make_shared<EngineSlot>();
+  std::uint64_t settings_epoch_ = 0;
+  std::uint64_t requested_revision_ = ~0ull, requested_epoch_ = ~0ull;
+  std::optional<Regrowth> last_;
+  std::string engine_error_;
+  double last_edit_time_ = 0;
+  double last_autosave_ = 0;
+  std::vector<double> latencies_ms_;  // edit → strands on screen, for --benchmark
+  viewer::LatestWorker<Regrowth> worker_;  // last: joined first, before what jobs use
+};
+
+}  // namespace lapis::hair_app

@@ -1,0 +1,63 @@
+// lapis-hair-sketch [--session FILE] [--head MESH] [--replay EVENTS] [--screenshot OUT.png]
+//                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
+//                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
+//                   [--roots N]
+#include <cstdio>
+
+#include "args.h"
+#include "hair_sketch_app.h"
+#include "lapis/hair_sketch/export.h"
+#include "lapis/hair_sketch/hair_file.h"
+#include "lapis/hair_sketch/session.h"
+
+int main(int argc, char** argv) {
+  using namespace lapis;
+  try {
+    viewer::ViewerOptions options;
+    options.title = "lapis-hair-sketch";
+    const std::vector<std::string> rest = viewer::parse_viewer_flags(argc, argv, options);
+    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
+      std::printf(
+          "usage: lapis-hair-sketch [--session FILE] [--head MESH] [--headless] [--replay EVENTS]\n"
+          "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
+          "                         [--benchmark OUT.json] [--size WxH] [--export-hair OUT.hair]\n"
+          "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
+          "Left-drag sketches with the current tool (keys 1-6), right-drag orbits, middle-drag pans,\n"
+          "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
+          "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n");
+      return 0;
+    }
+    const cli::Args args(rest);
+    args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots"});
+    hair_app::AppPaths paths;
+    hair_sketch::Hairstyle style;
+    hair_sketch::Head head;
+    const std::filesystem::path source_dir = LAPIS_SOURCE_DIR;
+    if (args.has("--session")) {
+      paths.session = args.get("--session");
+      style = hair_sketch::load_session(paths.session);
+      head = hair_sketch::load_session_head(style, paths.session, args.get("--head", ""));
+    } else {
+      paths.session = "hairstyle.json";
+      head = args.has("--head") ? hair_sketch::load_head(args.get("--head")) : hair_sketch::load_bundled_head(source_dir);
+      style.settings.head_mesh = args.has("--head") ? args.get("--head") : (source_dir / "assets/head.obj").string();
+      if (!args.has("--head")) style.settings.scalp_mask = (source_dir / "assets/head_scalp.txt").string();
+    }
+    style.settings.roots = static_cast<int>(args.get_int("--roots", style.settings.roots, 1, 2000000));
+    if (args.has("--save-session")) paths.session = args.get("--save-session");
+    paths.autosave = paths.session.string() + ".autosave.json";
+    paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");
+    paths.export_obj = args.get("--export-obj", "out/hairstyle.obj");
+    paths.export_on_exit = args.has("--export-hair") || args.has("--export-obj");
+    hair_app::HairSketchApp app(std::move(head), std::move(style), paths);
+    viewer::Viewer viewer(options);
+    const int status = viewer.run(app);
+    return status;
+  } catch (const cli::UsageError& e) {
+    std::fprintf(stderr, "lapis-hair-sketch: %s (see --help)\n", e.what());
+    return 2;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "lapis-hair-sketch: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,168 @@
+// Generates the example sessions assets/sessions/{smooth,parting,ponytails}.json, which
+// recreate thesis Figs. 4.6–4.8 on the bundled head: strokes are drawn by projecting 3D
+// paths over the head with orbit-style cameras, interpreted exactly as the app would, and
+// recorded in the session. Deterministic; run by hand, outputs are committed:
+//   lapis_make_sessions <source dir>
+// Then regenerate each report with `lapis hair --session X.json --out-hair /tmp/x.hair
+// --report X.report.json`.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include "lapis/hair_sketch/session.h"
+#include "lapis/hair_sketch/stroke_commands.h"
+#include "lapis/hair_sketch/style_field.h"
+
+using namespace lapis::hair_sketch;
+using lapis::geometry::CameraMatrices;
+
+namespace {
+
+CameraMatrices look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
+                       const Eigen::Vector3d& up = Eigen::Vector3d::UnitY()) {
+  return lapis::geometry::look_at_camera(eye, target, up);
+}
+
+struct Drawer {
+  const Head& head;
+  Document doc;
+  Grid grid;
+
+  Eigen::Vector3d on_head(const Eigen::Vector3d& d) const {
+    const Eigen::Vector3d dir = d.normalized();
+    return head.bvh->intersect(head.center + 5 * dir, -dir)->point;
+  }
+  Stroke project(const CameraMatrices& c, const std::vector<Eigen::Vector3d>& pts) const {
+    Stroke s;
+    for (const auto& p : pts) s.push_back(lapis::geometry::project(c, p).head<2>());
+    return s;
+  }
+  // Over the head from polar angle a0 to a1 (from +y) at azimuth phi (0 = face, +z), then
+  // `hang` pixels straight down the screen: hair falling past the scalp's edge.
+  Stroke over_head(const CameraMatrices& c, double phi, double a0, double a1, double hang) const {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i <= 24; ++i) {
+      const double a = a0 + (a1 - a0) * i / 24;
+      pts.push_back(on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
+    }
+    Stroke s = project(c, pts);
+    for (int k = 1; k <= 10; ++k) s.push_back(s.back() + Eigen::Vector2d(0, hang / 10));
+    return s;
+  }
+  CameraMatrices facing(double phi, double elevation = 0.5) const {
+    const Eigen::Vector3d eye(5 * std::sin(phi), 5 * elevation, 5 * std::cos(phi));
+    return look_at(eye, {0, 0.2, 0});
+  }
+  void add(StrokeAction a, const CameraMatrices& c, std::vector<Stroke> strokes, int target = -1) {
+    RecordedStroke r;
+    r.action = a;
+    r.camera = c;
+    r.strokes = std::move(strokes);
+    r.target = target;
+    apply_stroke(doc, r, head, grid);
+  }
+};
+
+Drawer start(const Head& head, double unknowns) {
+  Hairstyle h;
+  h.settings.head_mesh = "../head.obj";
+  h.settings.scalp_mask = "../head_scalp.txt";
+  h.settings.grid_unknowns = unknowns;
+  h.settings.field_method = FieldMethod::Thesis;
+  h.settings.roots = 2000;
+  h.camera = look_at({0, 2.5, 5}, {0, 0.2, 0});
+  return {head, Document(h), hairstyle_grid(head, h.settings)};
+}
+
+constexpr double kPi = std::numbers::pi;
+
+// Fig. 4.6: a smooth style from ten stream curves, crown to shoulders all around but the face.
+void smooth(Drawer& d) {
+  for (int k = 0; k < 10; ++k) {
+    const double phi = 0.35 * kPi + 1.3 * kPi * k / 9;
+    d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.25, 1.45, 120)});
+  }
+}
+
+// Fig. 4.7: a parting from the forehead to the crown, seven stream curves flowing away from it.
+void parting(Drawer& d) {
+  const CameraMatrices top = look_at({0, 5, 0.3}, {0, 0, 0}, {0, 0, -1});
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i <= 20; ++i) {
+    const double a = 0.55 - 0.75 * i / 20;  // polar angle towards the face, then past the top
+    line.push_back(d.on_head({0.18, std::cos(a), std::sin(a)}));
+  }
+  d.add(StrokeAction::DividingCurve, top, {d.project(top, line)});
+  for (int side : {-1, 1})
+    for (double phi : {0.25 * kPi, 0.5 * kPi, 0.75 * kPi}) {
+      const double p = side * phi;
+      d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 0.3, 1.5, 110)});
+    }
+  d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 0.3, 1.5, 140)});
+  // Tilt the parting's start: hair on the right side sweeps slightly back.
+  const auto& dc = std::get<DividingCurve>(d.doc.style().primitives[0].shape);
+  const Eigen::Vector3d foot = dc.points[2], x0 = dividing_side_axis(dc, d.head, 0.1);
+  std::vector<Eigen::Vector3d> pts;
+  for (int k = 1; k <= 6; ++k)
+    pts.push_back(d.on_head(foot + 0.06 * k * x0 - 0.025 * k * Eigen::Vector3d::UnitZ() - d.head.center));
+  d.add(StrokeAction::Tilt, top, {d.project(top, pts)}, 0);
+}
+
+// Fig. 4.8: two ponytails at the back of the head and four stream curves leading to them.
+void ponytails(Drawer& d) {
+  for (double phi : {0.2 * kPi, -0.2 * kPi, 0.6 * kPi, -0.6 * kPi})
+    d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.2, 1.0, 30)});
+  const CameraMatrices back = look_at({0, 0.8, -5}, {0, 0.2, 0});
+  for (int side : {-1, 1}) {
+    // Spine: from the scalp behind the ear, out and down.
+    std::vector<Eigen::Vector3d> spine;
+    const double phi = kPi - side * 0.3 * kPi;
+    for (int i = 0; i <= 4; ++i) {
+      const double a = 0.9 + 0.05 * i;
+      spine.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
+    }
+    const Eigen::Vector3d out = spine.back() + 0.25 * Eigen::Vector3d(side * 0.8, 0, -0.6);
+    for (int i = 0; i <= 12; ++i)
+      spine.push_back(out + Eigen::Vector3d(side * 0.05 * i, -0.12 * i, -0.02 * i));
+    const Eigen::Vector3d c1 = spine[6];
+    const double r = 0.12;
+    std::vector<Eigen::Vector3d> loop, pa, pb;
+    for (int k = 0; k <= 24; ++k) {
+      const double t = 2 * kPi * k / 24;
+      loop.push_back(c1 + r * Eigen::Vector3d(std::cos(t), 0.35 * std::sin(t), 0));
+    }
+    for (int i = 6; i <= 17; ++i) {
+      const double ri = r * (1.3 - 0.05 * (i - 6));
+      pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
+      pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
+    }
+    d.add(StrokeAction::Ponytail, back,
+          {d.project(back, spine), d.project(back, loop), d.project(back, pa), d.project(back, pb)});
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: lapis_make_sessions <source dir>\n");
+    return 2;
+  }
+  const std::filesystem::path dir = std::filesystem::path(argv[1]) / "assets" / "sessions";
+  const Head head = load_bundled_head(argv[1]);
+  try {
+    for (auto [name, unknowns, draw] : {std::tuple{"smooth", 8000.0, &smooth}, std::tuple{"parting", 8000.0, &parting},
+                                        std::tuple{"ponytails", 12000.0, &ponytails}}) {
+      Drawer d = start(head, unknowns);
+      draw(d);
+      save_session(dir / (std::string(name) + ".json"), d.doc.style());
+      std::printf("%s: %zu primitives from %zu strokes\n", name, d.doc.style().primitives.size(),
+                  d.doc.style().strokes.size());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lapis_make_sessions: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,26 @@
+// Inspection exports of a hairstyle (issue 6): strands as OBJ polylines (any mesh viewer),
+// the vector field as a legacy-VTK image (ParaView) or as raw float32 (numpy.fromfile).
+// The .hair exchange format has its own header, hair_file.h. Every write is atomic.
+#pragma once
+
+#include <filesystem>
+
+#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_sketch/growth.h"
+
+namespace lapis::hair_sketch {
+
+// One 'l' polyline per strand; strands with fewer than two points (roots whose field was
+// too weak to grow) are skipped. Throws IoError when writing fails.
+void write_strands_obj(const std::filesystem::path& path, const Strands& strands);
+
+// Legacy VTK STRUCTURED_POINTS (ASCII) with the field as VECTORS "direction" and its length
+// as SCALARS "magnitude". Throws InvalidArgument when field is not num_nodes by 3.
+void write_field_vtk(const std::filesystem::path& path, const Grid& grid, const Field& field);
+
+// float32 little-endian, x y z per node, nodes in grid index order (x fastest): a
+// dims[2] x dims[1] x dims[0] x 3 array. Throws InvalidArgument on a size mismatch.
+void write_field_raw(const std::filesystem::path& path, const Grid& grid, const Field& field);
+
+}  // namespace lapis::hair_sketch

@@ -1,0 +1,67 @@
+// From a hairstyle document to its vector field and strands (thesis §4.4–4.6): the
+// primitives' constraints, the field kept up to date incrementally as the document changes
+// (only the constraint diff reaches the solver, §4.4.2), and the one-shot build that the
+// command line and session replay use.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "lapis/hair_sketch/constraints.h"
+#include "lapis/hair_sketch/document.h"
+#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_sketch/growth.h"
+#include "lapis/hair_sketch/head.h"
+
+namespace lapis::hair_sketch {
+
+// The field's grid for a head and the document's settings (make_grid with grid_unknowns).
+Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
+
+// Sketch options matching the grid (curves resampled at its spacing) and the settings.
+SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings);
+
+// The constraints of one primitive / all of them merged (§4.5).
+std::vector<Constraint> primitive_constraints(const StylePrimitive& p, const Grid& grid, const Head& head);
+ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const Grid& grid,
+                                const Head& head);
+
+// Precompute once (the solver), then update per document revision: the new constraint set
+// is diffed against the last one and only the diff is applied. Undo is just another update,
+// whose diff is the inverse of the edit's.
+class StyleField {
+ public:
+  // Throws ResourceLimit when the method's memory estimate exceeds the solver's limit.
+  StyleField(const Head& head, const Grid& grid, FieldMethod method, double omega = 100);
+  // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance).
+  FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
+                          const std::vector<Constraint>& extra = {});
+  const Field& field() const { return solver_->field(); }
+  const ConstraintSet& constraints() const { return current_; }
+  const Grid& grid() const { return grid_; }
+  FieldMethod method() const { return solver_->method(); }
+
+ private:
+  const Head* head_;
+  Grid grid_;
+  std::unique_ptr<FieldSolver> solver_;
+  ConstraintSet current_;
+};
+
+struct HairstyleResult {
+  Grid grid;
+  Field field;
+  Strands strands;
+  int constraints = 0;
+  int penetrating_segments = 0;
+  std::vector<FieldSolveReport> solves;  // the style solve, then the avoidance solve
+  double grid_ms = 0, solve_ms = 0, growth_ms = 0, penetration_ms = 0;
+};
+
+// Solves the document's field from scratch (style, then scalp avoidance if enabled), grows
+// settings.roots strands and counts penetrating segments. Deterministic: the same document
+// and head give bit-identical strands.
+HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head);
+
+}  // namespace lapis::hair_sketch

@@ -1,0 +1,338 @@
+// JSON sessions: writer, validating reader, head resolution.
+#include "lapis/hair_sketch/session.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "lapis/core/error.h"
+#include "lapis/geometry/atomic_file.h"
+
+namespace lapis::hair_sketch {
+namespace {
+
+using nlohmann::json;
+
+// ---- writing ----
+
+json to_json(const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+json to_json(const std::vector<Eigen::Vector3d>& p) {
+  json a = json::array();
+  for (const auto& v : p) a.push_back(to_json(v));
+  return a;
+}
+
+json to_json(const Stroke& s) {
+  json a = json::array();
+  for (const auto& q : s) a.push_back(json::array({q.x(), q.y()}));
+  return a;
+}
+
+json to_json(const geometry::CameraMatrices& c) {
+  json view = json::array(), proj = json::array();
+  for (int r = 0; r < 4; ++r)
+    for (int k = 0; k < 4; ++k) view.push_back(c.view(r, k)), proj.push_back(c.projection(r, k));
+  return {{"view", view}, {"projection", proj},
+          {"viewport", json::array({c.viewport[0], c.viewport[1], c.viewport[2], c.viewport[3]})}};
+}
+
+json to_json(const StylePrimitive& p) {
+  json j = {{"type", primitive_type(p)}, {"viewpoint", to_json(p.viewpoint)}, {"support", to_string(p.support)}};
+  if (const auto* s = std::get_if<StreamCurve>(&p.shape)) {
+    j["points"] = to_json(s->points);
+    j["tail_segments"] = s->tail_segments;
+  } else if (const auto* d = std::get_if<DividingCurve>(&p.shape)) {
+    j["points"] = to_json(d->points);
+    j["alpha0"] = d->alpha0;
+    j["alpha1"] = d->alpha1;
+    j["sigma"] = d->sigma;
+    j["height"] = d->height;
+    j["discontinuity"] = d->discontinuity;
+    j["samples_per_side"] = d->samples_per_side;
+  } else {
+    const auto& t = std::get<Ponytail>(p.shape);
+    j["spine"] = to_json(t.spine);
+    j["cross_section"] = to_json(t.cross_section);
+    j["profile_a"] = to_json(t.profile_a);
+    j["profile_b"] = to_json(t.profile_b);
+    j["tightness"] = t.tightness;
+    j["inner_ratio"] = t.inner_ratio;
+    j["outer_ratio"] = t.outer_ratio;
+  }
+  return j;
+}
+
+const char* method_name(FieldMethod m) {
+  switch (m) {
+    case FieldMethod::Auto: return "auto";
+    case FieldMethod::Thesis: return "thesis";
+    case FieldMethod::Refactorize: return "refactorize";
+    case FieldMethod::Multigrid: return "multigrid";
+  }
+  return "?";
+}
+
+// ---- reading ----
+
+class Reader {
+ public:
+  Reader(std::string source, const SessionLimits& limits) : source_(std::move(source)), lim_(limits) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw IoError("hair_sketch::session_from_json(): " + source_ + ": " + path + ": " + what);
+  }
+  static const char* type_name(const json& j) { return j.type_name(); }
+
+  const json& key(const json& obj, const std::string& path, const char* k) const {
+    if (!obj.is_object()) fail(path, std::string("expected an object, got ") + type_name(obj));
+    const auto it = obj.find(k);
+    if (it == obj.end()) fail(path, std::string("missing key \"") + k + "\"");
+    return *it;
+  }
+  double number(const json& j, const std::string& path) const {
+    if (!j.is_number()) fail(path, std::string("expected a number, got ") + type_name(j));
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) fail(path, "expected a finite number");
+    return v;
+  }
+  double number(const json& obj, const std::string& path, const char* k, double lo, double hi) const {
+    const double v = number(key(obj, path, k), path + "." + k);
+    if (v < lo || v > hi)
+      fail(path + "." + k, "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+  }
+  long integer(const json& obj, const std::string& path, const char* k, long lo, long hi) const {
+    const json& j = key(obj, path, k);
+    if (!j.is_number_integer()) fail(path + "." + k, std::string("expected an integer, got ") + type_name(j));
+    const long v = j.get<long>();
+    if (v < lo || v > hi)
+      fail(path + "." + k, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+  }
+  bool boolean(const json& obj, const std::string& path, const char* k) const {
+    const json& j = key(obj, path, k);
+    if (!j.is_boolean()) fail(path + "." + k, std::string("expected a boolean, got ") + type_name(j));
+    return j.get<bool>();
+  }
+  std::string string(const json& obj, const std::string& path, const char* k) const {
+    const json& j = key(obj, path, k);
+    if (!j.is_string()) fail(path + "." + k, std::string("expected a string, got ") + type_name(j));
+    return j.get<std::string>();
+  }
+  const json& array(const json& j, const std::string& path, std::size_t max, std::size_t exact = 0) const {
+    if (!j.is_array()) fail(path, std::string("expected an array, got ") + type_name(j));
+    if (exact && j.size() != exact)
+      fail(path, "expected " + std::to_string(exact) + " elements, got " + std::to_string(j.size()));
+    if (j.size() > max)
+      fail(path, std::to_string(j.size()) + " elements, at most " + std::to_string(max) + " allowed");
+    return j;
+  }
+  template <int N>
+  Eigen::Matrix<double, N, 1> vec(const json& j, const std::string& path) const {
+    array(j, path, N, N);
+    Eigen::Matrix<double, N, 1> v;
+    for (int i = 0; i < N; ++i) v[i] = number(j[i], path + "[" + std::to_string(i) + "]");
+    return v;
+  }
+  std::vector<Eigen::Vector3d> points(const json& obj, const std::string& path, const char* k) const {
+    const std::string p = path + "." + k;
+    const json& a = array(key(obj, path, k), p, lim_.max_points);
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) out.push_back(vec<3>(a[i], p + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  Stroke stroke(const json& j, const std::string& path) const {
+    const json& a = array(j, path, lim_.max_points);
+    Stroke out;
+    out.reserve(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) out.push_back(vec<2>(a[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  geometry::CameraMatrices camera(const json& obj, const std::string& path) const {
+    geometry::CameraMatrices c;
+    const auto mat = [&](const char* k, Eigen::Matrix4d& m) {
+      const std::string p = path + "." + k;
+      const json& a = array(key(obj, path, k), p, 16, 16);
+      for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = number(a[i], p + "[" + std::to_string(i) + "]");
+    };
+    mat("view", c.view);
+    mat("projection", c.projection);
+    c.viewport = vec<4>(key(obj, path, "viewport"), path + ".viewport");
+    if (!(c.viewport[2] > 0 && c.viewport[3] > 0)) fail(path + ".viewport", "expected a positive width and height");
+    return c;
+  }
+  SupportMode support(const json& obj, const std::string& path) const {
+    const std::string s = string(obj, path, "support");
+    if (s == "ruled") return SupportMode::Ruled;
+    if (s == "strip") return SupportMode::Strip;
+    fail(path + ".support", "expected \"ruled\" or \"strip\", got \"" + s + "\"");
+  }
+  FieldMethod method(const json& obj, const std::string& path) const {
+    const std::string s = string(obj, path, "field_method");
+    for (FieldMethod m : {FieldMethod::Auto, FieldMethod::Thesis, FieldMethod::Refactorize, FieldMethod::Multigrid})
+      if (s == method_name(m)) return m;
+    fail(path + ".field_method", "expected auto, thesis, refactorize or multigrid, got \"" + s + "\"");
+  }
+  StylePrimitive primitive(const json& j, const std::string& path) const {
+    StylePrimitive p;
+    p.viewpoint = vec<3>(key(j, path, "viewpoint"), path + ".viewpoint");
+    p.support = support(j, path);
+    const std::string type = string(j, path, "type");
+    if (type == "stream_curve") {
+      StreamCurve s;
+      s.points = points(j, path, "points");
+      s.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
+      p.shape = std::move(s);
+    } else if (type == "dividing_curve") {
+      DividingCurve d;
+      d.points = points(j, path, "points");
+      d.alpha0 = number(j, path, "alpha0", -10, 10);
+      d.alpha1 = number(j, path, "alpha1", -10, 10);
+      d.sigma = number(j, path, "sigma", 1e-6, 1e3);
+      d.height = number(j, path, "height", -1e3, 1e3);
+      d.discontinuity = number(j, path, "discontinuity", 0, 10);
+      d.samples_per_side = static_cast<int>(integer(j, path, "samples_per_side", 0, 1000));
+      p.shape = std::move(d);
+    } else if (type == "ponytail") {
+      Ponytail t;
+      t.spine = points(j, path, "spine");
+      t.cross_section = points(j, path, "cross_section");
+      t.profile_a = points(j, path, "profile_a");
+      t.profile_b = points(j, path, "profile_b");
+      t.tightness = number(j, path, "tightness", 0, 10);
+      t.inner_ratio = number(j, path, "inner_ratio", 0, 100);
+      t.outer_ratio = number(j, path, "outer_ratio", 0, 100);
+      p.shape = std::move(t);
+    } else {
+      fail(path + ".type", "expected stream_curve, dividing_curve or ponytail, got \"" + type + "\"");
+    }
+    return p;
+  }
+  RecordedStroke recorded(const json& j, const std::string& path) const {
+    RecordedStroke r;
+    const std::string action = string(j, path, "action");
+    bool known = false;
+    for (StrokeAction a : {StrokeAction::StreamCurve, StrokeAction::DividingCurve, StrokeAction::Hint,
+                           StrokeAction::Tilt, StrokeAction::Ponytail})
+      if (action == to_string(a)) r.action = a, known = true;
+    if (!known) fail(path + ".action", "unknown action \"" + action + "\"");
+    if (j.contains("target")) r.target = static_cast<int>(integer(j, path, "target", -1, 1 << 30));
+    r.camera = camera(key(j, path, "camera"), path + ".camera");
+    const json& a = array(key(j, path, "strokes"), path + ".strokes", 4);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      r.strokes.push_back(stroke(a[i], path + ".strokes[" + std::to_string(i) + "]"));
+    return r;
+  }
+  HairstyleSettings settings(const json& j, const std::string& path) const {
+    HairstyleSettings s;
+    s.head_mesh = string(j, path, "head_mesh");
+    s.scalp_mask = string(j, path, "scalp_mask");
+    s.grid_unknowns = number(j, path, "grid_unknowns", 8, 1e9);
+    s.field_method = method(j, path);
+    s.omega = number(j, path, "omega", 1e-6, 1e12);
+    s.roots = static_cast<int>(integer(j, path, "roots", 0, 10'000'000));
+    s.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffL));
+    s.step = number(j, path, "step", 1e-3, 10);
+    s.max_length = number(j, path, "max_length", 0, 1e6);
+    s.scalp_avoidance = boolean(j, path, "scalp_avoidance");
+    s.support = support(j, path);
+    s.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
+    return s;
+  }
+
+ private:
+  std::string source_;
+  const SessionLimits& lim_;
+};
+
+}  // namespace
+
+std::string session_to_json(const Hairstyle& style) {
+  const HairstyleSettings& s = style.settings;
+  json j;
+  j["format"] = "lapis-hair-session";
+  j["version"] = 1;
+  j["settings"] = {{"head_mesh", s.head_mesh},       {"scalp_mask", s.scalp_mask},
+                   {"grid_unknowns", s.grid_unknowns}, {"field_method", method_name(s.field_method)},
+                   {"omega", s.omega},               {"roots", s.roots},
+                   {"seed", s.seed},                 {"step", s.step},
+                   {"max_length", s.max_length},     {"scalp_avoidance", s.scalp_avoidance},
+                   {"support", to_string(s.support)}, {"tail_segments", s.tail_segments}};
+  j["camera"] = to_json(style.camera);
+  j["primitives"] = json::array();
+  for (const auto& p : style.primitives) j["primitives"].push_back(to_json(p));
+  j["strokes"] = json::array();
+  for (const auto& r : style.strokes) {
+    json strokes = json::array();
+    for (const auto& st : r.strokes) strokes.push_back(to_json(st));
+    j["strokes"].push_back({{"action", to_string(r.action)}, {"target", r.target},
+                            {"camera", to_json(r.camera)}, {"strokes", strokes}});
+  }
+  return j.dump(1);
+}
+
+Hairstyle session_from_json(std::string_view text, const std::string& source, const SessionLimits& limits) {
+  const Reader rd(source, limits);
+  json j;
+  try {
+    j = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
+    rd.fail("$", std::string("malformed JSON: ") + e.what());
+  }
+  if (rd.string(j, "$", "format") != "lapis-hair-session")
+    rd.fail("$.format", "expected \"lapis-hair-session\"");
+  if (rd.integer(j, "$", "version", 1, 1000) != 1) rd.fail("$.version", "unsupported version, expected 1");
+  Hairstyle h;
+  h.settings = rd.settings(rd.key(j, "$", "settings"), "$.settings");
+  h.camera = rd.camera(rd.key(j, "$", "camera"), "$.camera");
+  const json& prims = rd.array(rd.key(j, "$", "primitives"), "$.primitives", limits.max_items);
+  for (std::size_t i = 0; i < prims.size(); ++i)
+    h.primitives.push_back(rd.primitive(prims[i], "$.primitives[" + std::to_string(i) + "]"));
+  if (j.contains("strokes")) {
+    const json& st = rd.array(j["strokes"], "$.strokes", limits.max_items);
+    for (std::size_t i = 0; i < st.size(); ++i)
+      h.strokes.push_back(rd.recorded(st[i], "$.strokes[" + std::to_string(i) + "]"));
+  }
+  return h;
+}
+
+void save_session(const std::filesystem::path& path, const Hairstyle& style) {
+  const std::string text = session_to_json(style);
+  geometry::write_file_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
+}
+
+Hairstyle load_session(const std::filesystem::path& path, const SessionLimits& limits) {
+  const std::string where = "hair_sketch::load_session(): " + path.string() + ": ";
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec) throw IoError(where + "cannot read: " + ec.message());
+  if (size > limits.max_file_bytes)
+    throw IoError(where + std::to_string(size) + " bytes, at most " + std::to_string(limits.max_file_bytes) +
+                  " allowed");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(where + "cannot open");
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  return session_from_json(buf.str(), path.string(), limits);
+}
+
+Head load_session_head(const Hairstyle& style, const std::filesystem::path& session_path,
+                       const std::filesystem::path& mesh_override) {
+  const std::filesystem::path dir = session_path.parent_path();
+  const auto resolve = [&](const std::string& p) -> std::filesystem::path {
+    if (p.empty()) return {};
+    const std::filesystem::path q(p);
+    return q.is_absolute() ? q : dir / q;
+  };
+  if (!mesh_override.empty()) return load_head(mesh_override);
+  if (style.settings.head_mesh.empty())
+    throw IoError("hair_sketch::load_session_head(): " + session_path.string() +
+                  ": settings.head_mesh is empty and no head mesh was given");
+  return load_head(resolve(style.settings.head_mesh), resolve(style.settings.scalp_mask));
+}
+
+}  // namespace lapis::hair_sketch

@@ -1,0 +1,97 @@
+// The document's field and strands: incremental updates and the one-shot build.
+#include "lapis/hair_sketch/style_field.h"
+
+#include <chrono>
+
+#include "lapis/hair_sketch/scalp_avoidance.h"
+
+namespace lapis::hair_sketch {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings) {
+  GridOptions g;
+  g.target_unknowns = settings.grid_unknowns;
+  return make_grid(head.box, g);
+}
+
+SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings) {
+  SketchOptions o;
+  o.spacing = grid.spacing;
+  o.tail_segments = settings.tail_segments;
+  return o;
+}
+
+std::vector<Constraint> primitive_constraints(const StylePrimitive& p, const Grid& grid, const Head& head) {
+  return std::visit(
+      [&](const auto& shape) -> std::vector<Constraint> {
+        using T = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<T, DividingCurve>)
+          return shape.constraints(grid, head);
+        else
+          return shape.constraints(grid);
+      },
+      p.shape);
+}
+
+ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const Grid& grid,
+                                const Head& head) {
+  std::vector<std::vector<Constraint>> groups;
+  for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid, head));
+  return ConstraintSet::merge(groups);
+}
+
+StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, double omega)
+    : head_(&head), grid_(grid) {
+  FieldSolverOptions o;
+  o.omega = omega;
+  solver_ = make_field_solver(grid, method, o);
+}
+
+FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitives,
+                                    const std::vector<Constraint>& extra) {
+  std::vector<std::vector<Constraint>> groups;
+  for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid_, *head_));
+  if (!extra.empty()) groups.push_back(extra);
+  ConstraintSet next = ConstraintSet::merge(groups);
+  const FieldSolveReport report = solver_->apply(diff(current_, next), next);
+  current_ = std::move(next);
+  return report;
+}
+
+HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
+  const HairstyleSettings& s = style.settings;
+  HairstyleResult r;
+  auto t0 = std::chrono::steady_clock::now();
+  r.grid = hairstyle_grid(head, s);
+  StyleField field(head, r.grid, s.field_method, s.omega);
+  r.grid_ms = ms_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  r.solves.push_back(field.update(style.primitives));
+  if (s.scalp_avoidance && !style.primitives.empty())
+    r.solves.push_back(field.update(style.primitives,
+                                    scalp_avoidance_constraints(r.grid, field.field(), head)));
+  r.solve_ms = ms_since(t0);
+  r.field = field.field();
+  r.constraints = field.constraints().size();
+  t0 = std::chrono::steady_clock::now();
+  RootOptions roots;
+  roots.count = s.roots;
+  roots.seed = s.seed;
+  GrowthOptions growth;
+  growth.step = s.step;
+  growth.max_length = s.max_length;
+  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, roots), growth);
+  r.growth_ms = ms_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  r.penetrating_segments = count_penetrating_segments(r.strands, head);
+  r.penetration_ms = ms_since(t0);
+  return r;
+}
+
+}  // namespace lapis::hair_sketch

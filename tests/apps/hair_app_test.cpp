@@ -1,0 +1,137 @@
+// The hair sketching app, for real: under Xvfb, driven by xdotool, replayed from an event
+// file, and rendered headless for every bundled session.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "app_runner.h"
+#include "lapis/geometry/camera.h"
+#include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/session.h"
+#include "lapis/viewer/orbit_camera.h"
+
+using namespace lapis;
+using namespace lapis::apps_test;
+
+namespace {
+
+const std::string kApp = LAPIS_HAIR_APP_EXE;
+const fs::path kSource = LAPIS_SOURCE_DIR;
+constexpr int kWidth = 900, kHeight = 700;
+
+// Hair pixels: strand colours run from dark to light brown (red well above blue); skin and
+// the bluish-grey background do not.
+double hair_fraction(const viewer::Image& img) {
+  size_t hair = 0;
+  for (size_t k = 0; k < img.rgba.size(); k += 4) {
+    const int r = img.rgba[k], b = img.rgba[k + 2];
+    if (r > 25 && r > 1.6 * b + 10) ++hair;
+  }
+  return static_cast<double>(hair) / static_cast<double>(img.rgba.size() / 4);
+}
+
+// The app's first view: the orbit camera framed on the head's bounds.
+geometry::CameraMatrices initial_camera(const hair_sketch::Head& head) {
+  viewer::OrbitCamera cam;
+  cam.frame(head.mesh.V.colwise().minCoeff().transpose(), head.mesh.V.colwise().maxCoeff().transpose());
+  return cam.matrices(kWidth, kHeight);
+}
+
+// A visible scalp point on the right side of the head, a third of the way down the scalp's
+// screen extent, in pixels: a downward drag from there runs down the side of the head.
+Eigen::Vector2d scalp_pixel(const hair_sketch::Head& head, const geometry::CameraMatrices& cam) {
+  const Eigen::Vector3d eye = geometry::eye_position(cam);
+  std::vector<Eigen::Vector2d> visible;
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (Eigen::Index f = 0; f < head.mesh.F.rows(); ++f) {
+    if (!head.scalp_face[static_cast<size_t>(f)]) continue;
+    const Eigen::Vector3d c = (head.mesh.V.row(head.mesh.F(f, 0)) + head.mesh.V.row(head.mesh.F(f, 1)) +
+                               head.mesh.V.row(head.mesh.F(f, 2))).transpose() / 3.0;
+    if (head.face_normals.row(f).dot((eye - c).normalized()) < 0.5) continue;  // clearly facing us
+    const Eigen::Vector2d s = geometry::project(cam, c).head<2>();
+    visible.push_back(s);
+    lo = lo.cwiseMin(s), hi = hi.cwiseMax(s);
+  }
+  const Eigen::Vector2d target(0.5 * (lo.x() + hi.x()) + 0.3 * (hi.x() - lo.x()), lo.y() + 0.35 * (hi.y() - lo.y()));
+  Eigen::Vector2d best(0, 0);
+  for (const auto& s : visible)
+    if ((s - target).norm() < (best - target).norm()) best = s;
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve that follows the drag") {
+  const fs::path dir = scratch_dir();
+  const hair_sketch::Head head = hair_sketch::load_bundled_head(kSource);
+  const geometry::CameraMatrices cam = initial_camera(head);
+  const Eigen::Vector2d start = scalp_pixel(head, cam);
+  REQUIRE(start.x() > 0);
+  const fs::path session = dir / "drawn.json", shot = dir / "drawn.png", empty = dir / "empty.png",
+                 events = dir / "drawn_events.json";
+  const std::string size = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+  REQUIRE(run_under_xvfb(kApp + size + " --headless --screenshot " + empty.string() + " --save-session " +
+                         (dir / "unused.json").string()) == 0);
+
+  // Drag downward from the scalp in small steps (a person's drag), save, screenshot, quit.
+  std::string drag = "xdotool mousemove --window $w " + std::to_string(int(start.x())) + " " +
+                     std::to_string(int(start.y())) + " mousedown 1";
+  for (int k = 1; k <= 20; ++k)
+    drag += " mousemove --window $w " + std::to_string(int(start.x() + 2 * k)) + " " +
+            std::to_string(int(start.y() + 9 * k)) + " sleep 0.02";
+  drag += " mouseup 1";
+  const std::string script =
+      "sh -c '" + kApp + size + " --save-session " + session.string() + " --screenshot " + shot.string() +
+      " --record " + events.string() +
+      " & app=$!; for i in $(seq 1 150); do w=$(xdotool search --name lapis-hair-sketch 2>/dev/null | head -n1);"
+      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
+      drag + "; sleep 15; xdotool key --window $w ctrl+s; sleep 0.5; xdotool key --window $w ctrl+p; sleep 1;"
+      " xdotool key --window $w ctrl+q; wait $app'";
+  REQUIRE(run_under_xvfb(script) == 0);
+
+  const hair_sketch::Hairstyle style = hair_sketch::load_session(session);
+  REQUIRE(style.primitives.size() == 1);
+  const auto* curve = std::get_if<hair_sketch::StreamCurve>(&style.primitives[0].shape);
+  REQUIRE(curve != nullptr);
+  REQUIRE(curve->points.size() >= 3);
+  // On or above the scalp: no point inside the head.
+  for (const auto& p : curve->points) CHECK(!head.inside(p));
+  // The drag went down the screen: so does the curve.
+  const Eigen::Vector3d a = geometry::project(cam, curve->points.front()), b = geometry::project(cam, curve->points.back());
+  CHECK(b.y() - a.y() > 60);
+  CHECK(std::abs(b.x() - a.x()) < b.y() - a.y());
+  CHECK((a.head<2>() - start).norm() < 30);  // resampled at d and lifted off the scalp
+
+  // Hair appeared where there was none.
+  CHECK(hair_fraction(viewer::read_png(shot)) > hair_fraction(viewer::read_png(empty)) + 0.005);
+}
+
+TEST_CASE("apps: hair app — replaying a recorded event file reproduces the recorded session") {
+  const fs::path data = kSource / "tests/apps/data";
+  const fs::path out = scratch_dir() / "replayed.json";
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (data / "hair_stroke_events.json").string() +
+                         " --exit-after-replay --save-session " + out.string()) == 0);
+  const hair_sketch::Hairstyle replayed = hair_sketch::load_session(out);
+  const hair_sketch::Hairstyle expected = hair_sketch::load_session(data / "hair_stroke_expected.json");
+  REQUIRE(replayed.primitives.size() == expected.primitives.size());
+  REQUIRE(!expected.primitives.empty());
+  for (size_t i = 0; i < expected.primitives.size(); ++i)
+    CHECK(hair_sketch::same_primitive(replayed.primitives[i], expected.primitives[i]));
+}
+
+TEST_CASE("apps: hair app — every bundled session renders headless with a plausible amount of hair") {
+  int sessions = 0;
+  for (const auto& entry : fs::directory_iterator(kSource / "assets/sessions")) {
+    if (entry.path().extension() != ".json") continue;
+    ++sessions;
+    CAPTURE(entry.path().string());
+    const fs::path png = scratch_dir() / (entry.path().stem().string() + ".png");
+    REQUIRE(run_under_xvfb(kApp + " --session " + entry.path().string() + " --headless --size 800x600 --screenshot " +
+                           png.string() + " --save-session " + (scratch_dir() / "ignored.json").string()) == 0);
+    const double hair = hair_fraction(viewer::read_png(png));
+    CHECK(hair > 0.02);  // not blank
+    CHECK(hair < 0.7);   // not all hair
+  }
+  CHECK(sessions >= 3);
+}
