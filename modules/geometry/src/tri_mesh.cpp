@@ -1,0 +1,185 @@
+#include "lapis/geometry/tri_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "csr.h"
+#include "lapis/core/error.h"
+
+namespace lapis::geometry {
+namespace {
+
+bool face_in_range(const TriMesh& m, Eigen::Index f) {
+  for (int k = 0; k < 3; ++k)
+    if (m.F(f, k) < 0 || m.F(f, k) >= m.num_vertices()) return false;
+  return true;
+}
+
+bool is_degenerate(const TriMesh& m, Eigen::Index f, double tolerance) {
+  const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
+  if (a == b || b == c || c == a) return true;
+  const Eigen::Vector3d e0 = m.V.row(b) - m.V.row(a), e1 = m.V.row(c) - m.V.row(b),
+                        e2 = m.V.row(a) - m.V.row(c);
+  const double longest2 = std::max({e0.squaredNorm(), e1.squaredNorm(), e2.squaredNorm()});
+  return e0.cross(-e2).norm() <= tolerance * longest2;
+}
+
+std::uint64_t pair_key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
+         static_cast<std::uint32_t>(b);
+}
+
+void find_duplicates(const TriMesh& m, const std::vector<int>& faces, ValidationReport& r) {
+  std::vector<std::array<int, 4>> keyed;  // sorted triple + face
+  keyed.reserve(faces.size());
+  for (int f : faces) {
+    std::array<int, 4> k{m.F(f, 0), m.F(f, 1), m.F(f, 2), f};
+    std::sort(k.begin(), k.begin() + 3);
+    keyed.push_back(k);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  for (size_t i = 1; i < keyed.size(); ++i)
+    if (std::equal(keyed[i].begin(), keyed[i].begin() + 3, keyed[i - 1].begin()))
+      r.duplicate_faces.push_back(keyed[i][3]);
+  std::sort(r.duplicate_faces.begin(), r.duplicate_faces.end());
+}
+
+// Edges used by more than two faces, and directed edges used twice (a flipped neighbour).
+void find_edge_problems(const TriMesh& m, const std::vector<int>& faces, ValidationReport& r,
+                        const ValidationOptions& o) {
+  std::vector<std::uint64_t> directed;
+  directed.reserve(faces.size() * 3);
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) directed.push_back(pair_key(m.F(f, k), m.F(f, (k + 1) % 3)));
+  std::sort(directed.begin(), directed.end());
+  if (o.check_orientation) {
+    for (size_t i = 1; i < directed.size(); ++i)
+      if (directed[i] == directed[i - 1] && (i < 2 || directed[i - 2] != directed[i]))
+        r.misoriented_edges.push_back(
+            {static_cast<int>(directed[i] >> 32), static_cast<int>(directed[i] & 0xffffffffu)});
+  }
+  if (o.check_manifold) {
+    std::vector<std::uint64_t> undirected(directed.size());
+    std::transform(directed.begin(), directed.end(), undirected.begin(), [](std::uint64_t k) {
+      const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
+      return pair_key(std::min(a, b), std::max(a, b));
+    });
+    std::sort(undirected.begin(), undirected.end());
+    for (size_t i = 0; i < undirected.size();) {
+      size_t j = i;
+      while (j < undirected.size() && undirected[j] == undirected[i]) ++j;
+      if (j - i > 2)
+        r.non_manifold_edges.push_back({static_cast<int>(undirected[i] >> 32),
+                                        static_cast<int>(undirected[i] & 0xffffffffu)});
+      i = j;
+    }
+  }
+}
+
+// A vertex is manifold when its faces form one fan: connected through edges at the vertex.
+bool single_fan(const Faces& F, int v, std::span<const int> faces) {
+  if (faces.size() <= 1) return true;
+  std::vector<int> parent(faces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (size_t j = i + 1; j < faces.size(); ++j) {
+      int shared = 0;  // vertices other than v the two faces have in common
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const int x = F(faces[i], a);
+          if (x != v && x == F(faces[j], b)) ++shared;
+        }
+      if (shared > 0) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
+    }
+  int roots = 0;
+  for (size_t i = 0; i < faces.size(); ++i) roots += find(static_cast<int>(i)) == static_cast<int>(i);
+  return roots == 1;
+}
+
+template <class T>
+void list(std::ostringstream& out, const char* what, const std::vector<T>& items, size_t max) {
+  if (items.empty()) return;
+  if (out.tellp() > 0) out << "; ";
+  out << items.size() << " " << what << ": ";
+  for (size_t i = 0; i < items.size() && i < max; ++i) {
+    if (i) out << ", ";
+    if constexpr (std::is_same_v<T, int>)
+      out << items[i];
+    else
+      out << "(" << items[i][0] << ", " << items[i][1] << ")";
+  }
+  if (items.size() > max) out << ", ...";
+}
+
+}  // namespace
+
+bool ValidationReport::ok() const {
+  return out_of_range_faces.empty() && non_finite_vertices.empty() && degenerate_faces.empty() &&
+         duplicate_faces.empty() && non_manifold_edges.empty() && non_manifold_vertices.empty() &&
+         misoriented_edges.empty();
+}
+
+std::string ValidationReport::summary(size_t max_listed) const {
+  std::ostringstream out;
+  list(out, "faces with out-of-range indices", out_of_range_faces, max_listed);
+  list(out, "vertices with non-finite coordinates", non_finite_vertices, max_listed);
+  list(out, "degenerate faces", degenerate_faces, max_listed);
+  list(out, "duplicate faces", duplicate_faces, max_listed);
+  list(out, "non-manifold edges", non_manifold_edges, max_listed);
+  list(out, "non-manifold vertices", non_manifold_vertices, max_listed);
+  list(out, "misoriented edges", misoriented_edges, max_listed);
+  return out.str();
+}
+
+ValidationReport validate(const TriMesh& m, const ValidationOptions& o) {
+  ValidationReport r;
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (!m.V.row(v).allFinite()) r.non_finite_vertices.push_back(v);
+  std::vector<int> good;  // faces in range, the only ones the topological checks can look at
+  good.reserve(m.F.rows());
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    if (!face_in_range(m, f)) {
+      r.out_of_range_faces.push_back(static_cast<int>(f));
+      continue;
+    }
+    good.push_back(static_cast<int>(f));
+    if (o.check_degenerate && is_degenerate(m, f, o.degenerate_tolerance))
+      r.degenerate_faces.push_back(static_cast<int>(f));
+  }
+  if (o.check_duplicates) find_duplicates(m, good, r);
+  if (o.check_manifold || o.check_orientation) find_edge_problems(m, good, r, o);
+  if (o.check_manifold) {
+    Faces in_range(good.size(), 3);
+    for (size_t i = 0; i < good.size(); ++i) in_range.row(i) = m.F.row(good[i]);
+    const detail::Csr vf = detail::vertex_face_csr(in_range, m.num_vertices());
+    for (int v = 0; v < m.num_vertices(); ++v)
+      if (!single_fan(in_range, v, vf[v])) r.non_manifold_vertices.push_back(v);
+  }
+  return r;
+}
+
+void require_valid(const TriMesh& mesh, const ValidationOptions& options, std::string_view context) {
+  const ValidationReport r = validate(mesh, options);
+  if (!r.ok()) throw InvalidArgument(std::string(context) + ": invalid mesh: " + r.summary());
+}
+
+void require_indices_in_range(const TriMesh& mesh, std::string_view context) {
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    if (!face_in_range(mesh, f)) {
+      std::ostringstream out;
+      out << context << ": face " << f << " = (" << mesh.F(f, 0) << ", " << mesh.F(f, 1) << ", "
+          << mesh.F(f, 2) << ") has an index outside [0, " << mesh.num_vertices() << ")";
+      throw InvalidArgument(out.str());
+    }
+}
+
+}  // namespace lapis::geometry
