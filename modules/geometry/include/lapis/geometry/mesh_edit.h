@@ -1,0 +1,37 @@
+// Topology edits used by mesh merging (thesis ch. 3): cut away a band of faces, stitch the
+// gap between two boundary polylines with a triangle strip, and weld vertices.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "lapis/geometry/tri_mesh.h"
+
+namespace lapis::geometry {
+
+// Removes faces (indices may repeat, any order) and then every vertex no face uses.
+// vertex_map, when given, receives for each old vertex its new index or -1.
+TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::vector<int>* vertex_map = nullptr);
+
+// Drops vertices that no face uses; returns the old-to-new map (-1 for dropped ones).
+std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
+
+// Triangulates the band between polylines a and b (vertex indices into mesh.V) and appends
+// the triangles to mesh.F. Each step advances along the polyline whose next diagonal is
+// shorter (the greedy shortest-diagonal rule of Fuchs, Kedem & Uselton 1977 without the
+// global optimization). With closed = true both are cycles and b is first rotated to start
+// at its vertex nearest a[0]. The strip is oriented to match the existing faces on a's
+// edges when there are any; otherwise it lies to the left of a walking forward, with b
+// running the same way. Returns the number of triangles added.
+int bridge_polylines(TriMesh& mesh, const std::vector<int>& a, const std::vector<int>& b, bool closed);
+
+// Merges every vertex within tolerance of another (grid hashing, transitively), keeps the
+// lowest index's position, drops faces that collapse and unreferenced vertices. Returns the
+// old-to-new vertex map.
+std::vector<int> weld_vertices(TriMesh& mesh, double tolerance);
+
+// Merges explicit pairs (first, second) into one vertex each, placed at their midpoint;
+// collapsed faces and unused vertices are dropped. Returns the old-to-new vertex map.
+std::vector<int> weld_vertex_pairs(TriMesh& mesh, const std::vector<std::pair<int, int>>& pairs);
+
+}  // namespace lapis::geometry

@@ -1,0 +1,185 @@
+#include "lapis/geometry/mesh_edit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include "lapis/core/error.h"
+
+namespace lapis::geometry {
+namespace {
+
+// Replaces each index by map[index], drops faces that now repeat an index, then drops
+// unused vertices; returns the composed old-to-new map.
+std::vector<int> remap_faces(TriMesh& mesh, const std::vector<int>& map) {
+  Faces kept(mesh.F.rows(), 3);
+  Eigen::Index n = 0;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+    const int a = map[mesh.F(f, 0)], b = map[mesh.F(f, 1)], c = map[mesh.F(f, 2)];
+    if (a != b && b != c && c != a) kept.row(n++) << a, b, c;
+  }
+  mesh.F = kept.topRows(n);
+  const std::vector<int> compact = remove_unreferenced_vertices(mesh);
+  std::vector<int> total(map.size());
+  for (size_t v = 0; v < map.size(); ++v) total[v] = compact[map[v]];
+  return total;
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  }
+  void join(int a, int b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lowest index represents
+  }
+};
+
+void check_vertex(const TriMesh& mesh, int v, const char* fn) {
+  if (v < 0 || v >= mesh.num_vertices())
+    throw InvalidArgument(std::string(fn) + ": vertex " + std::to_string(v) + " out of range [0, " +
+                          std::to_string(mesh.num_vertices()) + ")");
+}
+
+bool has_directed_edge(const Faces& F, int a, int b) {
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) == a && F(f, (k + 1) % 3) == b) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
+  std::vector<int> map(mesh.num_vertices(), -1);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) map[mesh.F(f, k)] = 0;
+  int n = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (map[v] == 0) {
+      mesh.V.row(n) = mesh.V.row(v);
+      map[v] = n++;
+    }
+  mesh.V.conservativeResize(n, 3);
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) mesh.F(f, k) = map[mesh.F(f, k)];
+  return map;
+}
+
+TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::vector<int>* vertex_map) {
+  require_indices_in_range(mesh, "geometry::remove_faces()");
+  std::vector<char> removed(mesh.num_faces(), 0);
+  for (int f : faces) {
+    if (f < 0 || f >= mesh.num_faces())
+      throw InvalidArgument("geometry::remove_faces(): face " + std::to_string(f) + " out of range [0, " +
+                            std::to_string(mesh.num_faces()) + ")");
+    removed[f] = 1;
+  }
+  TriMesh out;
+  out.V = mesh.V;
+  out.F.resize(mesh.num_faces() - std::count(removed.begin(), removed.end(), 1), 3);
+  Eigen::Index n = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    if (!removed[f]) out.F.row(n++) = mesh.F.row(f);
+  std::vector<int> map = remove_unreferenced_vertices(out);
+  if (vertex_map) *vertex_map = std::move(map);
+  return out;
+}
+
+int bridge_polylines(TriMesh& mesh, const std::vector<int>& a_in, const std::vector<int>& b_in, bool closed) {
+  constexpr const char* fn = "geometry::bridge_polylines()";
+  if (a_in.size() < 2 || b_in.size() < 2)
+    throw InvalidArgument(std::string(fn) + ": polylines have " + std::to_string(a_in.size()) + " and " +
+                          std::to_string(b_in.size()) + " vertices, expected at least 2 each");
+  for (int v : a_in) check_vertex(mesh, v, fn);
+  for (int v : b_in) check_vertex(mesh, v, fn);
+  std::vector<int> a = a_in, b = b_in;
+  auto pos = [&](int v) { return mesh.V.row(v); };
+  if (closed) {
+    size_t best = 0;
+    for (size_t j = 1; j < b.size(); ++j)
+      if ((pos(b[j]) - pos(a[0])).squaredNorm() < (pos(b[best]) - pos(a[0])).squaredNorm()) best = j;
+    std::rotate(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(best), b.end());
+    a.push_back(a.front());
+    b.push_back(b.front());
+  }
+  // Base orientation uses a's edges forward and b's edges backward; flip to match neighbours.
+  const bool flip = has_directed_edge(mesh.F, a[0], a[1]) || has_directed_edge(mesh.F, b[1], b[0]);
+  const size_t n = a.size(), m = b.size();
+  Faces strip(static_cast<Eigen::Index>(n + m - 2), 3);
+  Eigen::Index t = 0;
+  for (size_t i = 0, j = 0; i + 1 < n || j + 1 < m;) {
+    const bool advance_a =
+        j + 1 == m || (i + 1 < n && (pos(a[i + 1]) - pos(b[j])).squaredNorm() <= (pos(a[i]) - pos(b[j + 1])).squaredNorm());
+    if (advance_a) {
+      strip.row(t++) << a[i], a[i + 1], b[j];
+      ++i;
+    } else {
+      strip.row(t++) << a[i], b[j + 1], b[j];
+      ++j;
+    }
+    if (flip) std::swap(strip(t - 1, 1), strip(t - 1, 2));
+  }
+  const Eigen::Index old = mesh.F.rows();
+  mesh.F.conservativeResize(old + t, 3);
+  mesh.F.bottomRows(t) = strip;
+  return static_cast<int>(t);
+}
+
+std::vector<int> weld_vertices(TriMesh& mesh, double tolerance) {
+  if (!(tolerance >= 0) || !std::isfinite(tolerance))
+    throw InvalidArgument("geometry::weld_vertices(): tolerance " + std::to_string(tolerance) +
+                          ", expected a finite value >= 0");
+  require_indices_in_range(mesh, "geometry::weld_vertices()");
+  UnionFind uf(mesh.num_vertices());
+  // Cells of size tolerance: any partner within tolerance lies in one of the 27 cells around.
+  const double cell = tolerance > 0 ? tolerance : 1.0;
+  auto key = [](long long x, long long y, long long z) {
+    return static_cast<std::uint64_t>(x * 73856093LL ^ y * 19349663LL ^ z * 83492791LL);
+  };
+  std::unordered_multimap<std::uint64_t, int> grid;
+  grid.reserve(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    const Eigen::RowVector3d p = mesh.V.row(v);
+    const long long cx = std::llround(std::floor(p.x() / cell)), cy = std::llround(std::floor(p.y() / cell)),
+                    cz = std::llround(std::floor(p.z() / cell));
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto range = grid.equal_range(key(cx + dx, cy + dy, cz + dz));
+          for (auto it = range.first; it != range.second; ++it)
+            if ((mesh.V.row(it->second) - p).norm() <= tolerance) uf.join(it->second, v);
+        }
+    grid.emplace(key(cx, cy, cz), v);
+  }
+  std::vector<int> map(mesh.num_vertices());
+  for (int v = 0; v < mesh.num_vertices(); ++v) map[v] = uf.find(v);
+  return remap_faces(mesh, map);
+}
+
+std::vector<int> weld_vertex_pairs(TriMesh& mesh, const std::vector<std::pair<int, int>>& pairs) {
+  require_indices_in_range(mesh, "geometry::weld_vertex_pairs()");
+  UnionFind uf(mesh.num_vertices());
+  for (const auto& [p, q] : pairs) {
+    check_vertex(mesh, p, "geometry::weld_vertex_pairs()");
+    check_vertex(mesh, q, "geometry::weld_vertex_pairs()");
+    uf.join(p, q);
+  }
+  std::vector<int> map(mesh.num_vertices()), count(mesh.num_vertices(), 0);
+  Vertices sum = Vertices::Zero(mesh.num_vertices(), 3);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    map[v] = uf.find(v);
+    sum.row(map[v]) += mesh.V.row(v);
+    ++count[map[v]];
+  }
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (count[v] > 1) mesh.V.row(v) = sum.row(v) / count[v];
+  return remap_faces(mesh, map);
+}
+
+}  // namespace lapis::geometry

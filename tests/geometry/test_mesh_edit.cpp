@@ -1,0 +1,80 @@
+// Mesh edits for merging: removing a band, bridging two boundaries, welding.
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+
+#include "lapis/core/error.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/mesh_edit.h"
+#include "lapis/geometry/procedural.h"
+
+using namespace lapis::geometry;
+
+TEST_CASE("geometry: cutting a band out of a cylinder and bridging it back") {
+  const int n = 16;
+  const TriMesh cyl = make_cylinder(n, 6, 1.0, 6.0);
+  // Remove the middle ring of quads: two cylinders, four boundary loops.
+  std::vector<int> band;
+  for (int f = 0; f < cyl.num_faces(); ++f)
+    if (f / (2 * n) == 3) band.push_back(f);
+  std::vector<int> map;
+  TriMesh cut = remove_faces(cyl, band, &map);
+  CHECK(cut.num_faces() == cyl.num_faces() - 2 * n);
+  CHECK(cut.num_vertices() == cyl.num_vertices());  // every vertex still used
+  const Connectivity conn(cut);
+  REQUIRE(conn.boundary_loops().size() == 4);
+  CHECK(connected_components(conn).count == 2);
+  // The loops at z = 3 and z = 4 face each other; bridging restores one open cylinder.
+  std::vector<std::vector<int>> middle;
+  for (const auto& loop : conn.boundary_loops())
+    if (cut.V(loop[0], 2) == 3.0 || cut.V(loop[0], 2) == 4.0) middle.push_back(loop);
+  REQUIRE(middle.size() == 2);
+  const std::vector<int> b(middle[1].rbegin(), middle[1].rend());  // run the same way as middle[0]
+  CHECK(bridge_polylines(cut, middle[0], b, true) == 2 * n);
+  const ValidationReport r = validate(cut);
+  CHECK_MESSAGE(r.ok(), r.summary());
+  const Connectivity joined(cut);
+  CHECK(joined.boundary_loops().size() == 2);
+  CHECK(connected_components(joined).count == 1);
+  CHECK_THROWS_WITH_AS(bridge_polylines(cut, {0}, {1, 2}, false),
+                       "geometry::bridge_polylines(): polylines have 1 and 2 vertices, expected at least 2 each",
+                       lapis::InvalidArgument);
+}
+
+TEST_CASE("geometry: bridging two open polylines of different lengths") {
+  TriMesh m;
+  m.V.resize(9, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0,  // a: 5 points
+      0, 1, 0, 1.3, 1, 0, 2.7, 1, 0, 4, 1, 0;         // b: 4 points
+  const int added = bridge_polylines(m, {0, 1, 2, 3, 4}, {5, 6, 7, 8}, false);
+  CHECK(added == 7);
+  const ValidationReport r = validate(m);
+  CHECK_MESSAGE(r.ok(), r.summary());
+  for (int f = 0; f < m.num_faces(); ++f) {  // the strip lies to the left of a: normals +z
+    const Eigen::Vector3d p = m.V.row(m.F(f, 0)), q = m.V.row(m.F(f, 1)), s = m.V.row(m.F(f, 2));
+    CHECK((q - p).cross(s - p).z() > 0);
+  }
+}
+
+TEST_CASE("geometry: welding restores a split grid") {
+  // Two grids sharing an edge geometrically but not topologically.
+  TriMesh left = make_plane_grid(3, 3), right = make_plane_grid(3, 3);
+  right.V.col(0).array() += 1.0;
+  TriMesh both;
+  both.V.resize(32, 3);
+  both.V << left.V, right.V;
+  both.F.resize(36, 3);
+  both.F << left.F, (right.F.array() + 16).matrix();
+  CHECK(Connectivity(both).boundary_loops().size() == 2);
+  const std::vector<int> map = weld_vertices(both, 1e-9);
+  CHECK(both.num_vertices() == 28);
+  CHECK(map[16] == map[3]);  // right's (0, 0) is left's (3, 0)
+  CHECK(Connectivity(both).boundary_loops().size() == 1);
+  CHECK(validate(both).ok());
+  // Explicit pairs meet at their midpoint.
+  TriMesh grid = make_plane_grid(2, 1);
+  const std::vector<int> pairs_map = weld_vertex_pairs(grid, {{0, 3}});
+  CHECK(grid.num_vertices() == 5);
+  CHECK(grid.V(pairs_map[0], 1) == doctest::Approx(0.5));
+  CHECK(pairs_map[0] == pairs_map[3]);
+}
