@@ -7,6 +7,7 @@
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
+#include "lapis/geometry/polar.h"
 #include "rotation_fit.h"
 #include "test_meshes.h"
 
@@ -25,7 +26,7 @@ TEST_CASE("mesh_deform: nearest rotation matches the SVD polar factor, warm or c
     bool fell_back = false;
     const Eigen::Matrix3d R = detail::nearest_rotation(A, q, &fell_back);
     fallbacks += fell_back;
-    const Eigen::Matrix3d Rs = detail::nearest_rotation_svd(A);
+    const Eigen::Matrix3d Rs = lapis::geometry::polar_rotation(A);
     CHECK((R - Rs).norm() < 1e-7);
     CHECK(R.determinant() == doctest::Approx(1.0));
   }

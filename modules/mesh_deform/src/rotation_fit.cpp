@@ -3,17 +3,11 @@
 #include <cmath>
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
+
+#include "lapis/geometry/polar.h"
 
 namespace lapis::mesh_deform::detail {
 
-Eigen::Matrix3d nearest_rotation_svd(const Eigen::Matrix3d& A) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  if ((U * V.transpose()).determinant() < 0) U.col(2) = -U.col(2);
-  return U * V.transpose();
-}
 
 
 Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, bool* fell_back) {
@@ -25,7 +19,7 @@ Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q
   // Polar factor of B = R₀ᵀ A by Higham's scaled Newton iteration X ← (γX + X⁻ᵀ/γ) / 2:
   // quadratic convergence, and B is close to symmetric positive definite when the warm start
   // R₀ is close, so two or three steps usually do. det B ≤ 0 has no rotation as polar factor
-  // (the nearest rotation then differs from it) and goes to the SVD.
+  // (the nearest rotation then differs from it) and goes to the signed SVD of geometry.
   const Eigen::Matrix3d R0 = q.toRotationMatrix();
   Eigen::Matrix3d X = R0.transpose() * A;
   if (X.determinant() > 1e-12 * scale * scale * scale) {
@@ -45,7 +39,7 @@ Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q
     }
   }
   if (fell_back) *fell_back = true;
-  const Eigen::Matrix3d R = nearest_rotation_svd(A);
+  const Eigen::Matrix3d R = geometry::polar_rotation(A);
   q = Eigen::Quaterniond(R);
   return R;
 }

@@ -15,8 +15,4 @@ namespace lapis::mesh_deform::detail {
 // fell_back  set when the SVD fallback ran.
 Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, bool* fell_back = nullptr);
 
-// Reference: R = U Vᵀ from Eigen's JacobiSVD with the sign of the smallest singular vector
-// flipped when det < 0. Used as the fallback and by tests.
-Eigen::Matrix3d nearest_rotation_svd(const Eigen::Matrix3d& A);
-
 }  // namespace lapis::mesh_deform::detail
