@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "lapis/core/error.h"
 #include "lapis/geometry/polar.h"
 #include "rotation_fit.h"
