@@ -1,0 +1,39 @@
+// Turns a Scene into pixels. The interface keeps app logic testable without a display:
+// the OpenGL 3.3 renderer draws for real; CountingRenderer only counts what it was given.
+#pragma once
+
+#include <memory>
+
+#include "lapis/geometry/camera.h"
+#include "lapis/viewer/scene.h"
+
+namespace lapis::viewer {
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  // Draws the scene into the current framebuffer of the given pixel size.
+  virtual void render(const Scene& scene, const geometry::CameraMatrices& camera, int width,
+                      int height) = 0;
+};
+
+// Needs a current OpenGL 3.3 core context (the Viewer makes one).
+std::unique_ptr<Renderer> make_gl_renderer();
+
+// No GL: records how much of each kind it was asked to draw.
+class CountingRenderer : public Renderer {
+ public:
+  void render(const Scene& scene, const geometry::CameraMatrices&, int, int) override {
+    ++frames;
+    triangles = strips = points = 0;
+    for (const auto& [n, m] : scene.meshes)
+      if (m.visible) triangles += m.mesh.F.rows();
+    for (const auto& [n, l] : scene.lines)
+      if (l.visible) strips += l.num_strips();
+    for (const auto& [n, p] : scene.points)
+      if (p.visible) points += p.points.rows();
+  }
+  long frames = 0, triangles = 0, strips = 0, points = 0;
+};
+
+}  // namespace lapis::viewer

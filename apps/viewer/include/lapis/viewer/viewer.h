@@ -1,0 +1,127 @@
+// The shell every Lapis app runs in: a GLFW window with an OpenGL 3.3 core context and
+// MSAA, Dear ImGui, an orbit camera (right-drag orbit, middle-drag pan, wheel zoom, F to
+// frame, Ctrl+Q to quit), a frame-time overlay, screenshots, and recording / replay of the input stream.
+// `--headless` renders into a hidden window (Xvfb + Mesa work). Apps implement ViewerApp;
+// all their logic lives in the modules.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "lapis/viewer/input_events.h"
+#include "lapis/viewer/orbit_camera.h"
+#include "lapis/viewer/png.h"
+#include "lapis/viewer/scene.h"
+
+namespace lapis::viewer {
+
+struct ViewerOptions {
+  std::string title = "Lapis";
+  int width = 1280, height = 800;
+  int msaa_samples = 4;
+  bool headless = false;                 // hidden window; still needs an X display (Xvfb)
+  std::filesystem::path replay;          // replay this event log
+  std::filesystem::path record;          // record the input stream to this file on exit
+  std::filesystem::path screenshot;      // written when the app is idle (after a replay)
+  bool exit_after_replay = false;        // quit once the replay is over and the app idle
+  std::filesystem::path benchmark;       // write frame statistics here on exit
+  double idle_timeout_s = 300;           // give up waiting for a busy app after a replay
+};
+
+// Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
+// --exit-after-replay, --benchmark F, --size WxH) and returns the arguments it did not
+// consume. Throws InvalidArgument on a flag missing its value.
+std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
+
+class Viewer;
+
+class ViewerApp {
+ public:
+  virtual ~ViewerApp() = default;
+  virtual void on_start(Viewer&) {}
+  // An input event ImGui did not take. Return true to consume it (the camera then ignores it).
+  virtual bool on_event(Viewer&, const InputEvent&) { return false; }
+  // Per-frame update, before drawing: poll workers, update the scene.
+  virtual void on_frame(Viewer&) {}
+  // ImGui panels.
+  virtual void on_gui(Viewer&) {}
+  virtual void on_exit(Viewer&) {}
+  // True while work whose result should be on screen is pending (replays wait for it).
+  virtual bool busy() const { return false; }
+  // Extra fields for the --benchmark report.
+  virtual void benchmark_fields(nlohmann::json&) const {}
+};
+
+class Viewer {
+ public:
+  explicit Viewer(ViewerOptions options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // Opens the window and runs until it closes. Returns the process exit code. Throws
+  // lapis::Error when no window can be made.
+  int run(ViewerApp& app);
+  void close();
+
+  Scene& scene() { return scene_; }
+  OrbitCamera& camera() { return camera_; }
+  CameraMatrices camera_matrices() const;
+  void frame_scene();                     // fit the camera to the scene's bounds
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const ViewerOptions& options() const { return options_; }
+
+  // The cursor and buttons as the app sees them (replayed or real).
+  Eigen::Vector2d cursor() const { return cursor_; }
+  bool button_down(int button) const;
+
+  void request_screenshot(const std::filesystem::path& path) { pending_screenshot_ = path; }
+  // Lines shown in the overlay under the frame time, for this frame.
+  void overlay(std::string line) { overlay_lines_.push_back(std::move(line)); }
+  // A message shown in the overlay for a few seconds ("stroke must start on the scalp").
+  void flash(std::string message);
+
+  long frame() const { return frame_; }
+  double time() const;                    // seconds since start
+  bool replaying() const { return replay_.has_value() && replay_next_ < replay_->events.size(); }
+  double last_frame_ms() const { return last_frame_ms_; }
+
+  // Routes an event as if it came from GLFW (replay and tests use it).
+  void dispatch(const InputEvent& event);
+
+ private:
+  struct Window;
+  void handle_camera(const InputEvent& e);
+  void draw_overlay();
+  void take_screenshot(const std::filesystem::path& path);
+  void write_benchmark(const ViewerApp& app) const;
+  void record(const InputEvent& e);
+  friend struct GlfwCallbacks;
+
+  ViewerOptions options_;
+  std::unique_ptr<Window> window_;
+  ViewerApp* app_ = nullptr;
+  Scene scene_;
+  OrbitCamera camera_;
+  int width_ = 0, height_ = 0;
+  Eigen::Vector2d cursor_ = Eigen::Vector2d::Zero(), drag_from_ = Eigen::Vector2d::Zero();
+  bool buttons_[8] = {};
+  long frame_ = 0;
+  double last_frame_ms_ = 0;
+  std::vector<double> frame_ms_;
+  std::vector<std::string> overlay_lines_;
+  std::string flash_message_;
+  double flash_until_ = 0;
+  std::optional<std::filesystem::path> pending_screenshot_;
+  EventLog recording_;
+  std::optional<EventLog> replay_;
+  size_t replay_next_ = 0;
+};
+
+}  // namespace lapis::viewer

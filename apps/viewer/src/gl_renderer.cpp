@@ -1,0 +1,266 @@
+// OpenGL 3.3 core renderer of a Scene. Buffers are cached per item name and re-uploaded
+// only when the item's version changes; all strips of a LineItem go out in one draw call
+// (primitive restart), so 20K strands cost one call, not 20K.
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "gl_shaders.h"
+#include "lapis/core/error.h"
+#include "lapis/geometry/normals.h"
+#include "lapis/viewer/renderer.h"
+
+namespace lapis::viewer {
+namespace {
+
+constexpr GLuint kRestart = 0xFFFFFFFFu;
+
+GLuint compile(GLenum type, const char* source) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    throw Error(std::string("viewer::GlRenderer: shader compilation failed: ") + log);
+  }
+  return s;
+}
+
+GLuint link(const char* vs, const char* fs) {
+  const GLuint p = glCreateProgram();
+  const GLuint v = compile(GL_VERTEX_SHADER, vs), f = compile(GL_FRAGMENT_SHADER, fs);
+  glAttachShader(p, v);
+  glAttachShader(p, f);
+  glLinkProgram(p);
+  glDeleteShader(v);
+  glDeleteShader(f);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    throw Error(std::string("viewer::GlRenderer: program link failed: ") + log);
+  }
+  return p;
+}
+
+// One vertex array with its buffers.
+struct GpuItem {
+  GLuint vao = 0, ibo = 0;
+  GLuint vbo[3] = {0, 0, 0};
+  GLsizei count = 0;
+  std::uint64_t version = ~0ull;
+
+  void create() {
+    if (vao) return;
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(3, vbo);
+    glGenBuffers(1, &ibo);
+  }
+  void destroy() {
+    if (!vao) return;
+    glDeleteBuffers(3, vbo);
+    glDeleteBuffers(1, &ibo);
+    glDeleteVertexArrays(1, &vao);
+    vao = 0;
+  }
+  void attribute(int slot, const float* data, size_t floats, int components) {
+    glBindBuffer(GL_ARRAY_BUFFER, vbo[slot]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)), data, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(static_cast<GLuint>(slot));
+    glVertexAttribPointer(static_cast<GLuint>(slot), components, GL_FLOAT, GL_FALSE, 0, nullptr);
+  }
+  void indices(const std::vector<GLuint>& idx) {
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(GLuint)), idx.data(),
+                 GL_STATIC_DRAW);
+    count = static_cast<GLsizei>(idx.size());
+  }
+};
+
+class GlRenderer final : public Renderer {
+ public:
+  GlRenderer()
+      : mesh_program_(link(shaders::kMeshVertex, shaders::kMeshFragment)),
+        line_program_(link(shaders::kLineVertex, shaders::kLineFragment)),
+        point_program_(link(shaders::kPointVertex, shaders::kPointFragment)) {}
+
+  ~GlRenderer() override {
+    for (auto* cache : {&meshes_, &lines_, &points_})
+      for (auto& [name, item] : *cache) item.destroy();
+    glDeleteProgram(mesh_program_);
+    glDeleteProgram(line_program_);
+    glDeleteProgram(point_program_);
+  }
+
+  void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) override {
+    glViewport(0, 0, width, height);
+    glClearColor(scene.background.x(), scene.background.y(), scene.background.z(), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_MULTISAMPLE);
+    glEnable(GL_PRIMITIVE_RESTART);
+    glPrimitiveRestartIndex(kRestart);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    const Eigen::Matrix4f view = camera.view.cast<float>(), proj = camera.projection.cast<float>();
+
+    // Opaque meshes, then lines (strands blend over the head), then translucent meshes
+    // (supporting surfaces), then on-top overlays.
+    glDisable(GL_BLEND);
+    for (const auto& [name, m] : scene.meshes)
+      if (m.visible && m.alpha >= 1.0f) draw_mesh(name, m, view, proj);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    for (const auto& [name, l] : scene.lines)
+      if (l.visible && !l.on_top) draw_lines(name, l, view, proj);
+    glDepthMask(GL_FALSE);
+    for (const auto& [name, m] : scene.meshes)
+      if (m.visible && m.alpha < 1.0f) draw_mesh(name, m, view, proj);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_DEPTH_TEST);
+    for (const auto& [name, l] : scene.lines)
+      if (l.visible && l.on_top) draw_lines(name, l, view, proj);
+    for (const auto& [name, p] : scene.points)
+      if (p.visible) draw_points(name, p, view, proj);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    forget_removed(scene);
+  }
+
+ private:
+  static void set_camera(GLuint program, const Eigen::Matrix4f& view, const Eigen::Matrix4f& proj) {
+    glUseProgram(program);
+    glUniformMatrix4fv(glGetUniformLocation(program, "view"), 1, GL_FALSE, view.data());
+    glUniformMatrix4fv(glGetUniformLocation(program, "projection"), 1, GL_FALSE, proj.data());
+  }
+
+  void draw_mesh(const std::string& name, const MeshItem& m, const Eigen::Matrix4f& view,
+                 const Eigen::Matrix4f& proj) {
+    GpuItem& g = meshes_[name];
+    if (g.version != m.version) upload_mesh(g, m);
+    if (!g.count) return;
+    set_camera(mesh_program_, view, proj);
+    glUniform1f(glGetUniformLocation(mesh_program_, "alpha"), m.alpha);
+    glBindVertexArray(g.vao);
+    glDrawElements(GL_TRIANGLES, g.count, GL_UNSIGNED_INT, nullptr);
+  }
+
+  static void upload_mesh(GpuItem& g, const MeshItem& m) {
+    g.create();
+    glBindVertexArray(g.vao);
+    const Points3f V = m.mesh.V.cast<float>();
+    const Points3f N = m.mesh.F.rows() ? Points3f(geometry::vertex_normals(m.mesh).cast<float>())
+                                       : Points3f(V.rows(), 3);
+    Points3f C = m.colors;
+    if (C.rows() != V.rows()) C = m.base_color.transpose().replicate(V.rows(), 1);
+    g.attribute(0, V.data(), static_cast<size_t>(V.size()), 3);
+    g.attribute(1, N.data(), static_cast<size_t>(N.size()), 3);
+    g.attribute(2, C.data(), static_cast<size_t>(C.size()), 3);
+    std::vector<GLuint> idx(static_cast<size_t>(m.mesh.F.size()));
+    for (Eigen::Index k = 0; k < m.mesh.F.size(); ++k) idx[static_cast<size_t>(k)] = static_cast<GLuint>(m.mesh.F.data()[k]);
+    g.indices(idx);
+    g.version = m.version;
+  }
+
+  void draw_lines(const std::string& name, const LineItem& l, const Eigen::Matrix4f& view,
+                  const Eigen::Matrix4f& proj) {
+    GpuItem& g = lines_[name];
+    if (g.version != l.version) upload_lines(g, l);
+    if (!g.count) return;
+    set_camera(line_program_, view, proj);
+    glUniform1i(glGetUniformLocation(line_program_, "kajiya_kay"), l.shading == LineShading::KajiyaKay);
+    glUniform1f(glGetUniformLocation(line_program_, "alpha"), l.alpha);
+    glLineWidth(l.width);
+    glBindVertexArray(g.vao);
+    glDrawElements(GL_LINE_STRIP, g.count, GL_UNSIGNED_INT, nullptr);
+  }
+
+  static void upload_lines(GpuItem& g, const LineItem& l) {
+    g.create();
+    glBindVertexArray(g.vao);
+    const Eigen::Index n = l.points.rows();
+    Points3f T(n, 3);
+    Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor> C(n, 4);
+    std::vector<GLuint> idx;
+    idx.reserve(static_cast<size_t>(n + l.num_strips()));
+    for (int s = 0; s < l.num_strips(); ++s) {
+      const int a = l.strip_offsets[static_cast<size_t>(s)], b = l.strip_offsets[static_cast<size_t>(s) + 1];
+      for (int i = a; i < b; ++i) {
+        // Central differences; one-sided at the ends.
+        const int i0 = std::max(a, i - 1), i1 = std::min(b - 1, i + 1);
+        float t[3], len2 = 0;
+        for (int k = 0; k < 3; ++k) t[k] = l.points(i1, k) - l.points(i0, k), len2 += t[k] * t[k];
+        const float inv = len2 > 0 ? 1.0f / std::sqrt(len2) : 0.0f;
+        for (int k = 0; k < 3; ++k) {
+          T(i, k) = len2 > 0 ? t[k] * inv : (k == 1 ? 1.0f : 0.0f);
+          C(i, k) = l.colors.rows() == n ? l.colors(i, k) : l.base_color[k];
+        }
+        C(i, 3) = 1.0f;
+        idx.push_back(static_cast<GLuint>(i));
+      }
+      idx.push_back(kRestart);
+    }
+    g.attribute(0, l.points.data(), static_cast<size_t>(l.points.size()), 3);
+    g.attribute(1, T.data(), static_cast<size_t>(T.size()), 3);
+    g.attribute(2, C.data(), static_cast<size_t>(C.size()), 4);
+    g.indices(idx);
+    g.version = l.version;
+  }
+
+  void draw_points(const std::string& name, const PointItem& p, const Eigen::Matrix4f& view,
+                   const Eigen::Matrix4f& proj) {
+    GpuItem& g = points_[name];
+    if (g.version != p.version) {
+      g.create();
+      glBindVertexArray(g.vao);
+      Points3f C = p.colors;
+      if (C.rows() != p.points.rows()) C = p.base_color.transpose().replicate(p.points.rows(), 1);
+      g.attribute(0, p.points.data(), static_cast<size_t>(p.points.size()), 3);
+      g.attribute(1, C.data(), static_cast<size_t>(C.size()), 3);
+      std::vector<GLuint> idx(static_cast<size_t>(p.points.rows()));
+      for (size_t i = 0; i < idx.size(); ++i) idx[i] = static_cast<GLuint>(i);
+      g.indices(idx);
+      g.version = p.version;
+    }
+    if (!g.count) return;
+    set_camera(point_program_, view, proj);
+    glUniform1f(glGetUniformLocation(point_program_, "size"), p.size);
+    glBindVertexArray(g.vao);
+    glDrawElements(GL_POINTS, g.count, GL_UNSIGNED_INT, nullptr);
+  }
+
+  // Frees the buffers of items the scene no longer has.
+  template <class Map, class Cache>
+  static void forget(const Map& items, Cache& cache) {
+    for (auto it = cache.begin(); it != cache.end();) {
+      if (!items.count(it->first)) {
+        it->second.destroy();
+        it = cache.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+  void forget_removed(const Scene& scene) {
+    forget(scene.meshes, meshes_);
+    forget(scene.lines, lines_);
+    forget(scene.points, points_);
+  }
+
+  GLuint mesh_program_, line_program_, point_program_;
+  std::unordered_map<std::string, GpuItem> meshes_, lines_, points_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> make_gl_renderer() { return std::make_unique<GlRenderer>(); }
+
+}  // namespace lapis::viewer

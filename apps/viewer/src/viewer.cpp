@@ -1,0 +1,357 @@
+#define GL_GLEXT_PROTOTYPES
+#include "lapis/viewer/viewer.h"
+
+#include <GLFW/glfw3.h>
+#include <GL/glext.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "lapis/core/error.h"
+#include "lapis/geometry/atomic_file.h"
+#include "lapis/viewer/renderer.h"
+
+namespace lapis::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+thread_local std::string last_glfw_error;
+
+void glfw_error(int code, const char* message) {
+  last_glfw_error = std::string(message ? message : "unknown") + " (GLFW error " + std::to_string(code) + ")";
+}
+
+}  // namespace
+
+struct Viewer::Window {
+  GLFWwindow* handle = nullptr;
+  std::unique_ptr<Renderer> renderer;
+  Clock::time_point start = Clock::now();
+  bool imgui = false;
+
+  ~Window() {
+    renderer.reset();  // needs the context
+    if (imgui) {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+    if (handle) glfwDestroyWindow(handle);
+    glfwTerminate();
+  }
+};
+
+// GLFW callbacks: turn GLFW's calls into InputEvents on the viewer stored as user pointer.
+struct GlfwCallbacks {
+  static Viewer& viewer(GLFWwindow* w) { return *static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
+  static bool live(Viewer& v) { return !v.replaying(); }  // real input is ignored during a replay
+
+  static void cursor(GLFWwindow* w, double x, double y) {
+    Viewer& v = viewer(w);
+    if (!live(v)) return;
+    InputEvent e{EventType::MouseMove};
+    e.x = x, e.y = y;
+    v.record(e);
+    v.dispatch(e);
+  }
+  static void button(GLFWwindow* w, int button, int action, int mods) {
+    Viewer& v = viewer(w);
+    if (!live(v)) return;
+    InputEvent e{EventType::MouseButton};
+    glfwGetCursorPos(w, &e.x, &e.y);
+    e.button = button, e.action = action, e.mods = mods;
+    v.record(e);
+    v.dispatch(e);
+  }
+  static void scroll(GLFWwindow* w, double dx, double dy) {
+    Viewer& v = viewer(w);
+    if (!live(v)) return;
+    InputEvent e{EventType::Scroll};
+    e.x = dx, e.y = dy;
+    v.record(e);
+    v.dispatch(e);
+  }
+  static void key(GLFWwindow* w, int key, int, int action, int mods) {
+    Viewer& v = viewer(w);
+    if (!live(v)) return;
+    InputEvent e{EventType::Key};
+    e.key = key, e.action = action, e.mods = mods;
+    v.record(e);
+    v.dispatch(e);
+  }
+  static void character(GLFWwindow* w, unsigned int c) {
+    Viewer& v = viewer(w);
+    if (!live(v)) return;
+    InputEvent e{EventType::Char};
+    e.codepoint = c;
+    v.record(e);
+    v.dispatch(e);
+  }
+  static void resize(GLFWwindow* w, int width, int height) {
+    Viewer& v = viewer(w);
+    v.width_ = width, v.height_ = height;
+  }
+};
+
+std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& o) {
+  std::vector<std::string> rest;
+  auto value = [&](int& i, const char* flag) -> std::string {
+    if (i + 1 >= argc) throw InvalidArgument(std::string("viewer: ") + flag + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--headless") o.headless = true;
+    else if (a == "--replay") o.replay = value(i, "--replay");
+    else if (a == "--record") o.record = value(i, "--record");
+    else if (a == "--screenshot") o.screenshot = value(i, "--screenshot");
+    else if (a == "--exit-after-replay") o.exit_after_replay = true;
+    else if (a == "--benchmark") o.benchmark = value(i, "--benchmark");
+    else if (a == "--size") {
+      const std::string s = value(i, "--size");
+      if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
+        throw InvalidArgument("viewer: --size expects WIDTHxHEIGHT (at least 64x64), got '" + s + "'");
+    } else rest.push_back(a);
+  }
+  return rest;
+}
+
+Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
+  if (!options_.replay.empty()) {
+    replay_ = EventLog::load(options_.replay);
+    // Replays reproduce pixel coordinates: use the recorded window size.
+    if (replay_->width > 0 && replay_->height > 0) options_.width = replay_->width, options_.height = replay_->height;
+  }
+}
+
+Viewer::~Viewer() = default;
+
+double Viewer::time() const {
+  return window_ ? std::chrono::duration<double>(Clock::now() - window_->start).count() : 0.0;
+}
+
+bool Viewer::button_down(int button) const { return button >= 0 && button < 8 && buttons_[button]; }
+
+CameraMatrices Viewer::camera_matrices() const { return camera_.matrices(width_, height_); }
+
+void Viewer::frame_scene() {
+  Eigen::Vector3d lo, hi;
+  if (scene_.bounds(lo, hi)) camera_.frame(lo, hi);
+}
+
+void Viewer::flash(std::string message) {
+  flash_message_ = std::move(message);
+  flash_until_ = time() + 4.0;
+}
+
+void Viewer::close() {
+  if (window_ && window_->handle) glfwSetWindowShouldClose(window_->handle, GLFW_TRUE);
+}
+
+void Viewer::record(const InputEvent& e) {
+  if (options_.record.empty()) return;
+  InputEvent r = e;
+  r.frame = frame_;
+  r.time = time();
+  recording_.events.push_back(r);
+}
+
+void Viewer::dispatch(const InputEvent& e) {
+  ImGuiIO& io = ImGui::GetIO();
+  GLFWwindow* w = window_ ? window_->handle : nullptr;
+  switch (e.type) {
+    case EventType::MouseMove: cursor_ = {e.x, e.y}; break;
+    case EventType::MouseButton:
+      cursor_ = {e.x, e.y};
+      if (e.button >= 0 && e.button < 8) buttons_[e.button] = e.action == GLFW_PRESS;
+      if (w) ImGui_ImplGlfw_MouseButtonCallback(w, e.button, e.action, e.mods);
+      break;
+    case EventType::Scroll: if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y); break;
+    case EventType::Key: if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods); break;
+    case EventType::Char: if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint); break;
+    case EventType::Resize: break;
+  }
+  const bool mouse = e.type == EventType::MouseMove || e.type == EventType::MouseButton || e.type == EventType::Scroll;
+  const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
+  // A release always reaches the app, so a drag that ends over a panel still ends.
+  const bool release = e.type == EventType::MouseButton && e.action == GLFW_RELEASE;
+  if (!release && ((mouse && io.WantCaptureMouse) || (keyboard && io.WantCaptureKeyboard))) return;
+  if (app_ && app_->on_event(*this, e)) return;
+  handle_camera(e);
+}
+
+void Viewer::handle_camera(const InputEvent& e) {
+  if (e.type == EventType::MouseButton && e.action == GLFW_PRESS) drag_from_ = {e.x, e.y};
+  if (e.type == EventType::MouseMove) {
+    const Eigen::Vector2d d = Eigen::Vector2d(e.x, e.y) - drag_from_;
+    if (buttons_[GLFW_MOUSE_BUTTON_RIGHT]) camera_.orbit(d.x(), d.y());
+    else if (buttons_[GLFW_MOUSE_BUTTON_MIDDLE]) camera_.pan(d.x(), d.y(), height_);
+    drag_from_ = {e.x, e.y};
+  }
+  if (e.type == EventType::Scroll) camera_.zoom(e.y);
+  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_F && e.mods == 0) frame_scene();
+  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_Q && e.mods == GLFW_MOD_CONTROL) close();
+}
+
+void Viewer::draw_overlay() {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.45f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin("##overlay", nullptr, flags)) {
+    ImGui::Text("frame %.1f ms (%.0f fps)", last_frame_ms_, last_frame_ms_ > 0 ? 1000.0 / last_frame_ms_ : 0.0);
+    for (const auto& line : overlay_lines_) ImGui::TextUnformatted(line.c_str());
+    if (!flash_message_.empty() && time() < flash_until_)
+      ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", flash_message_.c_str());
+  }
+  ImGui::End();
+  overlay_lines_.clear();
+}
+
+void Viewer::take_screenshot(const std::filesystem::path& path) {
+  Image image;
+  image.width = width_, image.height = height_;
+  image.rgba.resize(static_cast<size_t>(width_) * static_cast<size_t>(height_) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  std::vector<std::uint8_t> raw(image.rgba.size());
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  const size_t row = static_cast<size_t>(width_) * 4;
+  for (int y = 0; y < height_; ++y)  // GL's first row is the bottom one
+    std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
+  for (size_t k = 3; k < image.rgba.size(); k += 4) image.rgba[k] = 255;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  write_png(path, image);
+  std::printf("screenshot: %s\n", path.string().c_str());
+}
+
+void Viewer::write_benchmark(const ViewerApp& app) const {
+  std::vector<double> ms = frame_ms_;
+  nlohmann::json j;
+  j["frames"] = ms.size();
+  if (!ms.empty()) {
+    std::sort(ms.begin(), ms.end());
+    j["frame_ms_median"] = ms[ms.size() / 2];
+    j["frame_ms_p95"] = ms[std::min(ms.size() - 1, ms.size() * 95 / 100)];
+    j["frame_ms_max"] = ms.back();
+  }
+  j["width"] = width_;
+  j["height"] = height_;
+  app.benchmark_fields(j);
+  if (options_.benchmark.has_parent_path()) std::filesystem::create_directories(options_.benchmark.parent_path());
+  geometry::write_file_atomically(options_.benchmark, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  std::printf("benchmark: %s\n", options_.benchmark.string().c_str());
+}
+
+int Viewer::run(ViewerApp& app) {
+  app_ = &app;
+  glfwSetErrorCallback(glfw_error);
+  if (!glfwInit())
+    throw Error("viewer::Viewer::run(): cannot initialise GLFW: " + last_glfw_error +
+                " (no display? run under Xvfb, e.g. xvfb-run -a)");
+  window_ = std::make_unique<Window>();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_SAMPLES, options_.msaa_samples);
+  glfwWindowHint(GLFW_VISIBLE, options_.headless ? GLFW_FALSE : GLFW_TRUE);
+  window_->handle = glfwCreateWindow(options_.width, options_.height, options_.title.c_str(), nullptr, nullptr);
+  if (!window_->handle)
+    throw Error("viewer::Viewer::run(): cannot create an OpenGL 3.3 core window: " + last_glfw_error);
+  GLFWwindow* w = window_->handle;
+  glfwMakeContextCurrent(w);
+  glfwSwapInterval(options_.headless ? 0 : 1);
+  glfwSetWindowUserPointer(w, this);
+  glfwGetFramebufferSize(w, &width_, &height_);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(w, /*install_callbacks=*/false);
+  ImGui_ImplOpenGL3_Init("#version 330");
+  window_->imgui = true;
+  glfwSetCursorPosCallback(w, GlfwCallbacks::cursor);
+  glfwSetMouseButtonCallback(w, GlfwCallbacks::button);
+  glfwSetScrollCallback(w, GlfwCallbacks::scroll);
+  glfwSetKeyCallback(w, GlfwCallbacks::key);
+  glfwSetCharCallback(w, GlfwCallbacks::character);
+  glfwSetFramebufferSizeCallback(w, GlfwCallbacks::resize);
+  window_->renderer = make_gl_renderer();
+  recording_.width = width_, recording_.height = height_;
+
+  app.on_start(*this);
+  int exit_code = 0;
+  double idle_since_replay = -1;
+  auto last = Clock::now();
+  while (!glfwWindowShouldClose(w)) {
+    glfwPollEvents();
+    if (replay_)
+      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame <= frame_)
+        dispatch(replay_->events[replay_next_++]);
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    // The app's idea of the cursor (replayed or real) is what ImGui sees too.
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(static_cast<float>(cursor_.x()), static_cast<float>(cursor_.y()));
+    for (int b = 0; b < 3; ++b) io.MouseDown[b] = io.MouseDown[b] || buttons_[b];
+    if (replay_) for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttons_[b];
+    ImGui::NewFrame();
+
+    app.on_frame(*this);
+    app.on_gui(*this);
+    draw_overlay();
+    ImGui::Render();
+    window_->renderer->render(scene_, camera_matrices(), width_, height_);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if (pending_screenshot_) {
+      take_screenshot(*pending_screenshot_);
+      pending_screenshot_.reset();
+    }
+    const bool replay_done = !replaying();
+    const bool auto_shot = !options_.screenshot.empty() && (replay_ || options_.headless);
+    if (replay_done && (auto_shot || (replay_ && options_.exit_after_replay)) && frame_ >= 3) {
+      if (app.busy()) {
+        if (idle_since_replay < 0) idle_since_replay = time();
+        if (time() - idle_since_replay > options_.idle_timeout_s) {
+          std::fprintf(stderr, "viewer: the app stayed busy for %.0f s after the replay; giving up\n",
+                       options_.idle_timeout_s);
+          exit_code = 1;
+          glfwSetWindowShouldClose(w, GLFW_TRUE);
+        }
+      } else {
+        if (auto_shot) take_screenshot(options_.screenshot), options_.screenshot.clear();
+        if (options_.exit_after_replay || options_.headless) glfwSetWindowShouldClose(w, GLFW_TRUE);
+      }
+    }
+    glfwSwapBuffers(w);
+    const auto now = Clock::now();
+    last_frame_ms_ = std::chrono::duration<double, std::milli>(now - last).count();
+    last = now;
+    frame_ms_.push_back(last_frame_ms_);
+    ++frame_;
+    // A hidden window with nothing to do should not spin a core.
+    if (options_.headless && !replaying() && app.busy()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  app.on_exit(*this);
+  if (!options_.record.empty()) {
+    recording_.save(options_.record);
+    std::printf("recorded %zu events: %s\n", recording_.events.size(), options_.record.string().c_str());
+  }
+  if (!options_.benchmark.empty()) write_benchmark(app);
+  app_ = nullptr;
+  window_.reset();
+  return exit_code;
+}
+
+}  // namespace lapis::viewer
