@@ -76,6 +76,14 @@ TEST_CASE("geometry: OBJ corner forms, negative indices, polygons, CRLF and comm
   CHECK(warnings[0].find("fan-triangulated 1 polygons") != std::string::npos);
 }
 
+TEST_CASE("geometry: OFF without edge count, counts on the keyword line, COFF colours") {
+  const TriMesh a = read_off(test::write_bytes("noedges.off", "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
+  CHECK(a.num_faces() == 1);
+  const TriMesh b = read_off(test::write_bytes("oneline.off", "COFF 3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n"));
+  CHECK(b.V(1, 0) == 1.0);
+  CHECK(b.F.row(0) == Eigen::RowVector3i(0, 1, 2));
+}
+
 TEST_CASE("geometry: PLY with unusual types, extra properties and elements") {
   // float coordinates, a confidence property, uint16-counted lists of uint32, an edge element.
   std::string s =

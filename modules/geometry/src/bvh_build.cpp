@@ -42,11 +42,9 @@ struct BvhBuilder {
 
   // Returns the split position in (begin, end), kLeaf, or kMedian (split at the centroid
   // median: SAH found nothing, e.g. all centroids in one bin).
-  int split(int begin, int end, const Box& bounds) {
+  int split(int begin, int end, const Box& bounds, const Box& cb) {
     const int n = end - begin;
     const BvhOptions& o = bvh.options_;
-    Box cb;
-    for (int i = begin; i < end; ++i) cb.grow(centroids[bvh.order_[i]]);
     int axis = 0;
     (cb.hi - cb.lo).maxCoeff(&axis);
     const double lo = cb.lo[axis], extent = cb.hi[axis] - lo;
@@ -92,9 +90,13 @@ struct BvhBuilder {
   static constexpr int kSahDepth = 64;
 
   void build(int node, int begin, int end, int depth) {
-    Box bounds;
-    for (int i = begin; i < end; ++i) bounds.grow(boxes[bvh.order_[i]]);
-    int mid = depth < kSahDepth ? split(begin, end, bounds)
+    Box bounds, cb;  // of the triangles, of their centroids: one pass for both
+    for (int i = begin; i < end; ++i) {
+      const int f = bvh.order_[i];
+      bounds.grow(boxes[f]);
+      cb.grow(centroids[f]);
+    }
+    int mid = depth < kSahDepth ? split(begin, end, bounds, cb)
               : end - begin <= bvh.options_.max_leaf_size ? kLeaf : kMedian;
     if (mid == kLeaf) return set_node(node, bounds, begin, end - begin);
     if (mid == kMedian) {

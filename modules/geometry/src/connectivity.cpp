@@ -51,7 +51,9 @@ void Connectivity::build_edges() {
       halves[fill[std::min(a, b)]++] = {std::max(a, b), f, k};
     }
   face_edges_.assign(3 * static_cast<size_t>(nf), -1);
-  edges_.reserve(halves.size() / 2 + 1);
+  edges_.reserve(halves.size() / 2 + 1);  // closed manifold: exactly half the half-edges
+  edge_faces_.reserve(halves.size() / 2 + 1);
+  edge_face_count_.reserve(halves.size() / 2 + 1);
   for (int v = 0; v < nv; ++v) {
     auto begin = halves.begin() + offsets[v], end = halves.begin() + offsets[v + 1];
     std::sort(begin, end, [](const Half& x, const Half& y) { return x.hi < y.hi || (x.hi == y.hi && x.face < y.face); });

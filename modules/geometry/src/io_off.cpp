@@ -36,7 +36,8 @@ TriMesh read_off(const std::filesystem::path& path, Warnings* warnings) {
   if (!is_off_keyword(keyword)) in.fail("expected an 'OFF' header, found " + detail::quote(keyword));
   const long long nv = in.integer("vertex count");
   const long long nf = in.integer("face count");
-  in.integer("edge count");
+  // The edge count is unused and some writers leave it out: optional, but an integer if there.
+  if (!in.at_line_end()) in.integer("edge count", true);
   if (nv < 0 || nf < 0) in.fail("negative vertex or face count (" + std::to_string(nv) + ", " + std::to_string(nf) + ")");
   const size_t room = in.remaining();
   if (static_cast<unsigned long long>(nv) > room / kMinVertexBytes ||

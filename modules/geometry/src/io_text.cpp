@@ -24,6 +24,7 @@ std::string read_file(const std::filesystem::path& path, std::string_view fn) {
 }
 
 std::string quote(std::string_view token) {
+  if (token.empty()) return "end of input";
   std::string out = "'";
   for (size_t i = 0; i < token.size() && i < 20; ++i) {
     const unsigned char c = static_cast<unsigned char>(token[i]);

@@ -23,7 +23,8 @@ std::string read_file(const std::filesystem::path& path, std::string_view fn);
                 ": " + what);
 }
 
-// Quotes a token for an error message, cut to 20 characters and with non-printables escaped.
+// Quotes a token for an error message, cut to 20 characters and with non-printables escaped;
+// an empty token reads "end of input".
 std::string quote(std::string_view token);
 
 // Parses the whole token as a finite double / an int; false on anything else.

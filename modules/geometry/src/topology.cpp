@@ -7,7 +7,7 @@
 
 namespace lapis::geometry {
 
-std::vector<int> k_ring(const Connectivity& conn, std::span<const int> seeds, int k) {
+std::vector<int> k_ring(const Connectivity& conn, const std::vector<int>& seeds, int k) {
   if (k < 0) throw InvalidArgument("geometry::k_ring(): k = " + std::to_string(k) + ", expected k >= 0");
   std::vector<int> dist(conn.num_vertices(), -1), order;
   for (int s : seeds) {
@@ -62,5 +62,9 @@ int genus(const Connectivity& conn) {
   const int b = static_cast<int>(conn.boundary_loops().size());
   return (2 * c - euler_characteristic(conn) - b) / 2;
 }
+
+Components connected_components(const TriMesh& mesh) { return connected_components(Connectivity(mesh)); }
+int euler_characteristic(const TriMesh& mesh) { return euler_characteristic(Connectivity(mesh)); }
+int genus(const TriMesh& mesh) { return genus(Connectivity(mesh)); }
 
 }  // namespace lapis::geometry

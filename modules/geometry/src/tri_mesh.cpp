@@ -50,41 +50,33 @@ void find_duplicates(const TriMesh& m, const std::vector<int>& faces, Validation
 }
 
 // Edges used by more than two faces, and directed edges used twice (a flipped neighbour).
+// One sort of undirected keys carrying the direction in the lowest bit serves both checks.
 void find_edge_problems(const TriMesh& m, const std::vector<int>& faces, ValidationReport& r,
                         const ValidationOptions& o) {
-  std::vector<std::uint64_t> directed;
-  directed.reserve(faces.size() * 3);
-  for (int f : faces)
-    for (int k = 0; k < 3; ++k) directed.push_back(pair_key(m.F(f, k), m.F(f, (k + 1) % 3)));
-  std::sort(directed.begin(), directed.end());
-  if (o.check_orientation) {
-    for (size_t i = 1; i < directed.size(); ++i)
-      if (directed[i] == directed[i - 1] && (i < 2 || directed[i - 2] != directed[i]))
-        r.misoriented_edges.push_back(
-            {static_cast<int>(directed[i] >> 32), static_cast<int>(directed[i] & 0xffffffffu)});
-  }
-  if (o.check_manifold) {
-    std::vector<std::uint64_t> undirected(directed.size());
-    std::transform(directed.begin(), directed.end(), undirected.begin(), [](std::uint64_t k) {
-      const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
-      return pair_key(std::min(a, b), std::max(a, b));
-    });
-    std::sort(undirected.begin(), undirected.end());
-    for (size_t i = 0; i < undirected.size();) {
-      size_t j = i;
-      while (j < undirected.size() && undirected[j] == undirected[i]) ++j;
-      if (j - i > 2)
-        r.non_manifold_edges.push_back({static_cast<int>(undirected[i] >> 32),
-                                        static_cast<int>(undirected[i] & 0xffffffffu)});
-      i = j;
+  std::vector<std::uint64_t> keys(faces.size() * 3);
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.F(faces[i], k), b = m.F(faces[i], (k + 1) % 3);
+      keys[3 * i + k] = pair_key(std::min(a, b), std::max(a, b)) << 1 | (a > b);  // indices < 2^31
     }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i;
+    int forward = 0, backward = 0;
+    for (; j < keys.size() && keys[j] >> 1 == keys[i] >> 1; ++j) (keys[j] & 1 ? backward : forward)++;
+    const int lo = static_cast<int>(keys[i] >> 33), hi = static_cast<int>((keys[i] >> 1) & 0xffffffffu);
+    if (o.check_manifold && j - i > 2) r.non_manifold_edges.push_back({lo, hi});
+    if (o.check_orientation && forward > 1) r.misoriented_edges.push_back({lo, hi});
+    if (o.check_orientation && backward > 1) r.misoriented_edges.push_back({hi, lo});
+    i = j;
   }
 }
 
 // A vertex is manifold when its faces form one fan: connected through edges at the vertex.
-bool single_fan(const Faces& F, int v, std::span<const int> faces) {
+// parent is scratch space, reused across calls.
+bool single_fan(const Faces& F, int v, std::span<const int> faces, std::vector<int>& parent) {
   if (faces.size() <= 1) return true;
-  std::vector<int> parent(faces.size());
+  parent.resize(faces.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -92,13 +84,13 @@ bool single_fan(const Faces& F, int v, std::span<const int> faces) {
   };
   for (size_t i = 0; i < faces.size(); ++i)
     for (size_t j = i + 1; j < faces.size(); ++j) {
-      int shared = 0;  // vertices other than v the two faces have in common
+      bool shared = false;  // a vertex other than v in both faces: they share an edge at v
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
           const int x = F(faces[i], a);
-          if (x != v && x == F(faces[j], b)) ++shared;
+          shared |= x != v && x == F(faces[j], b);
         }
-      if (shared > 0) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
+      if (shared) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
     }
   int roots = 0;
   for (size_t i = 0; i < faces.size(); ++i) roots += find(static_cast<int>(i)) == static_cast<int>(i);
@@ -161,8 +153,15 @@ ValidationReport validate(const TriMesh& m, const ValidationOptions& o) {
     Faces in_range(good.size(), 3);
     for (size_t i = 0; i < good.size(); ++i) in_range.row(i) = m.F.row(good[i]);
     const AdjacencyLists vf = vertex_face_lists(in_range, m.num_vertices());
+    std::vector<char> bad(m.num_vertices(), 0);
+#pragma omp parallel
+    {
+      std::vector<int> scratch;
+#pragma omp for schedule(dynamic, 4096)
+      for (int v = 0; v < m.num_vertices(); ++v) bad[v] = !single_fan(in_range, v, vf[v], scratch);
+    }
     for (int v = 0; v < m.num_vertices(); ++v)
-      if (!single_fan(in_range, v, vf[v])) r.non_manifold_vertices.push_back(v);
+      if (bad[v]) r.non_manifold_vertices.push_back(v);
   }
   return r;
 }

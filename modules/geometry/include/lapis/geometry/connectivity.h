@@ -85,8 +85,9 @@ class Connectivity {
   std::vector<std::vector<int>> boundary_loops_;
 };
 
-// Vertices within k edges of any seed, in breadth-first order (seeds first).
-std::vector<int> k_ring(const Connectivity& conn, std::span<const int> seeds, int k);
+// Vertices within k edges of any seed, in breadth-first order (seeds first). Throws
+// InvalidArgument for k < 0 or a seed out of range.
+std::vector<int> k_ring(const Connectivity& conn, const std::vector<int>& seeds, int k);
 
 // Connected components through shared edges (faces) and edges (vertices).
 struct Components {
@@ -95,13 +96,16 @@ struct Components {
   std::vector<int> vertex_component;  // #V, component of each vertex; -1 for isolated ones
 };
 Components connected_components(const Connectivity& conn);
+Components connected_components(const TriMesh& mesh);
 
 // V - E + F counting only vertices used by a face (isolated vertices are file debris, not
 // topology).
 int euler_characteristic(const Connectivity& conn);
+int euler_characteristic(const TriMesh& mesh);
 
 // Sum of the genera of the components, from chi = sum_i (2 - 2 g_i - b_i) for orientable
 // surfaces with b boundary loops.
 int genus(const Connectivity& conn);
+int genus(const TriMesh& mesh);
 
 }  // namespace lapis::geometry

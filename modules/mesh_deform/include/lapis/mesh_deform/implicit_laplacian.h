@@ -1,0 +1,70 @@
+// Implicit Laplacian mesh editing (thesis ch. 2, §2.4–2.5): per-vertex deformation gradients
+// M_i implicitly defined by the vertex and its 1-ring (Eq. 2.3–2.5), kept coherent over 2-ring
+// pairs (Eq. 2.7) and solved together with the positions (Eq. 2.8); degenerate vertices
+// displaced and pulled back (§2.4.3); shearing removed by polar decomposition and a second
+// Laplacian solve (§2.4.4, Eq. 2.10/2.11). Both systems are prefactorized (§2.5).
+#pragma once
+
+#include <memory>
+
+#include "lapis/mesh_deform/deformer.h"
+#include "lapis/mesh_deform/laplacian_weights.h"
+
+namespace lapis::mesh_deform {
+
+enum class ShearingRemoval {
+  None,            // first system only (+ degenerate pull-back): §2.5's preview while dragging
+  RetainFeatures,  // D(ṽ_i) = R_i δ_i        (Eq. 2.10), for rigid handle transforms
+  ScaleFeatures,   // D(ṽ_i) = R_i S_i δ_i    (Eq. 2.11), for handles that scale
+};
+
+struct ImplicitOptions {
+  LaplacianWeights weights = LaplacianWeights::Cotangent;  // §2.4.3: uniform weights drift tangentially
+  ShearingRemoval shearing = ShearingRemoval::RetainFeatures;  // §2.4.4, Eq. 2.10
+  double degenerate_condition = 2.0e5;  // §2.4.3: cond(V_i V_iᵀ) above this marks a degenerate vertex
+  double s_disp = 0.2;                  // §2.4.3, Eq. 2.9: displacement scale of degenerate vertices
+  // Eq. 2.8 adds E_L and E_R unweighted. E_L is in squared lengths and E_R dimensionless, so
+  // both soft weights below are multiplied by the squared mean edge length: the result is then
+  // independent of the mesh's scale, and equal to Eq. 2.8 on a unit-edge mesh.
+  double coherence_weight = 1.0;  // Eq. 2.7 term
+  double transform_weight = 1.0;  // Eq. 2.8 transformation constraints M_c = W_c at handles and at the fixed border
+};
+
+// What the last deform() did and cost.
+struct ImplicitStats {
+  int free_vertices = 0;
+  int degenerate_vertices = 0;   // displaced by Eq. 2.9 (incl. boundary variants)
+  int inserted_vertices = 0;     // midpoints inserted for boundary vertices of valence < 3
+  int polar_fallbacks = 0;       // rotation fits that needed the SVD fallback (last frame)
+  long long first_factor_nnz = 0;   // non-zeros of the Cholesky factors of Eq. 2.8's and
+  long long second_factor_nnz = 0;  // Eq. 2.10's normal matrices
+  double setup_ms = 0;           // assembly + both factorizations
+  double first_solve_ms = 0;     // Eq. 2.8 back-substitution (x, y, z together)
+  double polar_ms = 0;           // all gradients M_i and their polar decompositions
+  double second_solve_ms = 0;    // Eq. 2.10/2.11 back-substitution
+  double frame_ms = 0;           // the whole deform() call
+};
+
+class ImplicitLaplacianDeformer final : public Deformer {
+ public:
+  explicit ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options = {});
+  ~ImplicitLaplacianDeformer() override;
+
+  // Changing options re-runs setup on the next deform().
+  void set_options(const ImplicitOptions& options);
+  const ImplicitOptions& options() const { return options_; }
+  const ImplicitStats& stats() const { return stats_; }
+  std::string name() const override { return "implicit"; }
+
+ protected:
+  void setup(const Layout& layout) override;
+  void solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) override;
+
+ private:
+  struct Impl;
+  ImplicitOptions options_;
+  ImplicitStats stats_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lapis::mesh_deform

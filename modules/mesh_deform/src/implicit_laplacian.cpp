@@ -1,0 +1,244 @@
+#include "lapis/mesh_deform/implicit_laplacian.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "implicit_rest.h"
+#include "lapis/solver/least_squares.h"
+#include "rotation_fit.h"
+#include "sparse_rows.h"
+#include "stencil.h"
+
+namespace lapis::mesh_deform {
+
+using detail::SparseRows;
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+// Both systems are solved for the displacement from the rest state rather than for the
+// positions: identity handle transforms then give an exactly zero right-hand side, so the
+// rest mesh comes back to rounding level however ill-conditioned the normal matrix is.
+struct ImplicitLaplacianDeformer::Impl {
+  detail::WorkMesh w;
+  detail::GradientStencils G;
+  std::vector<int> free, constrained;
+  std::vector<int> transform_vertex;  // rows of the transformation-constraint block (3 each)
+  std::vector<int> transform_handle;  // region handle whose linear part is W, -1: identity
+  solver::LeastSquares first{1};
+  solver::LeastSquares second{1};
+  bool has_coherence = false;
+  solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
+  solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
+  std::vector<Eigen::Quaterniond> warm;         // per free vertex: last rotation (warm start)
+};
+
+ImplicitLaplacianDeformer::ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options)
+    : Deformer(std::move(mesh)), options_(options) {}
+
+ImplicitLaplacianDeformer::~ImplicitLaplacianDeformer() = default;
+
+void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
+  constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_options()";
+  if (!(options.degenerate_condition > 1)) throw InvalidArgument(std::string(fn) + ": degenerate_condition must be > 1");
+  if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0))
+    throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight and transform_weight must be > 0");
+  options_ = options;
+  mark_dirty();
+}
+
+void ImplicitLaplacianDeformer::setup(const Layout& layout) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto m = std::make_unique<Impl>();
+  m->w = detail::build_work_mesh(mesh_, layout, options_);
+  const detail::WorkMesh& w = m->w;
+  const int n = w.mesh.num_vertices();
+  const Vertices& P = w.displaced;
+  for (int v = 0; v < n; ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
+
+  // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
+  // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
+  const detail::Stencil s = detail::make_stencil(P, w.mesh.F, options_.weights);
+  const Vertices deltaP = detail::laplacian_coordinates(s, P);
+  m->G = detail::gradient_stencils(s, P, w.active);
+  const detail::GradientStencils& G = m->G;
+  const double h = detail::mean_edge_length(s, w.mesh.V);
+
+  // Does M_i depend on a free unknown? Terms that do not are constants and left out.
+  std::vector<char> touches(static_cast<size_t>(n), 0);
+  for (int i = 0; i < n; ++i)
+    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k)
+      if (w.role[G.vertex[k]] == VertexRole::Free) touches[i] = 1;
+
+  // E_L (Eq. 2.6): D(ṽ_i) − M_i δ_i, one row per free vertex and coordinate.
+  SparseRows EL(n);
+  for (int i : m->free) {
+    detail::add_laplacian_row(EL, s, i);
+    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) EL.add(G.vertex[k], -G.g[k].dot(deltaP.row(i)));
+  }
+  // E_R (Eq. 2.7): M_i − M_j over pairs within 2 rings (footnote 1), three rows per pair.
+  SparseRows ER(n);
+  std::vector<int> stamp(static_cast<size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    if (!w.active[i]) continue;
+    stamp[i] = i;
+    auto visit = [&](int j) {
+      if (stamp[j] == i) return;
+      stamp[j] = i;
+      if (j < i || !w.active[j] || !(touches[i] || touches[j])) return;
+      for (int a = 0; a < 3; ++a) {
+        ER.begin_row();
+        for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) ER.add(G.vertex[k], G.g[k](a));
+        for (int k = G.offsets[j]; k < G.offsets[j + 1]; ++k) ER.add(G.vertex[k], -G.g[k](a));
+      }
+    };
+    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
+      const int j = s.nbr[k];
+      visit(j);
+      for (int l = s.offsets[j]; l < s.offsets[j + 1]; ++l) visit(s.nbr[l]);
+    }
+  }
+  // Eq. 2.8 transformation constraints: region handles carry their transform's linear part,
+  // the border of the fixed region the identity. Point handles constrain positions only.
+  SparseRows T(n);
+  for (int c : m->constrained) {
+    if (!w.active[c] || !touches[c] || w.role[c] == VertexRole::PointHandle) continue;
+    m->transform_vertex.push_back(c);
+    m->transform_handle.push_back(w.role[c] == VertexRole::RegionHandle ? w.handle_of[c] : -1);
+    for (int a = 0; a < 3; ++a) {
+      T.begin_row();
+      for (int k = G.offsets[c]; k < G.offsets[c + 1]; ++k) T.add(G.vertex[k], G.g[k](a));
+    }
+  }
+
+  m->first = solver::LeastSquares(n);
+  const solver::SparseMatrix A_L = EL.matrix(), A_R = ER.matrix(), A_T = T.matrix();
+  m->first.add_block(A_L, 1.0, "E_L (Eq. 2.6)");
+  if (A_R.rows() > 0) m->first.add_block(A_R, options_.coherence_weight * h * h, "E_R (Eq. 2.7)");
+  if (A_T.rows() > 0) m->first.add_block(A_T, options_.transform_weight * h * h, "M_c = W_c (Eq. 2.8)");
+  m->first.set_fixed(m->constrained);
+  m->first.precompute();
+  m->has_coherence = A_R.rows() > 0;
+  m->transform_rest = A_T * solver::DenseMatrix(P);
+
+  if (options_.shearing != ShearingRemoval::None) {
+    // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
+    // Laplacian the details.
+    const detail::Stencil s0 = detail::make_stencil(w.mesh.V, w.mesh.F, options_.weights);
+    SparseRows D(n);
+    for (int i : m->free) {
+      detail::add_laplacian_row(D, s0, i);
+    }
+    const solver::SparseMatrix A_D = D.matrix();
+    m->second = solver::LeastSquares(n);
+    m->second.add_block(A_D, 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
+    m->second.set_fixed(m->constrained);
+    m->second.precompute();
+    m->delta = A_D * solver::DenseMatrix(w.mesh.V);
+  }
+  m->warm.assign(m->free.size(), Eigen::Quaterniond::Identity());
+
+  stats_ = {};
+  stats_.free_vertices = static_cast<int>(m->free.size());
+  stats_.degenerate_vertices = w.degenerate;
+  stats_.inserted_vertices = static_cast<int>(w.inserted.size());
+  stats_.first_factor_nnz = m->first.factor().stats().nnz_L;
+  if (options_.shearing != ShearingRemoval::None) stats_.second_factor_nnz = m->second.factor().stats().nnz_L;
+  impl_ = std::move(m);
+  stats_.setup_ms = ms_since(t0);
+}
+
+void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
+  const auto t_frame = std::chrono::steady_clock::now();
+  Impl& m = *impl_;
+  const detail::WorkMesh& w = m.w;
+  const int n0 = mesh_.num_vertices();
+  const Vertices& P = w.displaced;
+
+  // Where a constrained work vertex goes, from a rest-side position p.
+  auto place = [&](int v, const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    if (w.role[v] == VertexRole::RegionHandle) return apply(transforms.regions[w.handle_of[v]], p);
+    if (w.role[v] == VertexRole::PointHandle) return p + transforms.points[w.handle_of[v]];
+    return p;
+  };
+
+  // First system (Eq. 2.8) in displacements d = ṽ' − v'.
+  auto t0 = std::chrono::steady_clock::now();
+  solver::DenseMatrix fixed(m.constrained.size(), 3);
+  for (size_t k = 0; k < m.constrained.size(); ++k) {
+    const int v = m.constrained[k];
+    fixed.row(k) = (place(v, P.row(v).transpose()) - P.row(v).transpose()).transpose();
+  }
+  // E_L and E_R vanish at the rest state (M_i = I), so their right-hand sides are zero
+  // (empty: the solver skips them); only the transformation constraints carry W_c − M_c(v').
+  std::vector<solver::DenseMatrix> rhs(1);
+  if (m.has_coherence) rhs.emplace_back();
+  if (m.transform_rest.rows() > 0) {
+    solver::DenseMatrix r = -m.transform_rest;
+    for (size_t t = 0; t < m.transform_vertex.size(); ++t) {
+      const int h = m.transform_handle[t];
+      const Eigen::Matrix3d W = h < 0 ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(transforms.regions[h].topLeftCorner<3, 3>());
+      // Row a of M_c against coordinate a: block rows 3t + b hold M_c(a, b) in column a.
+      r.middleRows(static_cast<Eigen::Index>(3 * t), 3) += W.transpose();
+    }
+    rhs.push_back(std::move(r));
+  }
+  const solver::DenseMatrix X = solver::DenseMatrix(P) + m.first.solve(rhs, fixed);
+  stats_.first_solve_ms = ms_since(t0);
+
+  if (options_.shearing == ShearingRemoval::None) {
+    // Pull-back of displaced vertices (§2.4.3): ṽ_i = M_i (v_i − v'_i) + ṽ'_i.
+    const Vertices Xv = X;
+    for (int v : m.free)
+      if (v < n0) out.row(v) = Xv.row(v);
+    for (int v : w.moved)
+      if (v < n0 && w.role[v] == VertexRole::Free)
+        out.row(v) = Xv.row(v) + (m.G.gradient(v, Xv) * (w.mesh.V.row(v) - P.row(v)).transpose()).transpose();
+    for (int v : m.constrained)
+      if (v < n0) out.row(v) = targets.row(v);
+    stats_.polar_ms = stats_.second_solve_ms = 0;
+    stats_.frame_ms = ms_since(t_frame);
+    return;
+  }
+
+  // Shearing removal (§2.4.4): M_i = R_i S_i, s_i = sqrt((λ1² + λ2² + λ3²) / 3) = ‖M_i‖_F / √3.
+  t0 = std::chrono::steady_clock::now();
+  const Vertices Xv = X;
+  const int nf = static_cast<int>(m.free.size());
+  solver::DenseMatrix rhs2(nf, 3);
+  const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
+  int fallbacks = 0;
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+  for (int k = 0; k < nf; ++k) {
+    const int v = m.free[k];
+    const Eigen::Matrix3d M = m.G.gradient(v, Xv);
+    bool fell_back = false;
+    const Eigen::Matrix3d R = detail::nearest_rotation(M, m.warm[k], &fell_back);
+    fallbacks += fell_back;
+    const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
+    const Eigen::Vector3d d = m.delta.row(k).transpose();
+    rhs2.row(k) = (s_i * (R * d) - d).transpose();
+  }
+  stats_.polar_fallbacks = fallbacks;
+  stats_.polar_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  solver::DenseMatrix fixed2(m.constrained.size(), 3);
+  for (size_t k = 0; k < m.constrained.size(); ++k) {
+    const int v = m.constrained[k];
+    const Eigen::Vector3d r = w.mesh.V.row(v).transpose();
+    fixed2.row(k) = (place(v, r) - r).transpose();
+  }
+  const solver::DenseMatrix Y = m.second.solve({rhs2}, fixed2);
+  for (int v : m.free)
+    if (v < n0) out.row(v) = w.mesh.V.row(v) + Y.row(v);
+  stats_.second_solve_ms = ms_since(t0);
+  stats_.frame_ms = ms_since(t_frame);
+}
+
+}  // namespace lapis::mesh_deform

@@ -1,0 +1,54 @@
+// Private: the rest-state geometry of implicit Laplacian editing. Makes every deformation
+// gradient M_i well defined (thesis §2.4.3: midpoints inserted at boundary vertices of valence
+// < 3, degenerate vertices displaced along the normal, Eq. 2.9) and expresses each M_i as a
+// linear function of the unknown positions (Eq. 2.3–2.5).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "lapis/mesh_deform/deformer.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "stencil.h"
+
+namespace lapis::mesh_deform::detail {
+
+// The mesh the implicit method solves on: the rest mesh plus inserted midpoints (appended
+// after the #V original vertices, dropped from the output), with extended vertex roles.
+struct WorkMesh {
+  TriMesh mesh;
+  std::vector<std::array<int, 2>> inserted;  // edge endpoints of midpoint #V + k
+  std::vector<VertexRole> role;
+  std::vector<int> handle_of;
+  std::vector<char> active;  // M_i is used: within 2 rings of a free vertex
+  Vertices displaced;        // positions with degenerate vertices displaced (v'_i of Eq. 2.9)
+  std::vector<int> moved;    // vertices whose displaced position differs from the rest one
+  int degenerate = 0;        // vertices found degenerate (§2.4.3)
+};
+
+WorkMesh build_work_mesh(const TriMesh& rest, const Layout& layout, const ImplicitOptions& options);
+
+// M_i = Σ_k ṽ_k g_kᵀ over k ∈ {i} ∪ N(i) (Eq. 2.5 with the translation eliminated, Eq. 2.4):
+// row a of M_i is linear in coordinate a of the unknowns only, which is why x, y, z are
+// separate right-hand sides of one matrix (§2.5). CSR over vertices; empty for inactive ones.
+struct GradientStencils {
+  std::vector<int> offsets;
+  std::vector<int> vertex;
+  std::vector<Eigen::Vector3d> g;
+  // M_i from positions X (#V' by 3).
+  Eigen::Matrix3d gradient(int i, const Vertices& X) const {
+    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+    for (int k = offsets[i]; k < offsets[i + 1]; ++k) M.noalias() += X.row(vertex[k]).transpose() * g[k].transpose();
+    return M;
+  }
+};
+
+// Stencils at the active vertices of positions P (the displaced ones). A vertex that stays
+// degenerate after displacement (it cannot happen on a manifold mesh, but input is input)
+// gets a Tikhonov-regularized inverse so the system stays defined.
+GradientStencils gradient_stencils(const Stencil& s, const Vertices& P, const std::vector<char>& active);
+
+// λ_max / λ_min of V_i V_iᵀ (Eq. 2.5), +inf when singular.
+double stencil_condition(const Stencil& s, const Vertices& P, int i);
+
+}  // namespace lapis::mesh_deform::detail

@@ -1,0 +1,115 @@
+#include "stencil.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace lapis::mesh_deform {
+
+const char* to_string(LaplacianWeights w) { return w == LaplacianWeights::Cotangent ? "cotan" : "uniform"; }
+
+namespace detail {
+namespace {
+
+// cot of the angle at corner o of triangle (o, a, b).
+double cot_at(const Eigen::Vector3d& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d u = a - o, v = b - o;
+  const double s = u.cross(v).norm();
+  // A zero-area triangle has no defined angle; contributing nothing keeps the row finite.
+  return s > 0 ? u.dot(v) / s : 0.0;
+}
+
+int slot(const Stencil& s, int i, int j) {
+  const auto b = s.nbr.begin() + s.offsets[i], e = s.nbr.begin() + s.offsets[i + 1];
+  return static_cast<int>(std::lower_bound(b, e, j) - s.nbr.begin());
+}
+
+}  // namespace
+
+void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights) {
+  const int n = s.size();
+  if (weights == LaplacianWeights::Uniform) {
+    for (int i = 0; i < n; ++i)
+      for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) s.w[k] = 1.0 / s.valence(i);
+    return;
+  }
+  std::fill(s.w.begin(), s.w.end(), 0.0);
+  for (int f = 0; f < F.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const int o = F(f, c), a = F(f, (c + 1) % 3), b = F(f, (c + 2) % 3);
+      const double h = 0.5 * cot_at(P.row(o).transpose(), P.row(a).transpose(), P.row(b).transpose());
+      s.w[slot(s, a, b)] += h;
+      s.w[slot(s, b, a)] += h;
+    }
+  }
+}
+
+Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights) {
+  const int n = static_cast<int>(P.rows());
+  std::vector<std::pair<int, int>> half;  // directed edges, both directions of every face edge
+  half.reserve(static_cast<size_t>(F.rows()) * 6);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = F(f, c), b = F(f, (c + 1) % 3);
+      half.emplace_back(a, b);
+      half.emplace_back(b, a);
+    }
+  std::sort(half.begin(), half.end());
+  Stencil s;
+  s.offsets.assign(static_cast<size_t>(n) + 1, 0);
+  s.boundary.assign(static_cast<size_t>(n), 0);
+  for (size_t k = 0; k < half.size();) {
+    size_t e = k;
+    while (e < half.size() && half[e] == half[k]) ++e;
+    const auto [i, j] = half[k];
+    s.nbr.push_back(j);
+    ++s.offsets[i + 1];
+    if (e - k == 1) s.boundary[i] = 1;  // an edge seen from one face only
+    k = e;
+  }
+  for (int i = 0; i < n; ++i) s.offsets[i + 1] += s.offsets[i];
+  s.w.assign(s.nbr.size(), 0.0);
+  reweight(s, P, F, weights);
+  return s;
+}
+
+Vertices laplacian_coordinates(const Stencil& s, const Vertices& P) {
+  const int n = s.size();
+  Vertices D(n, 3);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) d += s.w[k] * (P.row(s.nbr[k]) - P.row(i));
+    D.row(i) = d;
+  }
+  return D;
+}
+
+Vertices area_weighted_normals(const Vertices& P, const geometry::Faces& F) {
+  Vertices N = Vertices::Zero(P.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
+    const Eigen::RowVector3d fn = (b - a).cross(c - a);  // length = 2 * area: area weighting
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += fn;
+  }
+  for (int i = 0; i < N.rows(); ++i) {
+    const double l = N.row(i).norm();
+    if (l > 0) N.row(i) /= l;
+  }
+  return N;
+}
+
+double mean_edge_length(const Stencil& s, const Vertices& P) {
+  double sum = 0;
+  long count = 0;
+  for (int i = 0; i < s.size(); ++i)
+    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
+      sum += (P.row(s.nbr[k]) - P.row(i)).norm();
+      ++count;
+    }
+  return count ? sum / count : 1.0;
+}
+
+}  // namespace detail
+}  // namespace lapis::mesh_deform

@@ -1,0 +1,48 @@
+// Private: per-vertex neighbour lists with Laplacian edge weights in contiguous arrays (CSR),
+// the layout every per-vertex loop of the deformers walks (ARAP's rotation fits, the implicit
+// method's gradient stencils). Kept private because the loops want this exact memory layout;
+// the geometry module's operators return sparse matrices instead.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lapis/geometry/tri_mesh.h"
+#include "lapis/mesh_deform/laplacian_weights.h"
+
+namespace lapis::mesh_deform::detail {
+
+using geometry::TriMesh;
+using geometry::Vertices;
+
+// Neighbours of vertex i: nbr[offsets[i] .. offsets[i+1]), weight w_ij alongside, so that the
+// Laplacian coordinate is δ_i = Σ_j w_ij (v_j − v_i) (thesis §2.3).
+struct Stencil {
+  std::vector<int> offsets;
+  std::vector<int> nbr;
+  std::vector<double> w;
+  std::vector<char> boundary;  // #V: vertex lies on an open boundary
+  int size() const { return static_cast<int>(offsets.size()) - 1; }
+  int valence(int i) const { return offsets[i + 1] - offsets[i]; }
+};
+
+// Cotangent weights are libigl's 0.5 (cot α + cot β) (symmetric, unnormalized: the Voronoi
+// area of §2.3 only reweights whole rows of the least-squares systems); uniform are 1/|N(i)|.
+// P  positions to measure angles on (#V by 3), F faces.
+Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights);
+
+// Recomputes only the weights of s for new positions P (same connectivity).
+void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights);
+
+// δ_i for every vertex (#V by 3).
+Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);
+
+// Area-weighted vertex normals (unit; zero for isolated vertices).
+Vertices area_weighted_normals(const Vertices& P, const geometry::Faces& F);
+
+// Mean edge length over the stencil's edges: the length scale that makes the soft weights of
+// terms with different units (positions vs. deformation gradients) scale invariant.
+double mean_edge_length(const Stencil& s, const Vertices& P);
+
+}  // namespace lapis::mesh_deform::detail

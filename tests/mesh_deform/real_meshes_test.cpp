@@ -1,0 +1,74 @@
+// The real meshes of assets/external (scripts/setup extracts them from libcgal-demo).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/metrics.h"
+#include "lapis/mesh_deform/naive_laplacian.h"
+#include "test_meshes.h"
+
+using namespace lapis::mesh_deform;
+namespace t = lapis::mesh_deform::test;
+
+namespace {
+
+TriMesh load(const std::string& name) {
+  const auto path = std::filesystem::path(LAPIS_SOURCE_DIR) / "assets" / "external" / (name + ".off");
+  REQUIRE_MESSAGE(std::filesystem::exists(path), path.string() << " missing: run scripts/setup");
+  return lapis::geometry::read_mesh(path);
+}
+
+}  // namespace
+
+TEST_CASE("mesh_deform: real meshes: identity, similarity and a drag of the top handle") {
+  for (const std::string name : {"cactus", "dino", "lion", "double-torus-example", "armadillo"}) {
+    CAPTURE(name);
+    const TriMesh m = load(name);
+    const double diag = t::bbox_diagonal(m.V);
+    const Selection s = t::bottom_fixed_top_handle(m, 1, 0.1, 0.05);
+    ImplicitLaplacianDeformer d(m);
+    d.set_selection(s);
+    CHECK((d.deform(HandleTransforms::identity(s)) - m.V).norm() <= 1e-9 * m.V.norm());
+    const Eigen::Vector3d top = m.V(s.region_handles[0], Eigen::all).colwise().mean().transpose();
+    const HandleTransforms drag{{t::rotation_about(Eigen::Vector3d::UnitZ(), 45, top, Eigen::Vector3d(0.15 * diag, 0, 0))}, {}};
+    const Vertices X = d.deform(drag);
+    REQUIRE(X.allFinite());
+    MESSAGE(name << ": " << m.num_vertices() << " vertices, " << d.stats().degenerate_vertices << " degenerate, setup "
+                 << d.stats().setup_ms << " ms, frame " << d.stats().frame_ms << " ms");
+    NaiveLaplacianDeformer naive(m);
+    naive.set_selection(s);
+    const Distortion di = distortion(m, X), dn = distortion(m, naive.deform(drag));
+    MESSAGE("  implicit / naive: Laplacian " << di.laplacian_length.mean << " / " << dn.laplacian_length.mean
+                                                << ", edge " << di.edge_length.mean << " / " << dn.edge_length.mean
+                                                << ", arap energy " << di.arap_energy << " / " << dn.arap_energy);
+    // A moderate drag: both stay mild (the bar test compares methods under a large one).
+    CHECK(di.edge_length.mean < 0.15);
+    CHECK(di.laplacian_length.mean < 2 * dn.laplacian_length.mean);
+    // Handles land exactly on their targets.
+    for (int v : s.region_handles[0])
+      REQUIRE((X.row(v).transpose() - apply(drag.regions[0], m.V.row(v).transpose())).norm() <= 1e-12 * diag);
+    // Nothing outside the ROI moves.
+    for (int v = 0; v < m.num_vertices(); ++v)
+      if (d.layout().role[v] == VertexRole::Fixed) REQUIRE((X.row(v) - m.V.row(v)).norm() == 0.0);
+  }
+}
+
+TEST_CASE("mesh_deform: high genus: a similarity of all handles of the double torus is reproduced") {
+  const TriMesh m = load("double-torus-example");
+  Selection s;
+  s.roi = t::all_vertices(m);
+  s.region_handles = {t::slab(m, 0, 0.0, 0.1), t::slab(m, 0, 0.9, 1.0)};
+  ImplicitOptions o;
+  o.shearing = ShearingRemoval::ScaleFeatures;
+  ImplicitLaplacianDeformer d(m, o);
+  d.set_selection(s);
+  Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(1, 0, 1), 75, Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 0, 1));
+  T.topLeftCorner<3, 3>() *= 0.8;
+  const Vertices X = d.deform(HandleTransforms{{T, T}, {}});
+  double e = 0;
+  for (int i = 0; i < m.num_vertices(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
+  CHECK(e <= 1e-6 * t::bbox_diagonal(m.V));
+}
