@@ -25,7 +25,6 @@ struct ArapDeformer::Impl {
   std::vector<int> fitted;           // vertices whose rotation a free vertex's row reads
   solver::Cholesky chol;
   std::vector<Eigen::Matrix3d> R;    // #V rotations
-  std::vector<Eigen::Quaterniond> q; // #V warm starts of the rotation fits
   Vertices previous;                 // last frame's result
   bool have_previous = false;
 };
@@ -82,7 +81,6 @@ void ArapDeformer::setup(const Layout& layout) {
                               e.column() >= 0 ? m->free[static_cast<size_t>(e.column())] : -1);
   }
   m->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
-  m->q.assign(static_cast<size_t>(n), Eigen::Quaterniond::Identity());
   impl_ = std::move(m);
   stats_ = {};
   stats_.setup_ms = ms_since(t0);
@@ -121,7 +119,7 @@ void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Verti
         sq += s.w[k] * (et.squaredNorm() + e.squaredNorm());
       }
       bool fell_back = false;
-      m.R[i] = detail::nearest_rotation(A, m.q[i], &fell_back);
+      m.R[i] = detail::nearest_rotation(A, &fell_back);
       fallbacks += fell_back;
       energy += sq - 2 * (m.R[i].transpose() * A).trace();
     }

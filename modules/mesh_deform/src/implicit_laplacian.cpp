@@ -35,7 +35,6 @@ struct ImplicitLaplacianDeformer::Impl {
   bool has_coherence = false;
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
-  std::vector<Eigen::Quaterniond> warm;         // per free vertex: last rotation (warm start)
 };
 
 ImplicitLaplacianDeformer::ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options)
@@ -141,7 +140,6 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     m->second.precompute();
     m->delta = A_D * solver::DenseMatrix(w.mesh.V);
   }
-  m->warm.assign(m->free.size(), Eigen::Quaterniond::Identity());
 
   stats_ = {};
   stats_.free_vertices = static_cast<int>(m->free.size());
@@ -218,7 +216,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     const int v = m.free[k];
     const Eigen::Matrix3d M = m.G.gradient(v, Xv);
     bool fell_back = false;
-    const Eigen::Matrix3d R = detail::nearest_rotation(M, m.warm[k], &fell_back);
+    const Eigen::Matrix3d R = detail::nearest_rotation(M, &fell_back);
     fallbacks += fell_back;
     const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
     const Eigen::Vector3d d = m.delta.row(k).transpose();

@@ -6,6 +6,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "lapis/geometry/normals.h"
+
 namespace lapis::mesh_deform::detail {
 namespace {
 
@@ -158,7 +160,7 @@ WorkMesh build_work_mesh(const TriMesh& rest, const Layout& layout, const Implic
     w.active = near_free(s, w.role, 2);
   }
   // §2.4.3: one sequential traversal, so a vertex sees the displacements made before it.
-  const Vertices normals = area_weighted_normals(w.mesh.V, w.mesh.F);
+  const Vertices normals = geometry::vertex_normals(w.mesh);
   w.displaced = w.mesh.V;
   std::vector<char> moved(w.role.size(), 0);
   auto move = [&](int v) {

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "lapis/core/error.h"
+#include "lapis/geometry/polar.h"
 #include "rotation_fit.h"
 #include "stencil.h"
 
@@ -79,7 +82,7 @@ Distortion distortion(const geometry::TriMesh& rest, const geometry::Vertices& X
       const int j = s.nbr[k];
       A += std::max(s.w[k], 0.0) * (X.row(i) - X.row(j)).transpose() * (V.row(i) - V.row(j));
     }
-    const Eigen::Matrix3d R = detail::nearest_rotation_svd(A);
+    const Eigen::Matrix3d R = geometry::polar_rotation(A);
     for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
       const int j = s.nbr[k];
       const Eigen::Vector3d e = (V.row(i) - V.row(j)).transpose(), et = (X.row(i) - X.row(j)).transpose();

@@ -2,52 +2,37 @@
 
 #include <cmath>
 
-#include <Eigen/LU>
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "lapis/geometry/polar.h"
 
 namespace lapis::mesh_deform::detail {
 
-Eigen::Matrix3d nearest_rotation_svd(const Eigen::Matrix3d& A) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  const Eigen::Matrix3d V = svd.matrixV();
-  if ((U * V.transpose()).determinant() < 0) U.col(2) = -U.col(2);
-  return U * V.transpose();
-}
-
-
-Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, bool* fell_back) {
-  const double scale = A.norm();
-  if (!(scale > 0) || !std::isfinite(scale)) {
-    q = Eigen::Quaterniond::Identity();
-    return Eigen::Matrix3d::Identity();
-  }
-  // Polar factor of B = R₀ᵀ A by Higham's scaled Newton iteration X ← (γX + X⁻ᵀ/γ) / 2:
-  // quadratic convergence, and B is close to symmetric positive definite when the warm start
-  // R₀ is close, so two or three steps usually do. det B ≤ 0 has no rotation as polar factor
-  // (the nearest rotation then differs from it) and goes to the SVD.
-  const Eigen::Matrix3d R0 = q.toRotationMatrix();
-  Eigen::Matrix3d X = R0.transpose() * A;
-  if (X.determinant() > 1e-12 * scale * scale * scale) {
-    for (int it = 0; it < 30; ++it) {
-      const Eigen::Matrix3d Y = X.inverse().transpose();
-      const double gamma = std::sqrt(std::sqrt(Y.squaredNorm() / X.squaredNorm()));
-      const Eigen::Matrix3d Xn = 0.5 * (gamma * X + Y / gamma);
-      const double change = (Xn - X).squaredNorm();
-      X = Xn;
-      if (change < 1e-26) {
-        Eigen::Matrix3d R = R0 * X;
-        q = Eigen::Quaterniond(R);
-        q.normalize();
-        // Re-orthonormalized through the quaternion: the next warm start stays a rotation.
-        return q.toRotationMatrix();
-      }
+Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, bool* fell_back) {
+  const double scale = A.cwiseAbs().maxCoeff();
+  if (!(scale > 0) || !std::isfinite(scale)) return Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d B = A / scale;  // keeps AᵀA far from under/overflow
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(B.transpose() * B);  // eigenvalues ascending: σ² of B
+  const Eigen::Vector3d v1 = es.eigenvectors().col(2), v2 = es.eigenvectors().col(1);
+  Eigen::Vector3d u1 = B * v1;
+  const double n1 = u1.norm();
+  Eigen::Vector3d u2 = B * v2;
+  if (n1 > 0) {
+    u1 /= n1;
+    u2 -= u1 * u1.dot(u2);  // re-orthogonalize: the eigenvectors carry rounding
+    const double n2 = u2.norm();
+    // σ₂/σ₁ below ~1e-6: the eigenvectors of the near-double-zero pair are unreliable.
+    if (n2 > 1e-6 * n1) {
+      u2 /= n2;
+      const Eigen::Vector3d v1n = v1.normalized();
+      const Eigen::Vector3d v2n = (v2 - v1n * v1n.dot(v2)).normalized();
+      return u1 * v1n.transpose() + u2 * v2n.transpose() + u1.cross(u2) * v1n.cross(v2n).transpose();
     }
   }
   if (fell_back) *fell_back = true;
-  const Eigen::Matrix3d R = nearest_rotation_svd(A);
-  q = Eigen::Quaterniond(R);
-  return R;
+  return geometry::polar_rotation(A);
 }
 
 }  // namespace lapis::mesh_deform::detail

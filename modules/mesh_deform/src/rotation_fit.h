@@ -1,22 +1,18 @@
 // Private: the nearest rotation to a 3x3 matrix, fast enough to run once per vertex per
-// frame (ARAP's local step, the implicit method's shearing removal, thesis §2.4.4).
-// Warm-started: the previous frame's rotation R₀ is almost the answer, so the polar factor of
-// R₀ᵀA (near the identity) takes Newton's iteration two or three steps; a reflection (det ≤ 0)
-// falls back to an SVD.
+// iteration (ARAP's local step) or per frame (the implicit method's shearing removal, thesis
+// §2.4.4). From the eigenvectors of AᵀA (closed form): R = Σ u_k v_kᵀ with u_k = A v_k / σ_k for
+// the two largest singular values and the third pair completed by cross products, so the
+// result is a proper rotation and needs no sign fix-up. ARAP's matrices are often nearly
+// rank 2 (flat one-rings), which this handles exactly while iterative polar methods slow
+// down. Cases where even σ_2 vanishes go to geometry's signed SVD.
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 namespace lapis::mesh_deform::detail {
 
-// Rotation R maximizing tr(Rᵀ A), i.e. the rotation factor of A's polar decomposition when
-// det A > 0 (and the closest proper rotation otherwise). q  warm start in, result out;
-// fell_back  set when the SVD fallback ran.
-Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, bool* fell_back = nullptr);
-
-// Reference: R = U Vᵀ from Eigen's JacobiSVD with the sign of the smallest singular vector
-// flipped when det < 0. Used as the fallback and by tests.
-Eigen::Matrix3d nearest_rotation_svd(const Eigen::Matrix3d& A);
+// Rotation R maximizing tr(Rᵀ A): the rotation factor of A's polar decomposition when
+// det A > 0, the closest proper rotation otherwise. fell_back  set when the SVD ran.
+Eigen::Matrix3d nearest_rotation(const Eigen::Matrix3d& A, bool* fell_back = nullptr);
 
 }  // namespace lapis::mesh_deform::detail

@@ -86,20 +86,6 @@ Vertices laplacian_coordinates(const Stencil& s, const Vertices& P) {
   return D;
 }
 
-Vertices area_weighted_normals(const Vertices& P, const geometry::Faces& F) {
-  Vertices N = Vertices::Zero(P.rows(), 3);
-  for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::RowVector3d a = P.row(F(f, 0)), b = P.row(F(f, 1)), c = P.row(F(f, 2));
-    const Eigen::RowVector3d fn = (b - a).cross(c - a);  // length = 2 * area: area weighting
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += fn;
-  }
-  for (int i = 0; i < N.rows(); ++i) {
-    const double l = N.row(i).norm();
-    if (l > 0) N.row(i) /= l;
-  }
-  return N;
-}
-
 double mean_edge_length(const Stencil& s, const Vertices& P) {
   double sum = 0;
   long count = 0;

@@ -38,9 +38,6 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
 // δ_i for every vertex (#V by 3).
 Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);
 
-// Area-weighted vertex normals (unit; zero for isolated vertices).
-Vertices area_weighted_normals(const Vertices& P, const geometry::Faces& F);
-
 // Mean edge length over the stencil's edges: the length scale that makes the soft weights of
 // terms with different units (positions vs. deformation gradients) scale invariant.
 double mean_edge_length(const Stencil& s, const Vertices& P);

@@ -1,0 +1,187 @@
+// mesh_deform benchmark: setup seconds, per-frame milliseconds of a drag, ARAP milliseconds
+// per iteration and peak memory of naive Laplacian, implicit Laplacian (thesis ch. 2) and
+// ARAP editing, against CGAL's Surface_mesh_deformation (ORIGINAL_ARAP) on the same mesh,
+// ROI and handle in the same run. Each (mesh, method) runs in its own child process so the
+// peak memory is that method's alone.
+//
+//   bench_mesh_deform [--sizes 26k,151k,416k] [--implicit-416k]
+//
+// Meshes: armadillo (26K), Loop-subdivided bunny (151K), Loop-subdivided armadillo (416K).
+// Fixed region: the lowest 10% of the vertices along y; handle: the top 5%, rotated 45° about
+// z around its centroid and moved 0.15 × the bounding-box diagonal along x over the drag.
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <numeric>
+#include <string>
+
+#include "cgal_peer.h"
+#include "lapis/geometry/io.h"
+#include "lapis/geometry/procedural.h"
+#include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/naive_laplacian.h"
+#include "lapis_bench.h"
+
+using namespace lapis;
+using namespace lapis::mesh_deform;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kArapIterationsPerFrame = 5;
+
+struct Size {
+  std::string name, file;
+  int loop_levels;
+  int frames;       // Lapis methods
+  int peer_frames;  // CGAL (each frame runs kArapIterationsPerFrame iterations)
+};
+
+const std::vector<Size> kSizes = {
+    {"26k", "armadillo", 0, 100, 10},
+    {"151k", "bunny00", 1, 20, 4},
+    {"416k", "armadillo", 2, 10, 3},
+};
+
+TriMesh load(const Size& s) {
+  TriMesh m = geometry::read_mesh(std::string(LAPIS_SOURCE_DIR) + "/assets/external/" + s.file + ".off");
+  return s.loop_levels ? geometry::loop_subdivide(m, s.loop_levels) : m;
+}
+
+struct Setup {
+  Selection sel;
+  std::vector<Eigen::Matrix4d> drag;  // handle transform per frame, ending at the full one
+};
+
+Setup make_setup(const TriMesh& m, int frames) {
+  const int n = m.num_vertices();
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return m.V(a, 1) < m.V(b, 1); });
+  const int fixed = n / 10, handle = n / 20;
+  Setup s;
+  s.sel.roi.assign(order.begin() + fixed, order.end());
+  s.sel.region_handles.push_back(std::vector<int>(order.end() - handle, order.end()));
+  std::sort(s.sel.roi.begin(), s.sel.roi.end());
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : s.sel.region_handles[0]) c += m.V.row(v).transpose();
+  c /= handle;
+  const double diag = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
+  for (int f = 1; f <= frames; ++f) {
+    const double t = double(f) / frames;
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(t * M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+    T.topLeftCorner<3, 3>() = R;
+    T.topRightCorner<3, 1>() = c - R * c + Eigen::Vector3d(0.15 * diag * t, 0, 0);
+    s.drag.push_back(T);
+  }
+  return s;
+}
+
+json run_one(const Size& size, const std::string& method) {
+  const TriMesh m = load(size);
+  json r = {{"mesh", size.name}, {"vertices", m.num_vertices()}, {"method", method}};
+  const Setup s = make_setup(m, method == "cgal_arap" ? size.peer_frames : size.frames);
+  if (method == "cgal_arap") {
+    const bench::PeerTiming p = bench::cgal_original_arap(m, s.sel.roi, s.sel.region_handles[0], s.drag, kArapIterationsPerFrame);
+    r["setup_s"] = p.setup_s;
+    r["ms_per_iteration"] = p.ms_per_iteration;
+    r["frames"] = p.frames;
+  } else {
+    std::unique_ptr<Deformer> d;
+    ImplicitLaplacianDeformer* imp = nullptr;
+    ArapDeformer* arap = nullptr;
+    if (method == "naive") d = std::make_unique<NaiveLaplacianDeformer>(m);
+    if (method == "implicit") d = std::make_unique<ImplicitLaplacianDeformer>(m), imp = static_cast<ImplicitLaplacianDeformer*>(d.get());
+    if (method == "arap") {
+      ArapOptions o;
+      o.max_iterations = kArapIterationsPerFrame;
+      d = std::make_unique<ArapDeformer>(m, o);
+      arap = static_cast<ArapDeformer*>(d.get());
+    }
+    d->set_selection(s.sel);
+    r["setup_s"] = bench::time_ms([&] { d->precompute(); }) / 1000.0;
+    std::vector<double> frame, first, polar, second, per_it, rot, solve;
+    for (const Eigen::Matrix4d& T : s.drag) {
+      frame.push_back(bench::time_ms([&] { d->deform(HandleTransforms{{T}, {}}); }));
+      if (imp) {
+        first.push_back(imp->stats().first_solve_ms);
+        polar.push_back(imp->stats().polar_ms);
+        second.push_back(imp->stats().second_solve_ms);
+      }
+      if (arap) {
+        per_it.push_back(arap->stats().ms_per_iteration());
+        rot.push_back(arap->stats().rotations_ms / arap->stats().iterations);
+        solve.push_back(arap->stats().solves_ms / arap->stats().iterations);
+      }
+    }
+    r["frames"] = s.drag.size();
+    r["frame_ms"] = bench::median(frame);
+    if (imp) {
+      r["first_solve_ms"] = bench::median(first);
+      r["polar_ms"] = bench::median(polar);
+      r["second_solve_ms"] = bench::median(second);
+      r["degenerate_vertices"] = imp->stats().degenerate_vertices;
+      r["first_factor_nnz"] = imp->stats().first_factor_nnz;
+      r["second_factor_nnz"] = imp->stats().second_factor_nnz;
+    }
+    if (arap) {
+      r["ms_per_iteration"] = bench::median(per_it);
+      r["local_step_ms"] = bench::median(rot);
+      r["global_step_ms"] = bench::median(solve);
+    }
+  }
+  r["peak_rss_mib"] = bench::peak_rss_mib();
+  return r;
+}
+
+std::string field(const json& r, const char* key, int digits = 1) {
+  return r.contains(key) ? bench::fmt(r[key].get<double>(), digits) : "-";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 4 && std::strcmp(argv[1], "--one") == 0) {
+    for (const Size& s : kSizes)
+      if (s.name == argv[2]) std::printf("%s\n", run_one(s, argv[3]).dump().c_str());
+    return 0;
+  }
+  std::string sizes = "26k,151k,416k";
+  bool implicit_416k = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) sizes = argv[++i];
+    if (std::strcmp(argv[i], "--implicit-416k") == 0) implicit_416k = true;
+  }
+  json results = json::array();
+  bench::Table table({"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
+  for (const Size& s : kSizes) {
+    if (sizes.find(s.name) == std::string::npos) continue;
+    for (const char* method : {"naive", "implicit", "arap", "cgal_arap"}) {
+      if (std::string(method) == "implicit" && s.name == "416k" && !implicit_416k) continue;
+      const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
+      FILE* p = popen(cmd.c_str(), "r");
+      std::string out;
+      char buf[4096];
+      while (p && std::fgets(buf, sizeof buf, p)) out += buf;
+      const int status = p ? pclose(p) : -1;
+      if (status != 0 || out.empty()) {
+        std::fprintf(stderr, "bench_mesh_deform: '%s' failed (status %d)\n", cmd.c_str(), status);
+        continue;
+      }
+      const json r = json::parse(out);
+      results.push_back(r);
+      table.row({s.name, std::to_string(r["vertices"].get<int>()), method, field(r, "setup_s", 2), field(r, "frame_ms"),
+                 field(r, "ms_per_iteration"), field(r, "first_solve_ms"), field(r, "polar_ms"), field(r, "second_solve_ms"),
+                 field(r, "peak_rss_mib", 0)});
+      std::fprintf(stderr, "%s %s done\n", s.name.c_str(), method);
+    }
+  }
+  table.print();
+  json doc = {{"arap_iterations_per_frame", kArapIterationsPerFrame},
+              {"threads", std::getenv("OMP_NUM_THREADS") ? std::getenv("OMP_NUM_THREADS") : "default"},
+              {"results", results}};
+  bench::write_results("mesh_deform", doc);
+  return 0;
+}
