@@ -119,3 +119,34 @@ TEST_CASE("mesh_merge: configuration-dependent merging keeps the handles and the
   // Boundary on the target boundary, frames kept: the dome still points up.
   for (int v : r.source_boundary) CHECK(std::abs(r.source_deformed(v, 2) - 2.0) < 0.01);
 }
+
+TEST_CASE("mesh_merge: a short boundary is refined first (§2.5) and still merges watertight") {
+  const TriMesh src = test::dome(), tgt = test::body();
+  MergeOptions o;
+  o.refine_ratio = 10;  // force: the dome's ~45 boundary vertices are below 10 sqrt(#V)
+  const MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt), o);
+  CHECK(r.refine_levels == 2);
+  CHECK(r.source_rest.num_vertices() > src.num_vertices());
+  CHECK(r.source_boundary.size() > 3 * geometry::Connectivity(src).boundary_loops()[0].size());
+  CHECK(r.source_map.size() == static_cast<size_t>(src.num_vertices()));
+  require_watertight(tgt, r);
+}
+
+TEST_CASE("mesh_merge: a source of genus one (a torus with a hole) merges onto the body") {
+  TriMesh torus = geometry::make_torus(40, 20, 1.0, 0.4);
+  test::jitter(torus, 0.002, 4);
+  std::vector<int> hole;
+  for (int f = 0; f < torus.num_faces(); ++f) {
+    const Eigen::RowVector3d c = (torus.V.row(torus.F(f, 0)) + torus.V.row(torus.F(f, 1)) + torus.V.row(torus.F(f, 2))) / 3;
+    if ((c - Eigen::RowVector3d(1.4, 0, 0)).norm() < 0.3) hole.push_back(f);  // a disc on the outer equator
+  }
+  const TriMesh src = geometry::remove_faces(torus, hole);
+  REQUIRE(geometry::Connectivity(src).boundary_loops().size() == 1);
+  const TriMesh tgt = test::body();
+  const geometry::Connectivity cs(src);
+  const auto& loop = cs.boundary_loops()[0];
+  const int key = *std::max_element(loop.begin(), loop.end(), [&](int a, int b) { return src.V(a, 2) < src.V(b, 2); });
+  const MergeResult r = merge(src, tgt, {LoopPair{{{key, test::loop_vertex_max_x(tgt, 2.0)}}}});
+  require_watertight(tgt, r);
+  CHECK(geometry::genus(r.mesh) == 1);
+}

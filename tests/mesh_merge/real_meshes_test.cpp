@@ -24,7 +24,7 @@ int extreme_loop_vertex(const TriMesh& m, int axis) {
   return *std::max_element(loop.begin(), loop.end(), [&](int a, int b) { return m.V(a, axis) < m.V(b, axis); });
 }
 
-void check_real_merge(const TriMesh& head, const TriMesh& body, int key_axis) {
+MergeResult check_real_merge(const TriMesh& head, const TriMesh& body, int key_axis) {
   const std::vector<LoopPair> pairs{LoopPair{{{extreme_loop_vertex(head, key_axis), extreme_loop_vertex(body, key_axis)}}}};
   const MergeResult r = merge(head, body, pairs);
   const SeamQuality q = seam_quality(body, r);
@@ -41,15 +41,20 @@ void check_real_merge(const TriMesh& head, const TriMesh& body, int key_axis) {
   CHECK(q.seam_dihedral_mean_deg < q.target_dihedral_p95_deg);
   // The parts' necks differ in shape, so the source bends near the seam; its details must
   // survive (residual) and its overall shape stay recognizable (distance after alignment).
-  CHECK(d.laplacian_residual < 2.0);
-  CHECK(d.max_distance < 0.4);
+  CHECK(d.laplacian_residual < 1.0);
+  CHECK(d.max_distance < 0.25);
   CHECK(geometry::validate(r.mesh).ok());
+  return r;
 }
 
 }  // namespace
 
 TEST_CASE("mesh_merge: real meshes: the mannequin's head onto the man's body") {
-  const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, 12.0}, {0, 0, 1});
-  const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.3}, {0, 0, 1});
-  check_real_merge(devil.above, man.below, 0);
+  // The devil bust's head (11.5K vertices, 40 units tall) onto the man (1 unit tall) cut at the
+  // neck: different scales, positions and neck shapes.
+  const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -8.0}, {0, 0, 1});
+  const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.36}, {0, 0, 1});
+  const MergeResult r = check_real_merge(devil.above, man.below, 0);
+  // Left for the README figure (scripts/render_mesh.py).
+  geometry::write_obj(std::filesystem::temp_directory_path() / "lapis_merge_devil_head_on_man.obj", r.mesh);
 }
