@@ -150,3 +150,24 @@ TEST_CASE("mesh_merge: a source of genus one (a torus with a hole) merges onto t
   require_watertight(tgt, r);
   CHECK(geometry::genus(r.mesh) == 1);
 }
+
+TEST_CASE("mesh_merge: one precomputed Merger gives the one-off results for other targets and keys") {
+  const TriMesh src = test::dome();
+  const TriMesh body = test::body(), thin = test::body(30, 10);
+  Merger merger(src);
+  for (const TriMesh* tgt : {&body, &thin}) {
+    std::vector<LoopPair> pairs = test::dome_on_body(src, *tgt);
+    for (int shift = 0; shift < 2; ++shift) {
+      if (shift) {  // another key on the same loops: the user dragged the correspondence
+        const geometry::Connectivity cs(src);
+        const auto& loop = cs.boundary_loops()[0];
+        pairs[0].keys[0].source = loop[(std::find(loop.begin(), loop.end(), pairs[0].keys[0].source) - loop.begin() + 3) % loop.size()];
+      }
+      const MergeResult reused = merger.merge(*tgt, pairs);
+      const MergeResult fresh = merge(src, *tgt, pairs);
+      REQUIRE(reused.mesh.F == fresh.mesh.F);
+      CHECK((reused.mesh.V - fresh.mesh.V).norm() <= 1e-12 * fresh.mesh.V.norm());
+      CHECK(reused.timings.setup_ms < fresh.timings.setup_ms);
+    }
+  }
+}

@@ -46,13 +46,17 @@ std::vector<double> cumulative_length(const Vertices& V, const std::vector<int>&
 
 }  // namespace
 
+void check_merge_source(const TriMesh& source, const Connectivity& source_conn) {
+  if (source_conn.boundary_loops().empty()) fail("the source is closed (no boundary loop), expected an open merging boundary");
+  require_manifold(source, "the source");
+}
+
 void check_merge_input(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
                        const Connectivity& target_conn, const std::vector<LoopPair>& pairs) {
   const auto& sloops = source_conn.boundary_loops();
   const auto& tloops = target_conn.boundary_loops();
-  if (sloops.empty()) fail("the source is closed (no boundary loop), expected an open merging boundary");
+  check_merge_source(source, source_conn);
   if (tloops.empty()) fail("the target is closed (no boundary loop), expected an open merging boundary");
-  require_manifold(source, "the source");
   require_manifold(target, "the target");
   if (pairs.size() != sloops.size())
     fail(std::to_string(pairs.size()) + " loop pairs for a source with " + std::to_string(sloops.size()) +

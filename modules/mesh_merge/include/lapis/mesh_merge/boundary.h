@@ -53,6 +53,10 @@ struct BoundaryCorrespondence {
 void check_merge_input(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
                        const Connectivity& target_conn, const std::vector<LoopPair>& pairs);
 
+// The part of check_merge_input() that needs the source only (closed, non-manifold), with
+// the same messages.
+void check_merge_source(const TriMesh& source, const Connectivity& source_conn);
+
 // Arc-length curve parameterization between consecutive keys (thesis §3.3.1): a source vertex
 // a fraction f along the source arc from key k to key k+1 goes to the point a fraction f
 // along the target arc between the same keys. With one key the whole loop is one arc.

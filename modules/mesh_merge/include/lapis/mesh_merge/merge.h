@@ -6,6 +6,7 @@
 // only a band near the boundary deforms, user handles stay fixed, frames are kept.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "lapis/mesh_deform/implicit_laplacian.h"
@@ -43,7 +44,7 @@ struct MergeOptions {
 };
 
 struct MergeTimings {
-  double setup_ms = 0;   // correspondence, constraints, refinement, deformer precompute
+  double setup_ms = 0;   // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
   double solve_ms = 0;   // both implicit Laplacian solves and the polar decompositions
   double zip_ms = 0;
   double smooth_ms = 0;
@@ -66,10 +67,38 @@ struct MergeResult {
   MergeTimings timings;
 };
 
-// Merges source onto target along the pairs (one per source boundary loop). Throws
-// InvalidArgument from check_merge_input() for bad pairs, "mesh_merge::merge(): ..." for
-// options out of range or a handle out of range / on the boundary, and the errors of
-// zip_seams() and the deformer.
+// Precompute once, merge many (thesis §2.5: the factorizations depend only on the source and
+// on which vertices are constrained, not on where the constraints put them). The constructor
+// refines the source boundary and factorizes the implicit Laplacian system with every source
+// boundary vertex as a one-vertex handle; each merge() then costs correspondence, two
+// back-substitutions, the polar decompositions, zipping and smoothing — what an interactive
+// tool pays when the user moves a key correspondence or picks another target.
+class Merger {
+ public:
+  // Throws InvalidArgument "mesh_merge::merge(): ..." for options out of range or a handle out
+  // of range / on the boundary, and check_merge_input()'s errors about the source alone (closed,
+  // non-manifold).
+  explicit Merger(TriMesh source, MergeOptions options = {});
+  ~Merger();
+  Merger(const Merger&) = delete;
+  Merger& operator=(const Merger&) = delete;
+
+  // Throws check_merge_input()'s errors for bad pairs and zip_seams()'s errors.
+  MergeResult merge(const TriMesh& target, const std::vector<LoopPair>& pairs);
+
+  double precompute_ms() const { return precompute_ms_; }
+  const TriMesh& source() const { return source_; }
+
+ private:
+  struct Impl;
+  TriMesh source_;
+  MergeOptions options_;
+  std::unique_ptr<Impl> impl_;
+  double precompute_ms_ = 0;
+};
+
+// One-off convenience: Merger(source, options).merge(target, pairs), with the precompute time
+// counted in timings.setup_ms. Throws what Merger and Merger::merge() throw.
 MergeResult merge(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
                   const MergeOptions& options = {});
 
