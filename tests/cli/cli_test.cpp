@@ -83,3 +83,46 @@ TEST_CASE("cli: failures exit non-zero with one line naming the cause") {
   CHECK(usage.status == 2);
   CHECK(usage.output.find("lapis mesh: --in needs a value") == 0);
 }
+
+TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion") {
+  const fs::path d = scratch();
+  {
+    // A 3 x 3 vertex grid: the left column outside the ROI, the right column the handle.
+    std::ofstream obj(d / "grid.obj");
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) obj << "v " << i << " " << j << " 0\n";
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const int a = j * 3 + i + 1;
+        obj << "f " << a << " " << a + 1 << " " << a + 4 << "\nf " << a << " " << a + 4 << " " << a + 3 << "\n";
+      }
+    std::ofstream roi(d / "roi.txt");
+    roi << "1 2 4 5 7 8\n";
+    std::ofstream handles(d / "handles.json");
+    handles << R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]]}]})";
+  }
+  for (const std::string method : {"naive", "implicit", "arap"}) {
+    CAPTURE(method);
+    const Result r = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
+                               " --handles " + (d / "handles.json").string() + " --method " + method + " --out " +
+                               (d / "out.obj").string() + " --report " + (d / "report.json").string());
+    REQUIRE(r.status == 0);
+    std::ifstream report(d / "report.json");
+    const auto j = nlohmann::json::parse(report);
+    CHECK(j["frames"] == 1);
+    CHECK(j["distortion"]["edge_length"]["max"].get<double>() > 0);
+    CHECK(fs::file_size(d / "out.obj") > 0);
+  }
+  const Result bad = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
+                               " --handles " + (d / "handles.json").string() + " --method magic --out x.obj");
+  CHECK(bad.status == 2);
+  {
+    std::ofstream roi(d / "small_roi.txt");
+    roi << "1 4 7\n";
+  }
+  const Result outside = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "small_roi.txt").string() +
+                                   " --handles " + (d / "handles.json").string() + " --method naive --out x.obj");
+  CHECK(outside.status == 1);
+  CHECK(outside.output ==
+        "lapis deform: error: mesh_deform::Deformer::precompute(): region handle 0 vertex 2 is outside the ROI\n");
+}

@@ -24,6 +24,8 @@ struct ArapDeformer::Impl {
   std::vector<int> local;            // vertex -> index among free, -1 for constrained
   std::vector<int> fitted;           // vertices whose rotation a free vertex's row reads
   solver::Cholesky chol;
+  std::vector<Eigen::Vector3d> we;   // per stencil entry: w_ij (v_i − v_j), contiguous
+  std::vector<double> rest_sq;       // per vertex: Σ_j w_ij ‖v_i − v_j‖²
   std::vector<Eigen::Matrix3d> R;    // #V rotations
   Vertices previous;                 // last frame's result
   bool have_previous = false;
@@ -81,6 +83,14 @@ void ArapDeformer::setup(const Layout& layout) {
                               e.column() >= 0 ? m->free[static_cast<size_t>(e.column())] : -1);
   }
   m->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
+  m->we.resize(m->s.nbr.size());
+  m->rest_sq.assign(static_cast<size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int k = m->s.offsets[i]; k < m->s.offsets[i + 1]; ++k) {
+      const Eigen::Vector3d e = (mesh_.V.row(i) - mesh_.V.row(m->s.nbr[k])).transpose();
+      m->we[k] = m->s.w[k] * e;
+      m->rest_sq[i] += m->s.w[k] * e.squaredNorm();
+    }
   impl_ = std::move(m);
   stats_ = {};
   stats_.setup_ms = ms_since(t0);
@@ -98,6 +108,21 @@ void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Verti
 
   const int nf = static_cast<int>(m.free.size());
   const int nr = static_cast<int>(m.fitted.size());
+  // The part of the right-hand side fixed for the whole frame: − (L V)_i = − Σ_j w_ij e_ij and
+  // the constrained neighbours' displacements Σ_j w_ij d_j.
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> lap(nf, 3), frame_rhs(nf, 3);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nf; ++k) {
+    const int i = m.free[k];
+    Eigen::Vector3d l = Eigen::Vector3d::Zero(), c = Eigen::Vector3d::Zero();
+    for (int e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
+      l += m.we[e];
+      const int j = s.nbr[e];
+      if (m.local[j] < 0) c += s.w[e] * (targets.row(j) - V.row(j)).transpose();
+    }
+    lap.row(k) = l.transpose();
+    frame_rhs.row(k) = (c - l).transpose();
+  }
   solver::DenseMatrix b(nf, 3);
   double rot_ms = 0, solve_ms = 0, last_energy = -1;
   int it = 0, fallbacks = 0;
@@ -109,35 +134,26 @@ void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Verti
     for (int r = 0; r < nr; ++r) {
       const int i = m.fitted[r];
       Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-      double sq = 0;
-      const Eigen::Vector3d pi = V.row(i).transpose(), qi = out.row(i).transpose();
+      double sq = m.rest_sq[i];
+      const Eigen::Vector3d qi = out.row(i).transpose();
       for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-        const int j = s.nbr[k];
-        const Eigen::Vector3d e = pi - V.row(j).transpose();
-        const Eigen::Vector3d et = qi - out.row(j).transpose();
-        A.noalias() += (s.w[k] * et) * e.transpose();
-        sq += s.w[k] * (et.squaredNorm() + e.squaredNorm());
+        const Eigen::Vector3d et = qi - out.row(s.nbr[k]).transpose();
+        A.noalias() += et * m.we[k].transpose();
+        sq += s.w[k] * et.squaredNorm();
       }
       bool fell_back = false;
       m.R[i] = detail::nearest_rotation(A, &fell_back);
       fallbacks += fell_back;
       energy += sq - 2 * (m.R[i].transpose() * A).trace();
     }
-    // Right-hand side (Eq. 8): b_i = Σ_j w_ij/2 (R_i + R_j)(v_i − v_j), minus the rest
-    // Laplacian and the constrained neighbours' displacements.
+    // Right-hand side (Eq. 8): b_i = Σ_j w_ij/2 (R_i + R_j)(v_i − v_j)
+    //                              = R_i (L V)_i / 2 + Σ_j R_j w_ij e_ij / 2, plus the frame part.
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < nf; ++k) {
       const int i = m.free[k];
-      Eigen::Vector3d acc = Eigen::Vector3d::Zero();
-      const Eigen::Vector3d pi = V.row(i).transpose();
-      for (int l = s.offsets[i]; l < s.offsets[i + 1]; ++l) {
-        const int j = s.nbr[l];
-        const Eigen::Vector3d e = pi - V.row(j).transpose();
-        Eigen::Vector3d term = 0.5 * ((m.R[i] + m.R[j]) * e) - e;
-        if (m.local[j] < 0) term += (targets.row(j) - V.row(j)).transpose();
-        acc += s.w[l] * term;
-      }
-      b.row(k) = acc.transpose();
+      Eigen::Vector3d acc = m.R[i] * lap.row(k).transpose();
+      for (int l = s.offsets[i]; l < s.offsets[i + 1]; ++l) acc.noalias() += m.R[s.nbr[l]] * m.we[l];
+      b.row(k) = 0.5 * acc.transpose() + frame_rhs.row(k);
     }
     rot_ms += ms_since(t0);
     ++it;

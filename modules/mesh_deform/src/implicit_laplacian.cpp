@@ -4,8 +4,10 @@
 #include <cmath>
 
 #include "implicit_rest.h"
+#include "lapis/geometry/polar.h"
 #include "lapis/solver/least_squares.h"
 #include "rotation_fit.h"
+#include "rotation_guide.h"
 #include "sparse_rows.h"
 #include "stencil.h"
 
@@ -14,6 +16,10 @@ namespace lapis::mesh_deform {
 using detail::SparseRows;
 
 namespace {
+
+// Guide bands between the fixed region and a guided handle: 8 bands split the accumulated
+// angle into 9 steps, so up to 9π stays below π per step.
+constexpr int kGuideLevels = 8;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -33,6 +39,16 @@ struct ImplicitLaplacianDeformer::Impl {
   solver::LeastSquares first{1};
   solver::LeastSquares second{1};
   bool has_coherence = false;
+  // Kept for the large-rotation guide system, built on the first frame that needs it.
+  detail::Stencil stencil;
+  solver::SparseMatrix A_L, A_R, A_T;
+  double weight_R = 0, weight_T = 0;
+  std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
+  std::vector<int> guided_for;               // handles the guide system was built for
+  std::unique_ptr<solver::LeastSquares> guided;
+  std::vector<int> guide_rows;                     // vertex of each guide constraint
+  solver::DenseMatrix guide_weights;               // φ_k at each guide vertex (rows) per handle
+  solver::DenseMatrix guide_rest;                  // M_c(v') of the guide rows
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
 };
@@ -116,12 +132,19 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   }
 
   m->first = solver::LeastSquares(n);
-  const solver::SparseMatrix A_L = EL.matrix(), A_R = ER.matrix(), A_T = T.matrix();
+  m->A_L = EL.matrix();
+  m->A_R = ER.matrix();
+  m->A_T = T.matrix();
+  const solver::SparseMatrix &A_L = m->A_L, &A_R = m->A_R, &A_T = m->A_T;
+  m->weight_R = options_.coherence_weight * h * h;
+  m->weight_T = options_.transform_weight * h * h;
   m->first.add_block(A_L, 1.0, "E_L (Eq. 2.6)");
-  if (A_R.rows() > 0) m->first.add_block(A_R, options_.coherence_weight * h * h, "E_R (Eq. 2.7)");
-  if (A_T.rows() > 0) m->first.add_block(A_T, options_.transform_weight * h * h, "M_c = W_c (Eq. 2.8)");
+  if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)");
+  if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
   m->first.set_fixed(m->constrained);
   m->first.precompute();
+  m->stencil = s;
+  m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
   m->has_coherence = A_R.rows() > 0;
   m->transform_rest = A_T * solver::DenseMatrix(P);
 
@@ -149,6 +172,54 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   if (options_.shearing != ShearingRemoval::None) stats_.second_factor_nnz = m->second.factor().stats().nnz_L;
   impl_ = std::move(m);
   stats_.setup_ms = ms_since(t0);
+}
+
+void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
+  Impl& m = *impl_;
+  const detail::WorkMesh& w = m.w;
+  const int n = w.mesh.num_vertices();
+  // Smooth fields φ_k, one per region handle: 1 on handle k, 0 on the fixed region and the
+  // other handles, min ‖D φ‖² in between (one more factorization, of the small Laplacian
+  // system). Σ_k φ_k blends the handles' rotation vectors at each guide vertex, so handles
+  // that share a transform impose exactly that transform.
+  SparseRows D(n);
+  for (int i : m.free) detail::add_laplacian_row(D, m.stencil, i);
+  solver::LeastSquares field(n);
+  field.add_block(D.matrix(), 1.0, "smooth field");
+  field.set_fixed(m.constrained);
+  field.precompute();
+  const int nh = static_cast<int>(m.accumulated.size());
+  solver::DenseMatrix ends = solver::DenseMatrix::Zero(static_cast<Eigen::Index>(m.constrained.size()), nh);
+  for (size_t k = 0; k < m.constrained.size(); ++k)
+    if (w.role[m.constrained[k]] == VertexRole::RegionHandle) ends(k, w.handle_of[m.constrained[k]]) = 1;
+  const solver::DenseMatrix fields = field.solve({solver::DenseMatrix()}, ends);
+  std::vector<char> eligible(static_cast<size_t>(n), 0);
+  for (int v : m.free) eligible[v] = w.active[v];
+  m.guide_rows.clear();
+  // Bands across the fields of the handles turned far: there the blend must be pinned down.
+  for (int h : handles)
+    for (const auto& row : detail::level_bands(m.stencil, fields.col(h), eligible, kGuideLevels)) {
+      eligible[row.first] = 0;
+      m.guide_rows.push_back(row.first);
+    }
+  m.guide_weights.resize(static_cast<Eigen::Index>(m.guide_rows.size()), nh);
+  for (size_t t = 0; t < m.guide_rows.size(); ++t) m.guide_weights.row(static_cast<Eigen::Index>(t)) = fields.row(m.guide_rows[t]);
+  SparseRows Gr(n);
+  for (int c : m.guide_rows)
+    for (int a = 0; a < 3; ++a) {
+      Gr.begin_row();
+      for (int k = m.G.offsets[c]; k < m.G.offsets[c + 1]; ++k) Gr.add(m.G.vertex[k], m.G.g[k](a));
+    }
+  const solver::SparseMatrix A_G = Gr.matrix();
+  m.guided = std::make_unique<solver::LeastSquares>(n);
+  m.guided->add_block(m.A_L, 1.0, "E_L (Eq. 2.6)");
+  if (m.A_R.rows() > 0) m.guided->add_block(m.A_R, m.weight_R, "E_R (Eq. 2.7)");
+  if (m.A_T.rows() > 0) m.guided->add_block(m.A_T, m.weight_T, "M_c = W_c (Eq. 2.8)");
+  m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
+  m.guided->set_fixed(m.constrained);
+  m.guided->precompute();
+  m.guide_rest = A_G * solver::DenseMatrix(w.displaced);
+  m.guided_for = handles;
 }
 
 void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
@@ -186,7 +257,38 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     }
     rhs.push_back(std::move(r));
   }
-  const solver::DenseMatrix X = solver::DenseMatrix(P) + m.first.solve(rhs, fixed);
+  // Large rotations: continue each handle's angle from the previous frame (§2.5's limit).
+  std::vector<int> big;
+  for (size_t h = 0; h < m.accumulated.size(); ++h) {
+    const Eigen::Matrix3d L = transforms.regions[h].topLeftCorner<3, 3>();
+    m.accumulated[h] = detail::unwrap_rotation(geometry::polar_rotation(L), m.accumulated[h]);
+    if (options_.large_rotations && m.accumulated[h].norm() > options_.guide_angle) big.push_back(static_cast<int>(h));
+  }
+  stats_.guided = !big.empty();
+  solver::DenseMatrix X;
+  if (big.empty()) {
+    X = solver::DenseMatrix(P) + m.first.solve(rhs, fixed);
+  } else {
+    if (big != m.guided_for) build_guide(big);
+    solver::DenseMatrix g = -m.guide_rest;
+    // Each guide vertex takes the φ-blend of the handles' accumulated rotation vectors and
+    // log-scales (the fixed region contributes the identity with weight 1 − Σ φ_k).
+    std::vector<double> log_scale(m.accumulated.size());
+    for (size_t h = 0; h < m.accumulated.size(); ++h)
+      log_scale[h] = std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+    for (size_t t = 0; t < m.guide_rows.size(); ++t) {
+      Eigen::Vector3d r = Eigen::Vector3d::Zero();
+      double ls = 0;
+      for (size_t h = 0; h < m.accumulated.size(); ++h) {
+        const double phi = m.guide_weights(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(h));
+        r += phi * m.accumulated[h];
+        ls += phi * log_scale[h];
+      }
+      g.middleRows(static_cast<Eigen::Index>(3 * t), 3) += (std::exp(ls) * detail::rotation_of(r)).transpose();
+    }
+    rhs.push_back(std::move(g));
+    X = solver::DenseMatrix(P) + m.guided->solve(rhs, fixed);
+  }
   stats_.first_solve_ms = ms_since(t0);
 
   if (options_.shearing == ShearingRemoval::None) {

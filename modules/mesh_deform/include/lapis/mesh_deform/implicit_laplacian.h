@@ -28,6 +28,14 @@ struct ImplicitOptions {
   // independent of the mesh's scale, and equal to Eq. 2.8 on a unit-edge mesh.
   double coherence_weight = 1.0;  // Eq. 2.7 term
   double transform_weight = 1.0;  // Eq. 2.8 transformation constraints M_c = W_c at handles and at the fixed border
+  // Handle rotations accumulated over a drag (each deform() call continues the previous
+  // frame's angle) beyond guide_angle switch to a system with guide transformation
+  // constraints on bands between the fixed region and the handle, each turned by its share of
+  // the angle: the "more handles" remedy of §2.5, automated, so a handle turned past π is
+  // honoured. The guide system is factorized on the first frame that needs it. Off: the
+  // thesis' plain method (which takes the smaller angle).
+  bool large_rotations = true;
+  double guide_angle = 0.5 * 3.141592653589793;  // below it both systems agree closely
 };
 
 // What the last deform() did and cost.
@@ -36,6 +44,7 @@ struct ImplicitStats {
   int degenerate_vertices = 0;   // displaced by Eq. 2.9 (incl. boundary variants)
   int inserted_vertices = 0;     // midpoints inserted for boundary vertices of valence < 3
   int polar_fallbacks = 0;       // rotation fits that needed the SVD fallback (last frame)
+  bool guided = false;           // last frame used the large-rotation guide system
   long long first_factor_nnz = 0;   // non-zeros of the Cholesky factors of Eq. 2.8's and
   long long second_factor_nnz = 0;  // Eq. 2.10's normal matrices
   double setup_ms = 0;           // assembly + both factorizations
@@ -50,7 +59,8 @@ class ImplicitLaplacianDeformer final : public Deformer {
   explicit ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options = {});
   ~ImplicitLaplacianDeformer() override;
 
-  // Changing options re-runs setup on the next deform().
+  // Changing options re-runs setup on the next deform(), which also restarts the drag (the
+  // accumulated handle rotations).
   void set_options(const ImplicitOptions& options);
   const ImplicitOptions& options() const { return options_; }
   const ImplicitStats& stats() const { return stats_; }
@@ -61,6 +71,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
   void solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) override;
 
  private:
+  void build_guide(const std::vector<int>& handles);
   struct Impl;
   ImplicitOptions options_;
   ImplicitStats stats_;

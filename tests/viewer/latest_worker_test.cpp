@@ -1,0 +1,50 @@
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+
+#include "lapis/viewer/latest_worker.h"
+
+using lapis::viewer::LatestWorker;
+using namespace std::chrono_literals;
+
+TEST_CASE("viewer: the latest worker drops stale jobs and delivers the newest result") {
+  LatestWorker<int> worker;
+  std::atomic<bool> release{false};
+  std::atomic<int> ran{0};
+  worker.submit([&] {
+    while (!release) std::this_thread::sleep_for(1ms);
+    ++ran;
+    return 1;
+  });
+  while (!worker.busy()) std::this_thread::sleep_for(1ms);
+  std::this_thread::sleep_for(20ms);  // job 1 is running now
+  for (int k = 2; k <= 10; ++k)
+    worker.submit([&ran, k] {
+      ++ran;
+      return k;
+    });
+  CHECK(worker.busy());
+  release = true;
+  worker.wait();
+  CHECK(!worker.busy());
+  // Job 1 ran (it had started), jobs 2..9 were replaced before starting, job 10 ran.
+  CHECK(ran == 2);
+  const auto r = worker.take();
+  REQUIRE(r.has_value());
+  CHECK(*r == 10);
+  CHECK(!worker.take().has_value());  // taken once
+  CHECK(worker.submitted() == 10);
+  CHECK(worker.completed() == 2);
+}
+
+TEST_CASE("viewer: the latest worker hands a job's exception to take()") {
+  LatestWorker<int> worker;
+  worker.submit([]() -> int { throw std::runtime_error("solve failed"); });
+  worker.wait();
+  CHECK_THROWS_WITH(worker.take(), "solve failed");
+  worker.submit([] { return 7; });
+  worker.wait();
+  CHECK(worker.take() == 7);
+}
