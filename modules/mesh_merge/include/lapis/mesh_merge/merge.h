@@ -24,6 +24,11 @@ enum class MergeMode {
 inline mesh_deform::ImplicitOptions merge_implicit_defaults() {
   mesh_deform::ImplicitOptions o;
   o.shearing = mesh_deform::ShearingRemoval::ScaleFeatures;
+  // The guide bands for rotations accumulated over a drag blend from a fixed region towards
+  // the handles; a merge is a one-shot placement with no fixed region, and its boundary
+  // rotations carry the source's arbitrary orientation, so guides would make the result
+  // depend on the configuration (§3.3.1 requires it not to).
+  o.large_rotations = false;
   return o;
 }
 
