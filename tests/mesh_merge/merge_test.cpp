@@ -167,7 +167,6 @@ TEST_CASE("mesh_merge: one precomputed Merger gives the one-off results for othe
       const MergeResult fresh = merge(src, *tgt, pairs);
       REQUIRE(reused.mesh.F == fresh.mesh.F);
       CHECK((reused.mesh.V - fresh.mesh.V).norm() <= 1e-12 * fresh.mesh.V.norm());
-      CHECK(reused.timings.setup_ms < fresh.timings.setup_ms);
     }
   }
 }
