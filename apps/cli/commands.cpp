@@ -5,12 +5,14 @@ namespace lapis::cli {
 // One declaration and one table row per subcommand (each defined in its cmd_<name>.cpp).
 extern const Command kMeshCommand;
 extern const Command kHairCommand;
+extern const Command kMergeCommand;
 extern const Command kDeformCommand;
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       kMeshCommand,
       kHairCommand,
+      kMergeCommand,
       kDeformCommand,
   };
   return all;

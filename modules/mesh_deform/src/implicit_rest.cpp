@@ -85,6 +85,10 @@ void insert_midpoints(WorkMesh& w, const Stencil& s) {
     } else if (rp == VertexRole::RegionHandle && rq == rp && w.handle_of[p] == w.handle_of[q]) {
       r = VertexRole::RegionHandle;
       h = w.handle_of[p];
+    } else if (rp != VertexRole::Fixed || rq != VertexRole::Fixed) {
+      // Ends held by different handles (merging makes every boundary vertex its own handle):
+      // no single transform carries the midpoint, so the solve places it.
+      r = VertexRole::Free;
     }
     w.role.push_back(r);
     w.handle_of.push_back(h);

@@ -1,0 +1,25 @@
+// Making merge inputs from whole meshes: cut a part off by a plane (a head off a body), with
+// the maps back to the original vertices so key correspondences can be named on both parts.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lapis/geometry/tri_mesh.h"
+
+namespace lapis::mesh_merge {
+
+struct PlaneCut {
+  geometry::TriMesh above, below;   // faces whose centroid is on the normal's side / the other
+  std::vector<int> above_to_mesh;   // new vertex -> original vertex
+  std::vector<int> below_to_mesh;
+};
+
+// Splits mesh along its edges by the plane through `point` with `normal` (faces go by their
+// centroid, so the cut loops are the edge paths nearest the plane). Only the largest
+// connected component of each side is kept, so small islands do not add loops. Throws
+// InvalidArgument "mesh_merge::cut_by_plane(): ..." for a zero normal or a side left empty.
+PlaneCut cut_by_plane(const geometry::TriMesh& mesh, const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
+
+}  // namespace lapis::mesh_merge

@@ -1,0 +1,110 @@
+// Poisson mesh merging (thesis §3.3): deform a source part so its open boundary loops meet
+// the target's, keeping its details (implicit Laplacian editing, thesis ch. 2), then zip and
+// smooth the seam. Configuration-independent (§3.3.1): the whole source is the ROI and the
+// boundary carries position + rotation/scale constraints, so the result does not depend on
+// where the source was placed. Configuration-dependent (§3.3.2): the user's placement counts;
+// only a band near the boundary deforms, user handles stay fixed, frames are kept.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_merge/boundary.h"
+
+namespace lapis::mesh_merge {
+
+enum class MergeMode {
+  Independent,  // §3.3.1
+  Dependent,    // §3.3.2
+};
+
+// Eq. 2.11: the merged part's features scale with the boundary (§2.4.4 calls it necessary for
+// configuration-independent merging).
+inline mesh_deform::ImplicitOptions merge_implicit_defaults() {
+  mesh_deform::ImplicitOptions o;
+  o.shearing = mesh_deform::ShearingRemoval::ScaleFeatures;
+  // The guide bands for rotations accumulated over a drag blend from a fixed region towards
+  // the handles; a merge is a one-shot placement with no fixed region, and its boundary
+  // rotations carry the source's arbitrary orientation, so guides would make the result
+  // depend on the configuration (§3.3.1 requires it not to).
+  o.large_rotations = false;
+  return o;
+}
+
+struct MergeOptions {
+  MergeMode mode = MergeMode::Independent;
+  mesh_deform::ImplicitOptions implicit = merge_implicit_defaults();  // thesis §2.4, Eq. 2.11
+  int smooth_iterations = 3;   // §3.3.1 "several iterations of the umbrella operator"; 0: none
+  int smooth_rings = 1;        // seam band: strip vertices and this many rings around them
+  double smooth_lambda = 0.5;  // umbrella step
+  // §2.5 local refinement of a short boundary: below refine_ratio * sqrt(#V) boundary vertices
+  // (Independent mode, where the boundary is the whole boundary condition).
+  double refine_ratio = 1.0;
+  int refine_levels = 2;
+  // Dependent mode (§3.3.2): ROI = source vertices within roi_width (edge-path distance) of the
+  // source boundary; 0 picks the mean boundary loop diameter (perimeter / π).
+  double roi_width = 0;
+  std::vector<int> handles;  // source vertices kept exactly where they are (Dependent mode)
+};
+
+struct MergeTimings {
+  double setup_ms = 0;   // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
+  double solve_ms = 0;   // both implicit Laplacian solves and the polar decompositions
+  double zip_ms = 0;
+  double smooth_ms = 0;
+  double total_ms = 0;
+};
+
+struct MergeResult {
+  TriMesh mesh;                   // the merged mesh: target part first, then the source
+  std::vector<int> target_map;    // #V_target: merged index, -1 for vertices removed with the band
+  std::vector<int> source_map;    // #V_source (as given): merged index
+  TriMesh source_rest;            // the source the solve ran on (refined; as given + appended vertices)
+  Vertices source_deformed;       // its positions after the solve, before zipping and smoothing
+  std::vector<int> source_boundary;  // source_rest vertices constrained to the target boundary
+  std::vector<int> strip_faces;   // merged faces of the re-triangulated gaps
+  std::vector<int> seam_vertices; // merged vertices on the strips
+  std::vector<int> smoothed;      // merged vertices the umbrella operator moved (the seam band)
+  int refine_levels = 0;
+  int roi_vertices = 0;
+  mesh_deform::ImplicitStats solver;
+  MergeTimings timings;
+};
+
+// Precompute once, merge many (thesis §2.5: the factorizations depend only on the source and
+// on which vertices are constrained, not on where the constraints put them). The constructor
+// refines the source boundary and factorizes the implicit Laplacian system with every source
+// boundary vertex as a one-vertex handle; each merge() then costs correspondence, two
+// back-substitutions, the polar decompositions, zipping and smoothing — what an interactive
+// tool pays when the user moves a key correspondence or picks another target.
+class Merger {
+ public:
+  // Throws InvalidArgument "mesh_merge::merge(): ..." for options out of range or a handle out
+  // of range / on the boundary, and check_merge_input()'s errors about the source alone (closed,
+  // non-manifold).
+  explicit Merger(TriMesh source, MergeOptions options = {});
+  ~Merger();
+  Merger(const Merger&) = delete;
+  Merger& operator=(const Merger&) = delete;
+
+  // Throws check_merge_input()'s errors for bad pairs and zip_seams()'s errors.
+  MergeResult merge(const TriMesh& target, const std::vector<LoopPair>& pairs);
+
+  double precompute_ms() const { return precompute_ms_; }
+  const TriMesh& source() const { return source_; }
+
+ private:
+  struct Impl;
+  TriMesh source_;
+  MergeOptions options_;
+  std::unique_ptr<Impl> impl_;
+  double precompute_ms_ = 0;
+};
+
+// One-off convenience: Merger(source, options).merge(target, pairs), with the precompute time
+// counted in timings.setup_ms. Throws what Merger and Merger::merge() throw.
+MergeResult merge(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
+                  const MergeOptions& options = {});
+
+}  // namespace lapis::mesh_merge

@@ -1,0 +1,51 @@
+#include "lapis/mesh_merge/cut.h"
+
+#include <algorithm>
+#include <string>
+
+#include "lapis/core/error.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/mesh_edit.h"
+
+namespace lapis::mesh_merge {
+
+namespace {
+
+// The faces of `keep` in the largest face component of `part`, as a mesh with its map to mesh.
+geometry::TriMesh largest_part(const geometry::TriMesh& mesh, const std::vector<int>& faces, std::vector<int>& to_mesh) {
+  geometry::TriMesh part{mesh.V, geometry::Faces(static_cast<Eigen::Index>(faces.size()), 3)};
+  for (size_t k = 0; k < faces.size(); ++k) part.F.row(static_cast<Eigen::Index>(k)) = mesh.F.row(faces[k]);
+  const geometry::Components comp = geometry::connected_components(part);
+  std::vector<int> size(static_cast<size_t>(comp.count), 0);
+  for (int c : comp.face_component) ++size[c];
+  const int best = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  std::vector<int> drop;
+  for (int f = 0; f < part.num_faces(); ++f)
+    if (comp.face_component[f] != best) drop.push_back(f);
+  std::vector<int> map;
+  geometry::TriMesh out = geometry::remove_faces(part, drop, &map);
+  to_mesh.assign(static_cast<size_t>(out.num_vertices()), -1);
+  for (int v = 0; v < static_cast<int>(map.size()); ++v)
+    if (map[v] >= 0) to_mesh[map[v]] = v;
+  return out;
+}
+
+}  // namespace
+
+PlaneCut cut_by_plane(const geometry::TriMesh& mesh, const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  constexpr const char* fn = "mesh_merge::cut_by_plane()";
+  if (!(normal.norm() > 0)) throw InvalidArgument(std::string(fn) + ": zero plane normal");
+  geometry::require_indices_in_range(mesh, fn);
+  std::vector<int> up, down;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d c = (mesh.V.row(mesh.F(f, 0)) + mesh.V.row(mesh.F(f, 1)) + mesh.V.row(mesh.F(f, 2))) / 3.0;
+    ((c - point).dot(normal) > 0 ? up : down).push_back(f);
+  }
+  if (up.empty() || down.empty()) throw InvalidArgument(std::string(fn) + ": the plane leaves one side empty");
+  PlaneCut cut;
+  cut.above = largest_part(mesh, up, cut.above_to_mesh);
+  cut.below = largest_part(mesh, down, cut.below_to_mesh);
+  return cut;
+}
+
+}  // namespace lapis::mesh_merge

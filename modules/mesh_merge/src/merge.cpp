@@ -1,0 +1,163 @@
+#include "lapis/mesh_merge/merge.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "lapis/geometry/dijkstra.h"
+#include "lapis/mesh_merge/constraints.h"
+#include "lapis/mesh_merge/refine.h"
+#include "lapis/mesh_merge/zip.h"
+
+namespace lapis::mesh_merge {
+
+namespace {
+
+constexpr const char* kFn = "mesh_merge::merge()";
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void check_options(const TriMesh& source, const MergeOptions& o) {
+  auto fail = [](const std::string& what) { throw InvalidArgument(std::string(kFn) + ": " + what); };
+  if (o.smooth_iterations < 0 || o.smooth_rings < 0) fail("smooth_iterations and smooth_rings must be >= 0");
+  if (!(o.smooth_lambda > 0 && o.smooth_lambda <= 1)) fail("smooth_lambda must be in (0, 1]");
+  if (!(o.refine_ratio >= 0) || o.refine_levels < 0) fail("refine_ratio and refine_levels must be >= 0");
+  if (!(o.roi_width >= 0) || !std::isfinite(o.roi_width)) fail("roi_width must be finite and >= 0");
+  for (int h : o.handles)
+    if (h < 0 || h >= source.num_vertices()) fail("handle vertex " + std::to_string(h) + " out of range");
+}
+
+// §3.3.2: the vertices near the boundary deform, the rest of the source and the handles stay.
+std::vector<int> dependent_roi(const TriMesh& source, const Connectivity& conn, const MergeOptions& o) {
+  std::vector<int> boundary;
+  double perimeter = 0;
+  const auto& loops = conn.boundary_loops();
+  for (const auto& loop : loops) {
+    const size_t n = loop.size();
+    for (size_t i = 0; i < n; ++i) {
+      boundary.push_back(loop[i]);
+      perimeter += (source.V.row(loop[(i + 1) % n]) - source.V.row(loop[i])).norm();
+    }
+  }
+  const double width = o.roi_width > 0 ? o.roi_width : perimeter / (std::numbers::pi * double(loops.size()));
+  geometry::DijkstraOptions d;
+  d.max_distance = width;
+  const geometry::ShortestPaths sp = geometry::dijkstra(conn, boundary, geometry::edge_length_cost(source), d);
+  std::vector<char> keep(static_cast<size_t>(source.num_vertices()), 0);
+  for (int h : o.handles) keep[h] = 1;
+  for (int v : boundary)
+    if (keep[v]) throw InvalidArgument(std::string(kFn) + ": handle vertex " + std::to_string(v) + " lies on the merging boundary");
+  std::vector<int> roi;
+  for (int v = 0; v < source.num_vertices(); ++v)
+    if (sp.distance[v] <= width && !keep[v]) roi.push_back(v);
+  return roi;
+}
+
+}  // namespace
+
+struct Merger::Impl {
+  Connectivity conn_in;   // of the source as given: pairs are checked against it
+  TriMesh rest;           // the refined source the deformer works on
+  Connectivity conn;
+  int refine_levels = 0;
+  int roi_vertices = 0;
+  std::vector<int> handle_of;  // rest vertex -> region handle index, -1 for non-boundary vertices
+  std::unique_ptr<mesh_deform::ImplicitLaplacianDeformer> deformer;
+  Impl(const TriMesh& source, TriMesh refined, int levels)
+      : conn_in(source), rest(std::move(refined)), conn(rest), refine_levels(levels) {}
+};
+
+Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)), options_(std::move(options)) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_options(source_, options_);
+  check_merge_source(source_, Connectivity(source_));
+  TriMesh refined = source_;
+  int levels = 0;
+  if (options_.mode == MergeMode::Independent)
+    levels = refine_short_boundary(refined, options_.refine_ratio, options_.refine_levels);
+  impl_ = std::make_unique<Impl>(source_, std::move(refined), levels);
+  Impl& m = *impl_;
+  mesh_deform::Selection sel;
+  if (options_.mode == MergeMode::Dependent) {
+    sel.roi = dependent_roi(m.rest, m.conn, options_);
+  } else {
+    sel.roi.resize(static_cast<size_t>(m.rest.num_vertices()));
+    for (int v = 0; v < m.rest.num_vertices(); ++v) sel.roi[v] = v;
+  }
+  m.roi_vertices = static_cast<int>(sel.roi.size());
+  m.handle_of.assign(static_cast<size_t>(m.rest.num_vertices()), -1);
+  for (const auto& loop : m.conn.boundary_loops())
+    for (int v : loop) {
+      m.handle_of[v] = static_cast<int>(sel.region_handles.size());
+      sel.region_handles.push_back({v});
+    }
+  m.deformer = std::make_unique<mesh_deform::ImplicitLaplacianDeformer>(m.rest, options_.implicit);
+  m.deformer->set_selection(std::move(sel));
+  m.deformer->precompute();
+  precompute_ms_ = ms_since(t0);
+}
+
+Merger::~Merger() = default;
+
+MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pairs) {
+  const auto t_total = std::chrono::steady_clock::now();
+  auto t0 = t_total;
+  Impl& m = *impl_;
+  MergeResult r;
+  const Connectivity tconn(target);
+  // Checked on the source as given, so errors name the user's indices; refinement only
+  // appended vertices, so the keys mean the same on the refined source.
+  check_merge_input(source_, m.conn_in, target, tconn, pairs);
+  const std::vector<BoundaryCorrespondence> corr = correspond_boundaries(m.rest, m.conn, target, tconn, pairs);
+  const std::vector<BoundaryConstraint> cons =
+      boundary_constraints(m.rest, target, corr, options_.mode == MergeMode::Dependent);
+  mesh_deform::Selection order;
+  mesh_deform::HandleTransforms by_pair, tf;
+  add_region_handles(m.rest, cons, order, by_pair);
+  tf.regions.resize(by_pair.regions.size());
+  for (size_t k = 0; k < cons.size(); ++k) {
+    tf.regions[m.handle_of[cons[k].vertex]] = by_pair.regions[k];
+    r.source_boundary.push_back(cons[k].vertex);
+  }
+  r.source_rest = m.rest;
+  r.refine_levels = m.refine_levels;
+  r.roi_vertices = m.roi_vertices;
+  r.timings.setup_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  r.source_deformed = m.deformer->deform(tf);
+  r.solver = m.deformer->stats();
+  r.timings.solve_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  ZipResult z = zip_seams(target, TriMesh{r.source_deformed, m.rest.F}, corr);
+  r.mesh = std::move(z.mesh);
+  r.target_map = std::move(z.target_map);
+  r.source_map.assign(z.source_map.begin(), z.source_map.begin() + source_.num_vertices());
+  r.strip_faces = std::move(z.strip_faces);
+  r.seam_vertices = std::move(z.seam_vertices);
+  r.timings.zip_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  if (options_.smooth_iterations > 0) {
+    r.smoothed = seam_band(r.mesh, r.seam_vertices, options_.smooth_rings);
+    umbrella_smooth(r.mesh, r.smoothed, options_.smooth_iterations, options_.smooth_lambda);
+  }
+  r.timings.smooth_ms = ms_since(t0);
+  r.timings.total_ms = ms_since(t_total);
+  return r;
+}
+
+MergeResult merge(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
+                  const MergeOptions& options) {
+  Merger merger(source, options);
+  MergeResult r = merger.merge(target, pairs);
+  r.timings.setup_ms += merger.precompute_ms();
+  r.timings.total_ms += merger.precompute_ms();
+  return r;
+}
+
+}  // namespace lapis::mesh_merge

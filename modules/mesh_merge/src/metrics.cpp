@@ -1,0 +1,146 @@
+#include "lapis/mesh_merge/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "lapis/geometry/laplacian.h"
+#include "lapis/geometry/normals.h"
+#include "lapis/geometry/polar.h"
+
+namespace lapis::mesh_merge {
+
+namespace {
+
+double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+}  // namespace
+
+double bbox_diagonal(const Vertices& V) {
+  if (V.rows() == 0) return 0;
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+std::vector<double> dihedral_deviation_deg(const TriMesh& mesh, const std::vector<int>& faces) {
+  const Connectivity conn(mesh);
+  const Vertices N = geometry::face_normals(mesh);
+  std::vector<char> want(static_cast<size_t>(conn.num_edges()), faces.empty() ? 1 : 0);
+  for (int f : faces)
+    for (int k = 0; k < 3; ++k) want[conn.face_edge(f, k)] = 1;
+  std::vector<double> out;
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    if (!want[e] || conn.edge_face_count(e) != 2) continue;
+    const auto [f, g] = conn.edge_faces(e);
+    out.push_back(deg(angle_between(N.row(f).transpose(), N.row(g).transpose())));
+  }
+  return out;
+}
+
+SeamQuality seam_quality(const TriMesh& target, const MergeResult& r) {
+  SeamQuality q;
+  const Connectivity conn(r.mesh);
+  std::vector<char> on_seam(static_cast<size_t>(r.mesh.num_vertices()), 0);
+  for (int v : r.seam_vertices) on_seam[v] = 1;
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    const auto [a, b] = conn.edges()[e];
+    if (conn.is_boundary_edge(e) && on_seam[a] && on_seam[b]) ++q.seam_boundary_edges;
+  }
+  geometry::ValidationOptions vo;
+  vo.check_duplicates = false;
+  vo.check_orientation = false;
+  const geometry::ValidationReport rep = geometry::validate(r.mesh, vo);
+  q.non_manifold_edges = static_cast<int>(rep.non_manifold_edges.size());
+  q.non_manifold_vertices = static_cast<int>(rep.non_manifold_vertices.size());
+  q.degenerate_faces = static_cast<int>(rep.degenerate_faces.size());
+
+  double min_angle = 180;
+  for (int f : r.strip_faces)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d p = r.mesh.V.row(r.mesh.F(f, k));
+      const Eigen::Vector3d a = r.mesh.V.row(r.mesh.F(f, (k + 1) % 3)).transpose() - p;
+      const Eigen::Vector3d b = r.mesh.V.row(r.mesh.F(f, (k + 2) % 3)).transpose() - p;
+      min_angle = std::min(min_angle, deg(angle_between(a, b)));
+    }
+  q.min_strip_angle_deg = r.strip_faces.empty() ? 0 : min_angle;
+
+  std::vector<char> smoothed(static_cast<size_t>(r.mesh.num_vertices()), 0);
+  for (int v : r.smoothed) smoothed[v] = 1;
+  double moved = 0;
+  for (int v = 0; v < target.num_vertices(); ++v) {
+    const int m = r.target_map[v];
+    if (m >= 0 && !smoothed[m]) moved = std::max(moved, (r.mesh.V.row(m) - target.V.row(v)).norm());
+  }
+  q.max_target_displacement = moved / std::max(bbox_diagonal(target.V), 1e-300);
+
+  const std::vector<double> seam = dihedral_deviation_deg(r.mesh, r.strip_faces);
+  if (!seam.empty()) {
+    double sum = 0;
+    for (double a : seam) sum += a;
+    q.seam_dihedral_mean_deg = sum / double(seam.size());
+    q.seam_dihedral_max_deg = *std::max_element(seam.begin(), seam.end());
+  }
+  std::vector<double> own = dihedral_deviation_deg(target);
+  if (!own.empty()) {
+    double sum = 0;
+    for (double a : own) sum += a;
+    q.target_dihedral_mean_deg = sum / double(own.size());
+    const size_t k = std::min(own.size() - 1, static_cast<size_t>(0.95 * double(own.size())));
+    std::nth_element(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(k), own.end());
+    q.target_dihedral_p95_deg = own[k];
+  }
+  return q;
+}
+
+DetailPreservation detail_preservation(const TriMesh& source, const MergeResult& r) {
+  DetailPreservation d;
+  const int n = source.num_vertices();
+  const Connectivity conn(source);
+  Vertices merged(n, 3);
+  for (int v = 0; v < n; ++v) merged.row(v) = r.mesh.V.row(r.source_map[v]);
+  std::vector<int> interior;
+  for (int v = 0; v < n; ++v)
+    if (!conn.is_boundary_vertex(v) && !conn.is_isolated_vertex(v)) interior.push_back(v);
+  if (interior.empty()) return d;
+
+  const Eigen::SparseMatrix<double> L = geometry::cotan_laplacian(source);
+  const Eigen::MatrixX3d delta = L * source.V, now = L * merged;
+  double num = 0, den = 0;
+  for (int v : interior) {
+    const auto nb = conn.vertex_neighbors(v);
+    Eigen::MatrixX3d from(nb.size() + 1, 3), to(nb.size() + 1, 3);
+    from.row(0) = source.V.row(v);
+    to.row(0) = merged.row(v);
+    for (size_t k = 0; k < nb.size(); ++k) {
+      from.row(static_cast<Eigen::Index>(k + 1)) = source.V.row(nb[k]);
+      to.row(static_cast<Eigen::Index>(k + 1)) = merged.row(nb[k]);
+    }
+    const geometry::Similarity3 s = geometry::fit_similarity(from, to);
+    const Eigen::Vector3d Td = s.linear() * delta.row(v).transpose();
+    num += (now.row(v).transpose() - Td).squaredNorm();
+    den += Td.squaredNorm();
+  }
+  d.laplacian_residual = den > 0 ? std::sqrt(num / den) : 0;
+
+  Eigen::MatrixX3d from(interior.size(), 3), to(interior.size(), 3);
+  for (size_t k = 0; k < interior.size(); ++k) {
+    from.row(static_cast<Eigen::Index>(k)) = source.V.row(interior[k]);
+    to.row(static_cast<Eigen::Index>(k)) = merged.row(interior[k]);
+  }
+  const geometry::Similarity3 s = geometry::fit_similarity(from, to);
+  const double diag = std::max(bbox_diagonal(merged), 1e-300);
+  double sum = 0;
+  for (Eigen::Index k = 0; k < from.rows(); ++k) {
+    const double e = (s(from.row(k).transpose()) - to.row(k).transpose()).norm();
+    d.max_distance = std::max(d.max_distance, e);
+    sum += e;
+  }
+  d.mean_distance = sum / double(from.rows()) / diag;
+  d.max_distance /= diag;
+  return d;
+}
+
+}  // namespace lapis::mesh_merge

@@ -1,0 +1,46 @@
+#include <doctest/doctest.h>
+
+#include "lapis/mesh_merge/metrics.h"
+#include "merge_fixtures.h"
+
+using namespace lapis;
+using namespace lapis::mesh_merge;
+
+TEST_CASE("mesh_merge: dihedral deviation is zero on a plane and the cylinder's turn angle on a cylinder") {
+  for (double a : dihedral_deviation_deg(geometry::make_plane_grid(6, 5))) CHECK(a == doctest::Approx(0).epsilon(1e-12));
+  const auto cyl = dihedral_deviation_deg(geometry::make_cylinder(36, 4));
+  CHECK(*std::max_element(cyl.begin(), cyl.end()) == doctest::Approx(10.0).epsilon(1e-9));
+}
+
+TEST_CASE("mesh_merge: seam metrics see a hole, a moved target vertex and distorted details") {
+  const TriMesh src = test::dome(), tgt = test::body();
+  MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt));
+  const SeamQuality good = seam_quality(tgt, r);
+  REQUIRE(good.valid());
+  CHECK(good.seam_dihedral_mean_deg > 0);
+  CHECK(good.target_dihedral_p95_deg > 0);
+  const DetailPreservation d0 = detail_preservation(src, r);
+  CHECK(d0.laplacian_residual < 0.5);
+
+  MergeResult holed = r;
+  const int f = holed.strip_faces.back();
+  holed.mesh.F.row(f) = holed.mesh.F.row(holed.mesh.num_faces() - 1);
+  holed.mesh.F.conservativeResize(holed.mesh.num_faces() - 1, 3);
+  CHECK(seam_quality(tgt, holed).seam_boundary_edges >= 2);
+  CHECK(!seam_quality(tgt, holed).valid());
+
+  MergeResult moved = r;
+  int far = 0;
+  while (moved.target_map[far] < 0 || std::binary_search(r.smoothed.begin(), r.smoothed.end(), moved.target_map[far])) ++far;
+  moved.mesh.V(moved.target_map[far], 0) += 0.01;
+  CHECK(seam_quality(tgt, moved).max_target_displacement > 0);
+
+  MergeResult bumped = r;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  for (int v = 0; v < src.num_vertices(); ++v)
+    for (int a = 0; a < 3; ++a) bumped.mesh.V(bumped.source_map[v], a) += u(rng);
+  const DetailPreservation d1 = detail_preservation(src, bumped);
+  CHECK(d1.laplacian_residual > 2 * d0.laplacian_residual);
+  CHECK(d1.mean_distance > d0.mean_distance);
+}
