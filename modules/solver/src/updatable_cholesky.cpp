@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <map>
 
 #include "checks.h"
@@ -24,6 +25,23 @@ SparseMatrix add_outer(const SparseMatrix& A, const SparseMatrix& C, double sign
   SparseMatrix out = A + sign * CCt;
   out.makeCompressed();
   return out;
+}
+
+// A(i, i) += d for each (i, d); entries that are not stored yet are inserted.
+void add_to_diagonal(SparseMatrix& A, const std::vector<std::pair<int, double>>& deltas) {
+  bool inserted = false;
+  for (const auto& [i, d] : deltas) {
+    const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[i];
+    const int* end = A.innerIndexPtr() + A.outerIndexPtr()[i + 1];
+    const int* it = std::lower_bound(begin, end, i);
+    if (A.isCompressed() && it != end && *it == i) {
+      A.valuePtr()[it - A.innerIndexPtr()] += d;
+    } else {
+      A.coeffRef(i, i) += d;
+      inserted = true;
+    }
+  }
+  if (inserted) A.makeCompressed();
 }
 
 // Columns sqrt(|d_i|) e_i for the entries of `deltas` with the given sign.
@@ -122,7 +140,11 @@ struct UpdatableCholesky::Impl {
   }
 
   // The whole modification A + up up' - down down'.
-  void modify(const SparseMatrix& up, const SparseMatrix& down, const char* fn) {
+  // A + up up' - down down'. When `diagonal` is given, the modification is exactly those
+  // diagonal changes (set_diagonal_weights) and A is updated in place in O(k) instead of by
+  // two O(nnz(A)) sparse sums: at 50K unknowns that is most of a small edit's cost.
+  void modify(const SparseMatrix& up, const SparseMatrix& down, const char* fn,
+              const std::vector<std::pair<int, double>>* diagonal = nullptr) {
     if (!ready()) throw InvalidArgument(std::string(fn) + ": no factorization (call compute() first)");
     const auto t0 = Clock::now();
     report = {};
@@ -139,8 +161,12 @@ struct UpdatableCholesky::Impl {
       report.method = ModifyMethod::UpdateDowndate;
     } else if (report.method == ModifyMethod::Refactorize) {
       SparseMatrix A_new = A;
-      if (up.cols() > 0) A_new = add_outer(A_new, up, +1);
-      if (down.cols() > 0) A_new = add_outer(A_new, down, -1);
+      if (diagonal) {
+        add_to_diagonal(A_new, *diagonal);
+      } else {
+        if (up.cols() > 0) A_new = add_outer(A_new, up, +1);
+        if (down.cols() > 0) A_new = add_outer(A_new, down, -1);
+      }
       refactorize(A_new, fn);
     } else {
       const auto t_updown = Clock::now();
@@ -154,8 +180,12 @@ struct UpdatableCholesky::Impl {
         }
       }
       cost.observe_updown(work, ms_since(t_updown));
-      if (up.cols() > 0) A = add_outer(A, up, +1);
-      if (down.cols() > 0) A = add_outer(A, down, -1);
+      if (diagonal) {
+        add_to_diagonal(A, *diagonal);
+      } else {
+        if (up.cols() > 0) A = add_outer(A, up, +1);
+        if (down.cols() > 0) A = add_outer(A, down, -1);
+      }
     }
     report.ms = ms_since(t0);
   }
@@ -272,7 +302,7 @@ ModifyReport UpdatableCholesky::set_diagonal_weights(std::span<const int> indice
   std::vector<std::pair<int, double>> deltas;
   for (const auto& [i, w] : target)
     if (w != m.weights[static_cast<size_t>(i)]) deltas.emplace_back(i, w - m.weights[static_cast<size_t>(i)]);
-  m.modify(diagonal_columns(m.n, deltas, +1), diagonal_columns(m.n, deltas, -1), fn);
+  m.modify(diagonal_columns(m.n, deltas, +1), diagonal_columns(m.n, deltas, -1), fn, &deltas);
   for (const auto& [i, w] : target) m.weights[static_cast<size_t>(i)] = w;
   return m.report;
 }
