@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include "cli_runner.h"
+
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -12,30 +14,11 @@
 
 namespace fs = std::filesystem;
 
+using lapis::cli_test::lapis_cli;
+using lapis::cli_test::Result;
+
 namespace {
-
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-Result lapis_cli(const std::string& args) {
-  const std::string cmd = std::string(LAPIS_CLI_EXE) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  REQUIRE(pipe);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) out.append(buf.data(), n);
-  const int status = pclose(pipe.release());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
-
-fs::path scratch() {
-  const fs::path d = fs::temp_directory_path() / ("lapis_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
-
+fs::path scratch() { return lapis::cli_test::scratch_dir("cli_test"); }
 }  // namespace
 
 TEST_CASE("cli: lapis lists its commands and each has --help") {

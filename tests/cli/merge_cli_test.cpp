@@ -1,6 +1,8 @@
 // `lapis merge` end to end on the small shipped example (assets/merge: a dome onto a neck).
 #include <doctest/doctest.h>
 
+#include "cli_runner.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -13,29 +15,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int status;
-  std::string output;
-};
+using Run = lapis::cli_test::Result;
 
-Run lapis_merge(const std::string& args) {
-  const std::string cmd = std::string(LAPIS_CLI_EXE) + " merge " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  REQUIRE(pipe);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) out.append(buf.data(), n);
-  const int status = pclose(pipe.release());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Run lapis_merge(const std::string& args) { return lapis::cli_test::lapis_cli("merge " + args); }
 
 fs::path asset(const std::string& name) { return fs::path(LAPIS_SOURCE_DIR) / "assets" / "merge" / name; }
 
-fs::path scratch_dir() {
-  const fs::path d = fs::temp_directory_path() / ("lapis_merge_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch_dir() { return lapis::cli_test::scratch_dir("merge_cli_test"); }
 
 }  // namespace
 
