@@ -52,7 +52,7 @@ TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
   // scrolls, and quits with Ctrl+Q so the app exits cleanly and writes the recording.
   const std::string script =
       "sh -c '" + kView + " " + kMesh + " --size 640x480 --record " + rec.string() +
-      " & app=$!; for i in $(seq 1 100); do w=$(xdotool search --name lapis-view 2>/dev/null | head -n1);"
+      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-view 2>/dev/null | head -n1);"
       " [ -n \"$w\" ] && break; sleep 0.1; done;"
       " [ -n \"$w\" ] || { kill $app; exit 3; };"
       " sleep 0.5; xdotool mousemove --window $w 300 240 mousedown 3 mousemove --window $w 360 250"
