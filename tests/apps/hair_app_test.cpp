@@ -86,7 +86,7 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
       " --record " + events.string() +
       " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-hair-sketch 2>/dev/null | head -n1);"
       " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
-      drag + "; sleep 15; xdotool key --window $w ctrl+s; sleep 0.5; xdotool key --window $w ctrl+p; sleep 1;"
+      drag + "; sleep 40; xdotool key --window $w ctrl+s; sleep 0.5; xdotool key --window $w ctrl+p; sleep 1;"
       " xdotool key --window $w ctrl+q; wait $app'";
   REQUIRE(run_under_xvfb(script) == 0);
 
