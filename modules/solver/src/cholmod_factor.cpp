@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <omp.h>
+
 #include "checks.h"
 
 namespace lapis::solver::detail {
@@ -85,7 +87,15 @@ void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const c
   factorized_ = true;
 }
 
-DenseMatrix CholmodFactor::solve(const DenseMatrix& B, const char* function) const {
+DenseMatrix CholmodFactor::solve(const DenseMatrix& B, const char* function, int threads) const {
+  if (!L_->is_super && !L_->is_ll && L_->xtype == CHOLMOD_REAL) {
+    if (threads <= 0) threads = omp_get_max_threads();
+    if (schedule_threads_ != threads || !schedule_matches(schedule_, *L_)) {
+      schedule_ = schedule_subtrees(*L_, threads);
+      schedule_threads_ = threads;
+    }
+    return solve_simplicial_ldlt(*L_, schedule_, B);
+  }
   cholmod_dense b = dense_view(B);
   cholmod_common* c = context_.get();
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, L_, &b, c);

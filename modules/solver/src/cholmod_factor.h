@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cholmod_context.h"
+#include "simplicial_solve.h"
 
 namespace lapis::solver::detail {
 
@@ -26,7 +27,9 @@ class CholmodFactor {
   void factorize(const SparseMatrix& A, FactorStats& stats, const char* function);
   bool factorized() const { return factorized_; }
 
-  DenseMatrix solve(const DenseMatrix& B, const char* function) const;
+  // A X = B. A simplicial LDL' factor is solved by Lapis' own kernel, in parallel over
+  // subtrees on `threads` threads (0: OpenMP's default); a supernodal one by cholmod_solve.
+  DenseMatrix solve(const DenseMatrix& B, const char* function, int threads = 0) const;
 
   // Converts the numeric factor to simplicial LDL' (what cholmod_updown modifies).
   void to_simplicial_ldl(const char* function);
@@ -59,6 +62,8 @@ class CholmodFactor {
   int n_ = 0;
   std::vector<int> pattern_outer_, pattern_inner_;
   std::vector<int> inverse_perm_;
+  mutable SubtreeSchedule schedule_;  // for the simplicial solve; rebuilt when L's pattern changes
+  mutable int schedule_threads_ = 0;
 };
 
 }  // namespace lapis::solver::detail

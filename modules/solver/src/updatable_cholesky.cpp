@@ -320,7 +320,7 @@ DenseMatrix UpdatableCholesky::solve(const DenseMatrix& B) const {
   if (!m.ready()) throw InvalidArgument(std::string(fn) + ": no factorization (call compute() first)");
   detail::require_rows(B, m.n, fn);
   const auto t0 = Clock::now();
-  DenseMatrix X = m.factor ? m.factor->solve(B, fn) : m.eigen->solve(B);
+  DenseMatrix X = m.factor ? m.factor->solve(B, fn, m.options.solve_threads) : m.eigen->solve(B);
   impl_->stats.solve_ms = ms_since(t0);
   return X;
 }

@@ -33,6 +33,9 @@ struct ModifyReport {
 struct UpdatableCholeskyOptions {
   Backend backend = Backend::Cholmod;  // Eigen: refactorizes on every modification (reference)
   ModifyMethod method = ModifyMethod::Auto;
+  // Threads of the solve (subtrees of the elimination tree run in parallel); 0: OpenMP's
+  // default. The result does not depend on it beyond round-off.
+  int solve_threads = 0;
 };
 
 class UpdatableCholesky {
