@@ -35,7 +35,7 @@ struct UpdatableCholeskyOptions {
   ModifyMethod method = ModifyMethod::Auto;
   // Threads of the solve (subtrees of the elimination tree run in parallel); 0: OpenMP's
   // default. The result does not depend on it beyond round-off.
-  int solve_threads = 0;
+  int threads = 0;
 };
 
 class UpdatableCholesky {
