@@ -137,8 +137,13 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
     settings_changed();
   }
   ImGui::Separator();
+  int drawn = static_cast<int>(strand_budget_.value());
+  const bool budget_set = ImGui::SliderInt("drawn segments", &drawn, 0, 4000000, drawn == 0 ? "all" : "%d");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("segments of strands drawn (0: all); adapts to the frame time until you set it");
+  if (budget_set) strand_budget_.pin(drawn);
   if (ImGui::ColorEdit3("root colour", root_color_.data()) | ImGui::ColorEdit3("tip colour", tip_color_.data()) |
-      ImGui::SliderFloat("strand width", &strand_width_, 0.5f, 3.0f)) {
+      ImGui::SliderFloat("strand width", &strand_width_, 0.5f, 3.0f) | budget_set) {
     if (last_) update_strand_item(v, last_->update.strands);
   }
   if (ImGui::Checkbox("strands", &show_strands_)) v.scene().lines["strands"].visible = show_strands_;
@@ -186,6 +191,12 @@ void HairSketchApp::draw_overlay(viewer::Viewer& v) {
   if (!latencies_ms_.empty()) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "edit to strands: %.0f ms", latencies_ms_.back());
+    v.overlay(buf);
+  }
+  if (last_ && shown_strands_ < last_->update.strands.count()) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "drawing %d of %d strands (panel: drawn segments)", shown_strands_,
+                  last_->update.strands.count());
     v.overlay(buf);
   }
   if (busy()) v.overlay("regrowing...");

@@ -1,9 +1,10 @@
 // What the hair app draws: the head (scalp tinted on request), the strands with root-to-tip
 // colour, the style curves, the stroke preview, the selected curve's supporting surface and
 // field glyphs on a slice.
-#include <random>
+#include <cstdint>
 
 #include "hair_sketch_app.h"
+#include "lapis/hair_sketch/strand_display.h"
 #include "lapis/hair_sketch/sketch.h"
 #include "lapis/hair_sketch/style_field.h"
 #include "primitive_geometry.h"
@@ -37,17 +38,20 @@ void HairSketchApp::update_head_item(viewer::Viewer& v) {
 
 void HairSketchApp::update_strand_item(viewer::Viewer& v, const Strands& strands) {
   auto& item = v.scene().lines["strands"];
-  const int n = static_cast<int>(strands.points.size());
+  std::vector<int> source;
+  const Strands shown = display_strands(strands, {.max_segments = static_cast<int>(strand_budget_.value())}, &source);
+  shown_strands_ = shown.count();
+  const int n = static_cast<int>(shown.points.size());
   item.points.resize(n, 3);
   item.colors.resize(n, 3);
-  item.strip_offsets = strands.offsets;
-  std::mt19937 rng(7);  // the same strand gets the same shade every regrowth
-  std::uniform_real_distribution<float> shade(0.8f, 1.15f);
-  for (int s = 0; s < strands.count(); ++s) {
-    const int a = strands.offsets[static_cast<size_t>(s)], b = strands.offsets[static_cast<size_t>(s) + 1];
-    const float k = shade(rng);
+  item.strip_offsets = shown.offsets;
+  for (int s = 0; s < shown.count(); ++s) {
+    const int a = shown.offsets[static_cast<size_t>(s)], b = shown.offsets[static_cast<size_t>(s) + 1];
+    // A shade per source strand (0.8..1.15), the same at every regrowth and budget.
+    const auto hash = static_cast<std::uint32_t>(source[static_cast<size_t>(s)]) * 2654435761u;
+    const float k = 0.8f + 0.35f * static_cast<float>(hash >> 8) / static_cast<float>(1u << 24);
     for (int i = a; i < b; ++i) {
-      item.points.row(i) = strands.points[static_cast<size_t>(i)].transpose();
+      item.points.row(i) = shown.points[static_cast<size_t>(i)].transpose();
       const float t = b - a > 1 ? static_cast<float>(i - a) / static_cast<float>(b - a - 1) : 0.0f;
       item.colors.row(i) = (k * ((1 - t) * root_color_ + t * tip_color_)).cwiseMin(1.0f).transpose();
     }

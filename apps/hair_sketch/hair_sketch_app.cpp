@@ -35,6 +35,8 @@ HairSketchApp::HairSketchApp(Head head, Hairstyle style, AppPaths paths)
 HairSketchApp::~HairSketchApp() = default;
 
 void HairSketchApp::on_start(viewer::Viewer& v) {
+  worker_.set_on_done([&v] { v.wake(); });  // new strands: redraw now, not at the next tick
+  if (v.options().headless && !strand_budget_.pinned()) strand_budget_.pin(0);  // draw every strand
   update_head_item(v);
   const auto& cam = document_.style().camera;
   const bool has_camera = !cam.view.isIdentity() && cam.viewport[2] > 1;
@@ -293,6 +295,7 @@ void HairSketchApp::autosave_if_due(viewer::Viewer& v) {
 
 void HairSketchApp::on_exit(viewer::Viewer& v) {
   worker_.wait();
+  worker_.set_on_done({});  // the window goes away after this
   receive_regrowth(v);
   if (paths_.export_on_exit) {
     export_strands(v);
@@ -360,6 +363,11 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
 }
 
 void HairSketchApp::on_frame(viewer::Viewer& v) {
+  // The previous frame's time adapts how much of the hair is drawn; not while the worker
+  // regrows, whose share of the cores slows every frame whatever is drawn.
+  if (last_ && v.frame() > 0 && !busy() &&
+      strand_budget_.observe(v.last_frame_ms(), last_->update.strands.segments()))
+    update_strand_item(v, last_->update.strands);
   receive_regrowth(v);
   request_regrowth();  // no-op unless the document or settings moved on
   if (head_dirty_) update_head_item(v);

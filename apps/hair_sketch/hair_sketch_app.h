@@ -15,6 +15,7 @@
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/live_hairstyle.h"
 #include "lapis/viewer/latest_worker.h"
+#include "lapis/viewer/adaptive_budget.h"
 #include "lapis/viewer/viewer.h"
 
 namespace lapis::hair_app {
@@ -44,6 +45,9 @@ class HairSketchApp final : public viewer::ViewerApp {
  public:
   HairSketchApp(Head head, Hairstyle style, AppPaths paths);
   ~HairSketchApp() override;
+  // Strand segments drawn, pinned (0: all). Default: adapted to the frame time in a window,
+  // all headless.
+  void set_drawn_segments(long segments) { strand_budget_.pin(segments); }
 
   void on_start(viewer::Viewer& v) override;
   bool on_event(viewer::Viewer& v, const viewer::InputEvent& e) override;
@@ -107,6 +111,11 @@ class HairSketchApp final : public viewer::ViewerApp {
   bool show_scalp_ = false, show_glyphs_ = false, show_curves_ = true, show_strands_ = true;
   Eigen::Vector3f root_color_{0.16f, 0.09f, 0.05f}, tip_color_{0.55f, 0.36f, 0.20f};
   float strand_width_ = 1.0f;
+  // Strand segments drawn (hair_sketch::display_strands; 0: every segment), adapted to keep
+  // frames near 80 ms: software rendering of 20K full strands (4M segments, 4× MSAA) takes
+  // two seconds a frame. Headless runs (screenshots, demos) draw everything.
+  viewer::AdaptiveBudget strand_budget_{200000};
+  int shown_strands_ = 0;
   bool curves_dirty_ = true, head_dirty_ = true;
 
   // Worker: regrowth never blocks input; the previous strands stay until new ones arrive.

@@ -1,7 +1,7 @@
 // lapis-hair-sketch [--session FILE] [--head MESH] [--replay EVENTS] [--screenshot OUT.png]
 //                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
 //                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
-//                   [--roots N]
+//                   [--roots N] [--draw-segments N]
 #include <cstdio>
 
 #include "args.h"
@@ -22,13 +22,16 @@ int main(int argc, char** argv) {
           "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
           "                         [--benchmark OUT.json] [--size WxH] [--export-hair OUT.hair]\n"
           "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
+          "                         [--draw-segments N]  (strand segments drawn; 0: all; default\n"
+          "                         200000 in a window, all with --headless)\n"
           "Left-drag sketches with the current tool (keys 1-6), right-drag orbits, middle-drag pans,\n"
           "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
           "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n");
       return 0;
     }
     const cli::Args args(rest);
-    args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots"});
+    args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots",
+                     "--draw-segments"});
     hair_app::AppPaths paths;
     hair_sketch::Hairstyle style;
     hair_sketch::Head head;
@@ -50,6 +53,8 @@ int main(int argc, char** argv) {
     paths.export_obj = args.get("--export-obj", "out/hairstyle.obj");
     paths.export_on_exit = args.has("--export-hair") || args.has("--export-obj");
     hair_app::HairSketchApp app(std::move(head), std::move(style), paths);
+    if (args.has("--draw-segments"))
+      app.set_drawn_segments(static_cast<int>(args.get_int("--draw-segments", 0, 0, 100000000)));
     viewer::Viewer viewer(options);
     const int status = viewer.run(app);
     return status;

@@ -20,6 +20,12 @@
 #include "lapis/viewer/renderer.h"
 
 namespace lapis::viewer {
+
+namespace {
+constexpr long kSettleFrames = 3;           // frames drawn after input (ImGui hover, releases)
+constexpr double kBusyRedrawSeconds = 0.25;  // redraw period while the app's worker runs
+constexpr double kIdleRedrawSeconds = 1.0;   // and while nothing happens (overlay clock)
+}  // namespace
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -119,6 +125,10 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
       const std::string s = value(i, "--size");
       if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
         throw InvalidArgument("viewer: --size expects WIDTHxHEIGHT (at least 64x64), got '" + s + "'");
+    } else if (a == "--msaa") {
+      const std::string s = value(i, "--msaa");
+      if (std::sscanf(s.c_str(), "%d", &o.msaa_samples) != 1 || o.msaa_samples < 0 || o.msaa_samples > 16)
+        throw InvalidArgument("viewer: --msaa expects 0..16 samples per pixel, got '" + s + "'");
     } else rest.push_back(a);
   }
   return rest;
@@ -165,7 +175,10 @@ void Viewer::record(const InputEvent& e) {
   recording_.events.push_back(r);
 }
 
+void Viewer::wake() { glfwPostEmptyEvent(); }
+
 void Viewer::dispatch(const InputEvent& e) {
+  last_input_frame_ = frame_;
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
   switch (e.type) {
@@ -315,9 +328,30 @@ int Viewer::run(ViewerApp& app) {
   app.on_start(*this);
   int exit_code = 0;
   double idle_since_replay = -1;
-  auto last = Clock::now();
+  bool was_busy = false;
   while (!glfwWindowShouldClose(w)) {
-    glfwPollEvents();
+    // Redraw on demand. Drawing the same picture again costs a software renderer most of both
+    // cores, which the app's worker needs: with nothing new (no input for a few frames, no
+    // replay or screenshot pending, no change in busy state) wait for input or a wake()
+    // instead, redrawing a few times a second while the app works so its progress shows.
+    // A replay does the same between its events: idle frames are skipped, and while the app
+    // works they come a few a second, so its worker is not starved by the renderer.
+    const bool busy = app.busy();
+    const bool settled = frame_ - last_input_frame_ > kSettleFrames && busy == was_busy;
+    if (replaying()) {
+      const long next_event = replay_->events[replay_next_].frame;
+      if (settled && next_event > frame_) {
+        if (busy) glfwWaitEventsTimeout(kBusyRedrawSeconds);
+        else frame_ = next_event;
+      }
+      glfwPollEvents();
+    } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames) {
+      glfwWaitEventsTimeout(busy ? kBusyRedrawSeconds : kIdleRedrawSeconds);
+    } else {
+      glfwPollEvents();
+    }
+    was_busy = busy;
+    const auto frame_start = Clock::now();
     if (replay_)
       while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame <= frame_)
         dispatch(replay_->events[replay_next_++]);
@@ -359,13 +393,10 @@ int Viewer::run(ViewerApp& app) {
       }
     }
     glfwSwapBuffers(w);
-    const auto now = Clock::now();
-    last_frame_ms_ = std::chrono::duration<double, std::milli>(now - last).count();
-    last = now;
+    // The frame's own work (events to swap), not the waits between on-demand frames.
+    last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     frame_ms_.push_back(last_frame_ms_);
     ++frame_;
-    // A hidden window with nothing to do should not spin a core.
-    if (options_.headless && !replaying() && app.busy()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   app.on_exit(*this);
   if (!options_.record.empty()) {

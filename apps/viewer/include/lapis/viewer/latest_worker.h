@@ -63,6 +63,12 @@ class LatestWorker {
     idle_.wait(lock, [this] { return !queued_ && !running_; });
   }
 
+  // Called on the worker thread after each job (e.g. Viewer::wake, so the UI shows the
+  // result at once instead of at its next timed redraw). Must not call back into the worker.
+  void set_on_done(std::function<void()> on_done) {
+    std::lock_guard lock(mutex_);
+    on_done_ = std::move(on_done);
+  }
   long submitted() const {
     std::lock_guard lock(mutex_);
     return submitted_;
@@ -95,6 +101,7 @@ class LatestWorker {
       if (error) error_ = error;
       else done_ = std::move(result);
       if (!queued_) idle_.notify_all();
+      if (on_done_) on_done_();  // under the lock: set_on_done cannot race it
     }
   }
 
@@ -103,6 +110,7 @@ class LatestWorker {
   std::optional<std::function<Result()>> queued_;
   std::optional<Result> done_;
   std::exception_ptr error_;
+  std::function<void()> on_done_;
   bool running_ = false, stop_ = false;
   long submitted_ = 0, completed_ = 0;
   std::thread thread_;  // last: starts after the members it uses exist

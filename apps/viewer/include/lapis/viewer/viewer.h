@@ -34,7 +34,7 @@ struct ViewerOptions {
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --exit-after-replay, --benchmark F, --size WxH) and returns the arguments it did not
+// --exit-after-replay, --benchmark F, --size WxH, --msaa N) and returns the arguments it did not
 // consume. Throws InvalidArgument on a flag missing its value.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
@@ -95,6 +95,12 @@ class Viewer {
   // Routes an event as if it came from GLFW (replay and tests use it).
   void dispatch(const InputEvent& event);
 
+  // Wakes the window loop from any thread (a worker finished: show its result now). The loop
+  // redraws on demand — on input, on wake(), while replaying, and a few times a second while
+  // the app is busy — because software rendering of a full scene takes most of both cores,
+  // which the app's worker needs.
+  void wake();
+
  private:
   struct Window;
   void handle_camera(const InputEvent& e);
@@ -115,6 +121,7 @@ class Viewer {
   bool buttons_[8] = {};
   int app_drags_ = 0;  // buttons pressed outside the panels and not yet released
   long frame_ = 0;
+  long last_input_frame_ = 0;  // the frame in which the last input event arrived
   double last_frame_ms_ = 0;
   std::vector<double> frame_ms_;
   std::vector<std::string> overlay_lines_;
