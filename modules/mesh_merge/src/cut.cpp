@@ -11,7 +11,7 @@ namespace lapis::mesh_merge {
 
 namespace {
 
-// The faces of `keep` in the largest face component of `part`, as a mesh with its map to mesh.
+// The largest face component of mesh's `faces`, as a mesh with its map back to mesh.
 geometry::TriMesh largest_part(const geometry::TriMesh& mesh, const std::vector<int>& faces, std::vector<int>& to_mesh) {
   geometry::TriMesh part{mesh.V, geometry::Faces(static_cast<Eigen::Index>(faces.size()), 3)};
   for (size_t k = 0; k < faces.size(); ++k) part.F.row(static_cast<Eigen::Index>(k)) = mesh.F.row(faces[k]);
@@ -45,6 +45,28 @@ PlaneCut cut_by_plane(const geometry::TriMesh& mesh, const Eigen::Vector3d& poin
   PlaneCut cut;
   cut.above = largest_part(mesh, up, cut.above_to_mesh);
   cut.below = largest_part(mesh, down, cut.below_to_mesh);
+  return cut;
+}
+
+RegionCut cut_by_region(const geometry::TriMesh& mesh, const std::vector<int>& region) {
+  constexpr const char* fn = "mesh_merge::cut_by_region()";
+  geometry::require_indices_in_range(mesh, fn);
+  std::vector<char> selected(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : region) {
+    if (v < 0 || v >= mesh.num_vertices())
+      throw InvalidArgument(std::string(fn) + ": region vertex " + std::to_string(v) + " out of range");
+    selected[static_cast<size_t>(v)] = 1;
+  }
+  std::vector<int> in, out;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const bool all = selected[mesh.F(f, 0)] && selected[mesh.F(f, 1)] && selected[mesh.F(f, 2)];
+    (all ? in : out).push_back(f);
+  }
+  if (in.empty()) throw InvalidArgument(std::string(fn) + ": no face has all three corners in the region, expected a painted area");
+  if (out.empty()) throw InvalidArgument(std::string(fn) + ": the region covers the whole mesh, expected a part of it");
+  RegionCut cut;
+  cut.inside = largest_part(mesh, in, cut.inside_to_mesh);
+  cut.outside = largest_part(mesh, out, cut.outside_to_mesh);
   return cut;
 }
 
