@@ -1,0 +1,204 @@
+// The merge app, for real: driven by xdotool under Xvfb (pair two loops, set a key, merge,
+// export), replayed from the committed recording of such a session, and rendered headless. The
+// exports must be watertight where the paired loops were and equal `lapis merge` on the
+// exported files.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "app_runner.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_merge/merge_setup.h"
+#include "lapis/mesh_merge/pairs_file.h"
+#include "lapis/viewer/orbit_camera.h"
+#include "first_view.h"  // lapis-merge's camera angles and panel width
+
+using namespace lapis;
+using namespace lapis::apps_test;
+
+namespace {
+
+const std::string kApp = LAPIS_MERGE_APP_EXE;
+const std::string kCli = LAPIS_CLI_EXE;
+const fs::path kSource = LAPIS_SOURCE_DIR;
+constexpr int kWidth = 1000, kHeight = 700;
+const std::string kSize = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+
+geometry::TriMesh asset(const std::string& name) { return geometry::read_mesh(kSource / "assets/merge" / name); }
+
+// The app's first view of the default preset (dome onto neck, the dome placed beside the neck's
+// rim): the camera of MergeApp::on_start() framed on both meshes.
+struct DefaultScene {
+  geometry::TriMesh source, target;
+  geometry::CameraMatrices camera;
+  DefaultScene() : target(asset("neck.obj")) {
+    const geometry::TriMesh dome = asset("dome.obj");
+    mesh_merge::MergeSetup s;
+    s.source = std::make_shared<const geometry::TriMesh>(dome);
+    s.placement = mesh_merge::suggest_placement(dome, target);
+    source = mesh_merge::placed_source(s);
+    viewer::OrbitCamera cam;
+    cam.yaw = merge_app::kViewYaw, cam.pitch = merge_app::kViewPitch;
+    const Eigen::Vector3d lo = source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose());
+    const Eigen::Vector3d hi = source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose());
+    cam.frame(lo, hi);
+    merge_app::fit_beside_panels(cam, kWidth, kHeight);
+    camera = cam.matrices(kWidth, kHeight);
+  }
+  // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
+  Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
+    const Eigen::Vector3d eye = geometry::eye_position(camera);
+    int best = loop[0];
+    for (int v : loop)
+      if ((m.V.row(v).transpose() - eye).norm() < (m.V.row(best).transpose() - eye).norm()) best = v;
+    const Eigen::Vector3d s = geometry::project(camera, m.V.row(best).transpose());
+    return {static_cast<int>(std::lround(s.x())), static_cast<int>(std::lround(s.y()))};
+  }
+};
+
+struct Exported {
+  geometry::TriMesh merged, source, target;
+  std::vector<mesh_merge::LoopPair> pairs;
+  std::string command;
+};
+
+Exported read_exports(const fs::path& prefix) {
+  Exported e;
+  const std::string p = prefix.string();
+  e.merged = geometry::read_mesh(p + ".obj");
+  e.source = geometry::read_mesh(p + "_source.obj");
+  e.target = geometry::read_mesh(p + "_target.obj");
+  e.pairs = mesh_merge::read_pairs_file(p + "_pairs.json");
+  std::ifstream in(p + "_command.txt");
+  std::getline(in, e.command);
+  return e;
+}
+
+// Watertight where the paired loops were: the merged mesh's boundary is exactly the target's
+// unpaired loops (target vertices away from the seam never move), nothing of the paired ones.
+void check_watertight_seam(const Exported& e) {
+  const geometry::Connectivity tc(e.target), mc(e.merged), sc(e.source);
+  std::set<int> paired_target_loops;
+  for (const auto& p : e.pairs)
+    for (size_t l = 0; l < tc.boundary_loops().size(); ++l) {
+      const auto& loop = tc.boundary_loops()[l];
+      if (std::find(loop.begin(), loop.end(), p.keys.at(0).target) != loop.end()) paired_target_loops.insert(static_cast<int>(l));
+    }
+  REQUIRE(paired_target_loops.size() == e.pairs.size());
+  std::set<std::array<double, 3>> kept;
+  for (size_t l = 0; l < tc.boundary_loops().size(); ++l)
+    if (!paired_target_loops.count(static_cast<int>(l)))
+      for (int v : tc.boundary_loops()[l]) kept.insert({e.target.V(v, 0), e.target.V(v, 1), e.target.V(v, 2)});
+  const size_t expected_loops = tc.boundary_loops().size() + sc.boundary_loops().size() - 2 * e.pairs.size();
+  CHECK(mc.boundary_loops().size() == expected_loops);
+  size_t boundary_vertices = 0;
+  for (const auto& loop : mc.boundary_loops())
+    for (int v : loop) {
+      ++boundary_vertices;
+      CHECK(kept.count({e.merged.V(v, 0), e.merged.V(v, 1), e.merged.V(v, 2)}) == 1);
+    }
+  CHECK(boundary_vertices == kept.size());
+  CHECK(geometry::validate(e.merged).ok());
+}
+
+// Runs the exported `lapis merge` command with another --out and compares (1e-9).
+void check_equals_cli(const Exported& e, const fs::path& out) {
+  REQUIRE(e.command.rfind("lapis merge ", 0) == 0);
+  std::istringstream words(e.command.substr(6));
+  std::string cmd = kCli, w;
+  while (words >> w) {
+    if (w == "--out") {
+      words >> w;
+      w = out.string();
+      cmd += " --out";
+    }
+    cmd += " " + w;
+  }
+  REQUIRE_MESSAGE(run(cmd + " > /dev/null") == 0, cmd);
+  const geometry::TriMesh cli = geometry::read_mesh(out);
+  REQUIRE(cli.F == e.merged.F);
+  CHECK((cli.V - e.merged.V).cwiseAbs().maxCoeff() <= 1e-9);
+}
+
+}  // namespace
+
+TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then merge and export") {
+  const fs::path dir = scratch_dir();
+  const DefaultScene scene;
+  const geometry::Connectivity sc(scene.source), tc(scene.target);
+  const auto& sloop = sc.boundary_loops().at(0);
+  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
+      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
+  const Eigen::Vector2i s = scene.front_pixel(scene.source, sloop), t = scene.front_pixel(scene.target, tloop);
+  // Clear of the panels on the right and the menu bar.
+  REQUIRE(s.x() > 0);
+  REQUIRE(s.x() < kWidth - merge_app::kPanelWidth);
+  REQUIRE(t.x() < kWidth - merge_app::kPanelWidth);
+  REQUIRE(std::min(s.y(), t.y()) > 30);
+  auto click = [](const Eigen::Vector2i& p) {
+    return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) +
+           " sleep 0.3 click 1 sleep 0.5; ";
+  };
+  const fs::path events = dir / "merge_events.json", prefix = dir / "live";
+  const std::string script =
+      "sh -c '" + kApp + kSize + " --record " + events.string() + " --export " + prefix.string() +
+      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-merge 2>/dev/null | head -n1);"
+      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
+      click(s) + click(t) + click(s) + click(t) +
+      "xdotool key --window $w m; sleep 8; xdotool key --window $w ctrl+e; sleep 2; xdotool key --window $w ctrl+q; wait $app'";
+  REQUIRE(run_under_xvfb(script) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  REQUIRE(e.pairs[0].keys.size() == 1);
+  // The key joins the two clicked loops.
+  CHECK(std::find(sloop.begin(), sloop.end(), e.pairs[0].keys[0].source) != sloop.end());
+  CHECK(std::find(tloop.begin(), tloop.end(), e.pairs[0].keys[0].target) != tloop.end());
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "live_cli.obj");
+}
+
+TEST_CASE("apps: merge app — replaying the recorded pairing session merges watertight and equals lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "replayed";
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +
+                         " --exit-after-replay --export " + prefix.string()) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  REQUIRE(e.pairs[0].keys.size() == 1);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "replayed_cli.obj");
+}
+
+TEST_CASE("apps: merge app — the headless screenshot after a merge is neither blank nor the unedited scene") {
+  const fs::path dir = scratch_dir(), before = dir / "before.png", after = dir / "after.png";
+  REQUIRE(run_under_xvfb(kApp + kSize + " --headless --screenshot " + before.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +
+                         " --screenshot " + after.string()) == 0);
+  const viewer::Image a = viewer::read_png(before), b = viewer::read_png(after);
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  CHECK(foreground_fraction(a) > 0.03);
+  CHECK(foreground_fraction(b) > 0.03);
+  size_t differ = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4)
+    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) + std::abs(a.rgba[k + 2] - b.rgba[k + 2]) > 30)
+      ++differ;
+  CHECK(static_cast<double>(differ) / static_cast<double>(a.rgba.size() / 4) > 0.01);
+}
+
+TEST_CASE("apps: merge app — merging before anything is paired reports the module's error and keeps running") {
+  const fs::path dir = scratch_dir(), events = dir / "merge_now.json", log = dir / "merge_now.log";
+  {
+    std::ofstream out(events);  // one key press: M, at frame 5
+    out << R"({"format": "lapis-events", "version": 1, "width": 800, "height": 600, "events": [)"
+        << R"({"type": "key", "frame": 5, "key": 77, "action": 1, "mods": 0},)"
+        << R"({"type": "key", "frame": 6, "key": 77, "action": 0, "mods": 0}]})";
+  }
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
+        std::string::npos);
+}
