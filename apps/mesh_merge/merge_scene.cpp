@@ -59,7 +59,10 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   auto& source = scene.meshes["source"];
   source.mesh = source_.mesh;
   source.base_color = kSourceColor;
-  source.alpha = result ? 0.3f : 1.0f;  // where the user placed it, behind the result
+  // Beside the result the source is a ghost where the user placed it, shown only where the
+  // placement matters: dependent mode keeps it, and the move tool moves it.
+  source.alpha = result ? 0.3f : 1.0f;
+  source.visible = !result || setup().options.mode == mesh_merge::MergeMode::Dependent || tool_ == Tool::Move;
   paint(source, kSourceColor, painted_on_source_);
   ++source.version;
 

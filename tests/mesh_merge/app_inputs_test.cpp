@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "lapis/mesh_merge/pairs_file.h"
 #include "merge_fixtures.h"
