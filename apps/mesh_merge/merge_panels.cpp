@@ -214,6 +214,7 @@ void MergeApp::draw_overlay(viewer::Viewer& v) {
     else if (pending_key_target_ >= 0) v.overlay("target vertex picked: now click a vertex of its paired source loop");
     else v.overlay("click a vertex on each loop of a pair: a key correspondence");
   }
+  if (show_result_ && shown_ && !v.scene().meshes["source"].visible) v.overlay("Tab: show the inputs to pick on the source");
   if (worker_.busy()) v.overlay("merging...");
   if (shown_) {
     char buf[128];

@@ -88,11 +88,13 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   }
   seam.width = 1.5f;
 
-  // Loops on top of everything: they are what the user clicks.
+  // Loops on top of everything: they are what the user clicks. The source's go with the
+  // source (hidden beside an independent result: Tab shows the inputs to pick on).
   for (int side = 0; side < 2; ++side) {
     const PickableMesh& pm = side == 0 ? source_ : target_;
     auto& item = scene.lines[side == 0 ? "loops source" : "loops target"];
     item.clear();
+    item.visible = side == 1 || source.visible;
     item.on_top = true;
     item.width = 3.0f;
     for (size_t l = 0; l < pm.loops().size(); ++l) {
@@ -109,7 +111,7 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   keys.size = 11.0f;
   for (size_t p = 0; p < setup().pairs.size(); ++p)
     for (const auto& k : setup().pairs[p].keys) {
-      add_point(keys, source_.mesh.V.row(k.source).transpose(), pair_color(static_cast<int>(p)));
+      if (source.visible) add_point(keys, source_.mesh.V.row(k.source).transpose(), pair_color(static_cast<int>(p)));
       add_point(keys, target_.mesh.V.row(k.target).transpose(), pair_color(static_cast<int>(p)));
     }
   if (pending_key_source_ >= 0) add_point(keys, source_.mesh.V.row(pending_key_source_).transpose(), kPendingColor);
@@ -145,13 +147,16 @@ void MergeApp::draw_labels(viewer::Viewer& v) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const auto cam = v.camera_matrices();
   const bool several = setup().pairs.size() > 1;
+  const bool source_shown = v.scene().meshes["source"].visible;
   for (size_t p = 0; p < setup().pairs.size(); ++p) {
     const Eigen::Vector3f c = pair_color(static_cast<int>(p));
     const ImU32 color = ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
     const auto& keys = setup().pairs[p].keys;
     for (size_t k = 0; k < keys.size(); ++k) {
       const std::string label = several ? std::to_string(p + 1) + "." + std::to_string(k + 1) : std::to_string(k + 1);
-      for (const Eigen::Vector3d& w : {Eigen::Vector3d(source_.mesh.V.row(keys[k].source)), Eigen::Vector3d(target_.mesh.V.row(keys[k].target))}) {
+      for (int side = source_shown ? 0 : 1; side < 2; ++side) {
+        const Eigen::Vector3d w = side == 0 ? Eigen::Vector3d(source_.mesh.V.row(keys[k].source))
+                                            : Eigen::Vector3d(target_.mesh.V.row(keys[k].target));
         const Eigen::Vector3d s = geometry::project(cam, w);
         if (s.z() <= 0 || s.z() >= 1) continue;
         const ImVec2 at(static_cast<float>(s.x()) + 8, static_cast<float>(s.y()) - 18);
