@@ -148,7 +148,7 @@ class MergeApp final : public viewer::ViewerApp {
   // Paint tool: a vertex set painted on one of the meshes, cut off by cut_painted().
   std::vector<int> painted_;
   bool painted_on_source_ = true;
-  bool painting_ = false, erasing_ = false;
+  bool painting_ = false, erasing_ = false, paint_mesh_chosen_ = false;
   float brush_px_ = 24;
 
   float merge_panel_bottom_ = 0;  // where the result panel goes

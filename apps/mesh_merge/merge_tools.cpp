@@ -39,22 +39,26 @@ void MergeApp::release_move(viewer::Viewer& v) {
 // ---------------------------------------------------------------- paint and cut
 
 void MergeApp::press_paint(viewer::Viewer& v, double x, double y, bool erase) {
-  const auto cam = v.camera_matrices();
-  const auto s = viewer::pick(*source_.bvh, cam, x, y), t = viewer::pick(*target_.bvh, cam, x, y);
-  if (!s && !t) return;
-  const bool on_source = s && (!t || s->t <= t->t);
-  if (on_source != painted_on_source_) painted_.clear();  // one mesh at a time
-  painted_on_source_ = on_source;
   painting_ = true;
   erasing_ = erase;
+  paint_mesh_chosen_ = false;  // by the first surface the stroke touches (it may start beside it)
   drag_paint(v, x, y);
 }
 
 void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
+  const auto cam = v.camera_matrices();
+  if (!paint_mesh_chosen_) {
+    const auto s = viewer::pick(*source_.bvh, cam, x, y), t = viewer::pick(*target_.bvh, cam, x, y);
+    if (!s && !t) return;
+    const bool on_source = s && (!t || s->t <= t->t);
+    if (on_source != painted_on_source_) painted_.clear();  // one mesh at a time
+    painted_on_source_ = on_source;
+    paint_mesh_chosen_ = true;
+  }
   const PickableMesh& m = painted_on_source_ ? source_ : target_;
   viewer::BrushOptions brush;
   brush.radius_px = brush_px_;
-  const std::vector<int> under = viewer::brush_vertices(m.mesh, *m.conn, *m.bvh, v.camera_matrices(), {x, y}, brush);
+  const std::vector<int> under = viewer::brush_vertices(m.mesh, *m.conn, *m.bvh, cam, {x, y}, brush);
   if (under.empty()) return;
   std::vector<int> next;
   if (erasing_) std::set_difference(painted_.begin(), painted_.end(), under.begin(), under.end(), std::back_inserter(next));

@@ -13,6 +13,7 @@
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/pairs_file.h"
+#include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/orbit_camera.h"
 #include "first_view.h"  // lapis-merge's camera angles and panel width
 
@@ -31,6 +32,34 @@ geometry::TriMesh asset(const std::string& name) { return geometry::read_mesh(kS
 
 // The app's first view of the default preset (dome onto neck, the dome placed beside the neck's
 // rim): the camera of MergeApp::on_start() framed on both meshes.
+geometry::CameraMatrices first_view(const geometry::TriMesh& source, const geometry::TriMesh& target) {
+  viewer::OrbitCamera cam;
+  cam.yaw = merge_app::kViewYaw, cam.pitch = merge_app::kViewPitch;
+  const Eigen::Vector3d lo = source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose());
+  const Eigen::Vector3d hi = source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose());
+  cam.frame(lo, hi);
+  merge_app::fit_beside_panels(cam, kWidth, kHeight);
+  return cam.matrices(kWidth, kHeight);
+}
+
+std::string pixel(const Eigen::Vector3d& s) {
+  return std::to_string(std::lround(s.x())) + " " + std::to_string(std::lround(s.y()));
+}
+
+// A shell script that starts the app under xdotool with `flags`, runs `actions` ($w is its
+// window) and quits it.
+std::string xdotool_session(const std::string& flags, const std::string& actions) {
+  return "sh -c '" + kApp + kSize + " " + flags +
+         " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-merge 2>/dev/null | head -n1);"
+         " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
+         actions + " xdotool key --window $w ctrl+q; wait $app'";
+}
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 struct DefaultScene {
   geometry::TriMesh source, target;
   geometry::CameraMatrices camera;
@@ -40,13 +69,7 @@ struct DefaultScene {
     s.source = std::make_shared<const geometry::TriMesh>(dome);
     s.placement = mesh_merge::suggest_placement(dome, target);
     source = mesh_merge::placed_source(s);
-    viewer::OrbitCamera cam;
-    cam.yaw = merge_app::kViewYaw, cam.pitch = merge_app::kViewPitch;
-    const Eigen::Vector3d lo = source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose());
-    const Eigen::Vector3d hi = source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose());
-    cam.frame(lo, hi);
-    merge_app::fit_beside_panels(cam, kWidth, kHeight);
-    camera = cam.matrices(kWidth, kHeight);
+    camera = first_view(source, target);
   }
   // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
   Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
@@ -58,6 +81,15 @@ struct DefaultScene {
     return {static_cast<int>(std::lround(s.x())), static_cast<int>(std::lround(s.y()))};
   }
 };
+
+std::string click(const Eigen::Vector2i& p) {
+  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " sleep 0.3 click 1 sleep 0.5; ";
+}
+
+// Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
+std::string pair_and_key_clicks(const Eigen::Vector2i& s, const Eigen::Vector2i& t) {
+  return click(s) + click(t) + click(s) + click(t);
+}
 
 struct Exported {
   geometry::TriMesh merged, source, target;
@@ -138,18 +170,10 @@ TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then me
   REQUIRE(s.x() < kWidth - merge_app::kPanelWidth);
   REQUIRE(t.x() < kWidth - merge_app::kPanelWidth);
   REQUIRE(std::min(s.y(), t.y()) > 30);
-  auto click = [](const Eigen::Vector2i& p) {
-    return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) +
-           " sleep 0.3 click 1 sleep 0.5; ";
-  };
   const fs::path events = dir / "merge_events.json", prefix = dir / "live";
-  const std::string script =
-      "sh -c '" + kApp + kSize + " --record " + events.string() + " --export " + prefix.string() +
-      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-merge 2>/dev/null | head -n1);"
-      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
-      click(s) + click(t) + click(s) + click(t) +
-      "xdotool key --window $w m; sleep 8; xdotool key --window $w ctrl+e; sleep 2; xdotool key --window $w ctrl+q; wait $app'";
-  REQUIRE(run_under_xvfb(script) == 0);
+  REQUIRE(run_under_xvfb(xdotool_session("--record " + events.string() + " --export " + prefix.string(),
+                                         pair_and_key_clicks(s, t) + "xdotool key --window $w m; sleep 8;"
+                                         " xdotool key --window $w ctrl+e; sleep 2;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.pairs.size() == 1);
   REQUIRE(e.pairs[0].keys.size() == 1);
@@ -197,8 +221,64 @@ TEST_CASE("apps: merge app — merging before anything is paired reports the mod
         << R"({"type": "key", "frame": 6, "key": 77, "action": 0, "mods": 0}]})";
   }
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
-  std::ifstream in(log);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = text_of(log);
   CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
         std::string::npos);
+}
+
+TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis; the merge still equals lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "moved";
+  const DefaultScene scene;
+  const geometry::Connectivity sc(scene.source), tc(scene.target);
+  const auto& sloop = sc.boundary_loops().at(0);
+  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
+      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
+  // The gizmo sits on the placed source's centroid; grab its y arrow near the tip (beyond the
+  // rings) and drag it 60 pixels up the screen (world y is the screen's up).
+  viewer::Gizmo gizmo;
+  const Eigen::Vector3d c = scene.source.V.colwise().mean().transpose();
+  gizmo.set_center(c);
+  const Eigen::Vector3d grab = geometry::project(scene.camera, c + 0.9 * gizmo.world_size(scene.camera) * Eigen::Vector3d::UnitY());
+  REQUIRE(gizmo.hit(scene.camera, grab.head<2>()) == viewer::GizmoPart::TranslateY);
+  std::string drag = "xdotool key --window $w 4; sleep 0.5; xdotool mousemove --window $w " + pixel(grab) +
+                     " sleep 0.3 mousedown 1";
+  for (int k = 1; k <= 12; ++k)
+    drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " + std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
+  drag += " mouseup 1; sleep 1; ";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
+                                         pair_and_key_clicks(scene.front_pixel(scene.source, sloop), scene.front_pixel(scene.target, tloop)) +
+                                         drag + "xdotool key --window $w m; sleep 6;")) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.source.num_vertices() == scene.source.num_vertices());
+  // A pure translation along +y: every vertex moved by the same vector.
+  const Eigen::RowVector3d d = e.source.V.row(0) - scene.source.V.row(0);
+  CHECK(d.y() > 0.05);
+  CHECK(std::abs(d.x()) < 1e-9);
+  CHECK(std::abs(d.z()) < 1e-9);
+  CHECK(((e.source.V - scene.source.V).rowwise() - d).cwiseAbs().maxCoeff() < 1e-9);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "moved_cli.obj");
+}
+
+TEST_CASE("apps: merge app — painting a region on a closed source and cutting gives it an open rim") {
+  // The cactus is closed: merging it says so. Painted across its middle and cut, it has one
+  // boundary loop, so the module's complaint becomes the missing pair.
+  const fs::path dir = scratch_dir(), log = dir / "paint.log";
+  const fs::path cactus = kSource / "assets/external/cactus.off", other = kSource / "assets/merge/dome_placed.obj";  // beside the cactus, not around it
+  REQUIRE_MESSAGE(fs::exists(cactus), "run scripts/setup");
+  const geometry::TriMesh source = geometry::read_mesh(cactus), target = geometry::read_mesh(other);
+  const geometry::CameraMatrices cam = first_view(source, target);
+  const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
+  std::string paint = "xdotool key --window $w m; sleep 1; xdotool key --window $w 5; sleep 0.3; xdotool mousemove --window $w " +
+                      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
+  for (int k = 1; k <= 8; ++k)
+    paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.05";
+  paint += " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; xdotool key --window $w m; sleep 2;";
+  REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) + " 2> " +
+                         log.string()) == 0);
+  const std::string text = text_of(log);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): the source is closed (no boundary loop)") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
+        std::string::npos);
+  CHECK(text.find("not manifold") == std::string::npos);
 }

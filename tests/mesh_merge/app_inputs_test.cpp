@@ -44,6 +44,36 @@ TEST_CASE("mesh_merge: cut_by_region splits a closed mesh into two parts with on
   }
 }
 
+TEST_CASE("mesh_merge: cut_by_region closes a region that touches itself at a vertex") {
+  // Around a valence-6 vertex v, painting v, r0, r1, r3, r4 makes faces (v, r0, r1) and
+  // (v, r3, r4) inside, touching only at v: cut as they are, both parts would pinch there.
+  const TriMesh sphere = geometry::make_icosphere(3, 1.0);
+  const geometry::Connectivity conn(sphere);
+  int v = 0;
+  while (conn.degree(v) != 6) ++v;
+  const std::vector<int> ring = conn.one_ring_ordered(v);
+  const RegionCut cut = cut_by_region(sphere, {v, ring[0], ring[1], ring[3], ring[4]});
+  CHECK(geometry::validate(cut.inside).non_manifold_vertices.empty());
+  CHECK(geometry::validate(cut.outside).non_manifold_vertices.empty());
+  CHECK(cut.inside.num_faces() == 6);  // the whole fan around v
+  CHECK(geometry::Connectivity(cut.outside).boundary_loops().size() == 1);
+}
+
+TEST_CASE("mesh_merge: cut_by_region fills unpainted islands inside the region") {
+  // A cap painted with one vertex left out: without filling, the cap would have two loops.
+  const TriMesh sphere = geometry::make_icosphere(3, 1.0);
+  std::vector<int> cap;
+  int top = 0;
+  for (int v = 0; v < sphere.num_vertices(); ++v) {
+    if (sphere.V(v, 2) > sphere.V(top, 2)) top = v;
+  }
+  for (int v = 0; v < sphere.num_vertices(); ++v)
+    if (sphere.V(v, 2) > 0.3 && v != top) cap.push_back(v);
+  const RegionCut cut = cut_by_region(sphere, cap);
+  CHECK(geometry::Connectivity(cut.inside).boundary_loops().size() == 1);
+  CHECK(cut.inside.num_faces() + cut.outside.num_faces() == sphere.num_faces());
+}
+
 TEST_CASE("mesh_merge: cut_by_region names what is wrong with the region") {
   const TriMesh sphere = geometry::make_icosphere(2, 1.0);
   CHECK_THROWS_WITH_AS(cut_by_region(sphere, {0}),

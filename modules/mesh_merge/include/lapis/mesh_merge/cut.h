@@ -31,8 +31,11 @@ struct RegionCut {
 
 // Splits mesh along the border of a painted vertex region (the merge app's "cut a part off"):
 // a face is inside when all three of its corners are selected, so the cut runs along mesh
-// edges between the region's rim and the rest. As in cut_by_plane(), only the largest
-// connected component of each side is kept. Throws InvalidArgument
+// edges between the region's rim and the rest. The region is cleaned as a user means it: where
+// the inside faces around a vertex form more than one fan (a painted rim touching itself) all
+// faces around it go inside, so both parts stay manifold, and unpainted islands within the
+// region (gaps a brush leaves) are filled, so a region painted as one patch gives one rim. As in
+// cut_by_plane(), only the largest connected component of each side is kept. Throws InvalidArgument
 // "mesh_merge::cut_by_region(): ..." for a vertex out of range or a side left empty.
 RegionCut cut_by_region(const geometry::TriMesh& mesh, const std::vector<int>& region);
 
