@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
           "                   [--benchmark OUT.json] [--size WxH]\n"
           "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
           "Left-click with the current tool (1 pair loops, 2 key correspondences, 3 fixed handles), right-drag\n"
-          "orbits, middle-drag pans, wheel zooms, F frames. M merges, Tab shows result or inputs, Ctrl+Z /\n"
+          "orbits, middle-drag pans, wheel zooms, F frames. D switches independent / dependent mode, M merges,\n"
+          "Tab shows result or inputs, Ctrl+Z /\n"
           "Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged), PREFIX_pairs.json, PREFIX_source.obj,\n"
           "PREFIX_target.obj and the equivalent `lapis merge` command (default PREFIX out/merge); with\n"
           "--export the files are also written on exit. Ctrl+P screenshot, Ctrl+Q quit.\n");

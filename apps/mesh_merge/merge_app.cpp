@@ -196,6 +196,13 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     case GLFW_KEY_4: tool_ = Tool::Move; break;
     case GLFW_KEY_5: tool_ = Tool::Paint; break;
     case GLFW_KEY_C: cut_painted(v); break;
+    case GLFW_KEY_D: {  // the mode switch of the panel, from the keyboard (and replays)
+      MergeSetup next = setup();
+      const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;
+      next.options.mode = dependent ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+      commit(v, std::move(next), "mode");
+      break;
+    }
     case GLFW_KEY_M: requested_revision_ = 0, request_merge(); break;  // explicit: even when incomplete
     case GLFW_KEY_TAB: show_result_ = !show_result_, scene_dirty_ = true; break;
     case GLFW_KEY_F: frame(v); break;  // before the viewer's own F, which ignores the panels

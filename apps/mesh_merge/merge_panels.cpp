@@ -69,7 +69,7 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     if (i % 2) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) tool_ = tools[i], scene_dirty_ = true;
   }
-  ImGui::TextDisabled("keys 1-5 tools, M merge, Tab result/inputs");
+  ImGui::TextDisabled("keys 1-5 tools, D mode, M merge, Tab result/inputs");
   if (tool_ == Tool::Paint) draw_paint_controls(v);
 
   MergeSetup next = setup();

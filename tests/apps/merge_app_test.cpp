@@ -282,3 +282,38 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
         std::string::npos);
   CHECK(text.find("not manifold") == std::string::npos);
 }
+
+TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and exports what lapis merge needs") {
+  const fs::path dir = scratch_dir(), prefix = dir / "dependent";
+  const DefaultScene scene;
+  const geometry::Connectivity sc(scene.source), tc(scene.target);
+  const auto& sloop = sc.boundary_loops().at(0);
+  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
+      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
+  // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
+  // of the dome, clicked with tool 3.
+  double zmin = 1e300, zmax = -1e300;
+  for (int v = 0; v < scene.source.num_vertices(); ++v) zmin = std::min(zmin, scene.source.V(v, 2)), zmax = std::max(zmax, scene.source.V(v, 2));
+  const Eigen::Vector3d eye = geometry::eye_position(scene.camera);
+  int handle = -1;
+  for (int v = 0; v < scene.source.num_vertices(); ++v)
+    if (scene.source.V(v, 2) > 0.5 * (zmin + zmax) &&
+        (handle < 0 || (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
+      handle = v;
+  const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
+  const std::string actions = pair_and_key_clicks(scene.front_pixel(scene.source, sloop), scene.front_pixel(scene.target, tloop)) +
+                              "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
+                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; xdotool key --window $w m; sleep 6;";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
+  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
+  REQUIRE(handles.size() == 1);
+  // Dependent merging keeps the placement and the handles exactly: the merged mesh has a vertex
+  // at the handle's placed position, bit for bit.
+  bool found = false;
+  for (int v = 0; v < e.merged.num_vertices() && !found; ++v) found = e.merged.V.row(v) == e.source.V.row(handles[0]);
+  CHECK(found);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "dependent_cli.obj");
+}
