@@ -60,9 +60,19 @@ std::string text_of(const fs::path& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+std::string click(const Eigen::Vector2i& p) {
+  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " sleep 0.3 click 1 sleep 0.5; ";
+}
+
+// Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
+std::string pair_and_key_clicks(const Eigen::Vector2i& s, const Eigen::Vector2i& t) {
+  return click(s) + click(t) + click(s) + click(t);
+}
+
 struct DefaultScene {
   geometry::TriMesh source, target;
   geometry::CameraMatrices camera;
+  std::vector<int> sloop, tloop;  // the dome's rim and the neck rim facing it
   DefaultScene() : target(asset("neck.obj")) {
     const geometry::TriMesh dome = asset("dome.obj");
     mesh_merge::MergeSetup s;
@@ -70,7 +80,11 @@ struct DefaultScene {
     s.placement = mesh_merge::suggest_placement(dome, target);
     source = mesh_merge::placed_source(s);
     camera = first_view(source, target);
+    const geometry::Connectivity sc(source), tc(target);
+    sloop = sc.boundary_loops().at(0);
+    tloop = tc.boundary_loops().at(static_cast<size_t>(mesh_merge::facing_target_loop(source, sloop, target, tc.boundary_loops())));
   }
+  std::string pair_and_key() const { return pair_and_key_clicks(front_pixel(source, sloop), front_pixel(target, tloop)); }
   // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
   Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
     const Eigen::Vector3d eye = geometry::eye_position(camera);
@@ -81,15 +95,6 @@ struct DefaultScene {
     return {static_cast<int>(std::lround(s.x())), static_cast<int>(std::lround(s.y()))};
   }
 };
-
-std::string click(const Eigen::Vector2i& p) {
-  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " sleep 0.3 click 1 sleep 0.5; ";
-}
-
-// Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
-std::string pair_and_key_clicks(const Eigen::Vector2i& s, const Eigen::Vector2i& t) {
-  return click(s) + click(t) + click(s) + click(t);
-}
 
 struct Exported {
   geometry::TriMesh merged, source, target;
@@ -160,10 +165,8 @@ void check_equals_cli(const Exported& e, const fs::path& out) {
 TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then merge and export") {
   const fs::path dir = scratch_dir();
   const DefaultScene scene;
-  const geometry::Connectivity sc(scene.source), tc(scene.target);
-  const auto& sloop = sc.boundary_loops().at(0);
-  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
-      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
+  const auto& sloop = scene.sloop;
+  const auto& tloop = scene.tloop;
   const Eigen::Vector2i s = scene.front_pixel(scene.source, sloop), t = scene.front_pixel(scene.target, tloop);
   // Clear of the panels on the right and the menu bar.
   REQUIRE(s.x() > 0);
@@ -229,10 +232,6 @@ TEST_CASE("apps: merge app — merging before anything is paired reports the mod
 TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis; the merge still equals lapis merge") {
   const fs::path dir = scratch_dir(), prefix = dir / "moved";
   const DefaultScene scene;
-  const geometry::Connectivity sc(scene.source), tc(scene.target);
-  const auto& sloop = sc.boundary_loops().at(0);
-  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
-      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
   // The gizmo sits on the placed source's centroid; grab its y arrow near the tip (beyond the
   // rings) and drag it 60 pixels up the screen (world y is the screen's up).
   viewer::Gizmo gizmo;
@@ -246,7 +245,7 @@ TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis
     drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " + std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
   drag += " mouseup 1; sleep 1; ";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
-                                         pair_and_key_clicks(scene.front_pixel(scene.source, sloop), scene.front_pixel(scene.target, tloop)) +
+                                         scene.pair_and_key() +
                                          drag + "xdotool key --window $w m; sleep 6;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.source.num_vertices() == scene.source.num_vertices());
@@ -286,10 +285,6 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
 TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and exports what lapis merge needs") {
   const fs::path dir = scratch_dir(), prefix = dir / "dependent";
   const DefaultScene scene;
-  const geometry::Connectivity sc(scene.source), tc(scene.target);
-  const auto& sloop = sc.boundary_loops().at(0);
-  const auto& tloop = tc.boundary_loops().at(static_cast<size_t>(
-      mesh_merge::facing_target_loop(scene.source, sloop, scene.target, tc.boundary_loops())));
   // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
   // of the dome, clicked with tool 3.
   double zmin = 1e300, zmax = -1e300;
@@ -301,7 +296,7 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
         (handle < 0 || (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
       handle = v;
   const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
-  const std::string actions = pair_and_key_clicks(scene.front_pixel(scene.source, sloop), scene.front_pixel(scene.target, tloop)) +
+  const std::string actions = scene.pair_and_key() +
                               "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
                               " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; xdotool key --window $w m; sleep 6;";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
