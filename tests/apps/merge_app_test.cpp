@@ -1,10 +1,12 @@
 // The merge app, for real: driven by xdotool under Xvfb (pair two loops, set a key, merge,
-// export), replayed from the committed recording of such a session, and rendered headless. The
-// exports must be watertight where the paired loops were and equal `lapis merge` on the
-// exported files.
+// export; move the source with the gizmo; paint and cut a closed source; a dependent merge with
+// a handle), replayed from the committed recording of such a session (also with undo / redo),
+// and rendered headless. The exports must be watertight where the paired loops were and equal
+// `lapis merge` on the exported files; bad input must come back as the module's messages.
 #include <doctest/doctest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -311,4 +313,37 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
   CHECK(found);
   check_watertight_seam(e);
   check_equals_cli(e, dir / "dependent_cli.obj");
+}
+
+TEST_CASE("apps: merge app — undo takes the key back (the module's error names it), redo restores the merge") {
+  const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log", prefix = dir / "redone";
+  // The recorded session, then Ctrl+Z, M, Ctrl+Shift+Z, M.
+  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
+  long frame = j["events"].back()["frame"].get<long>();
+  auto key = [&](int k, int mods) {
+    frame += 20;
+    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", k}, {"action", 1}, {"mods", mods}});
+    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", k}, {"action", 0}, {"mods", mods}});
+  };
+  constexpr int kZ = 90, kM = 77, kCtrl = 2, kShift = 1;
+  key(kZ, kCtrl);
+  key(kM, 0);
+  key(kZ, kCtrl | kShift);
+  key(kM, 0);
+  {
+    std::ofstream out(events);
+    out << j.dump();
+  }
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string() +
+                         " 2> " + log.string()) == 0);
+  const std::string text = text_of(log);
+  CHECK(text.find("undo: key correspondence") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): pair 0 has no key correspondence, expected at least one") !=
+        std::string::npos);
+  CHECK(text.find("redo: key correspondence") != std::string::npos);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  CHECK(e.pairs[0].keys.size() == 1);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "redone_cli.obj");
 }
