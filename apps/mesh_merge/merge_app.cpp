@@ -40,7 +40,7 @@ const char* tool_name(Tool t) {
 }
 
 MergeApp::MergeApp(MergeSetup setup, std::string source_name, std::string target_name, AppPaths paths)
-    : history_(Snapshot{std::move(setup), 1}), source_name_(std::move(source_name)), target_name_(std::move(target_name)),
+    : history_(Snapshot{std::move(setup), std::move(source_name), std::move(target_name), 1}),
       paths_(std::move(paths)) {
   refresh_pickables();
 }
@@ -67,7 +67,7 @@ bool MergeApp::busy() const {
 // ---------------------------------------------------------------- edits and history
 
 void MergeApp::commit(viewer::Viewer&, MergeSetup next, std::string name) {
-  history_.push(Snapshot{std::move(next), ++last_revision_}, std::move(name));
+  history_.push(Snapshot{std::move(next), source_name(), target_name(), ++last_revision_}, std::move(name));
   refresh_pickables();
   scene_dirty_ = true;
 }
@@ -120,9 +120,8 @@ void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry:
   next.pairs.clear();  // loop indices belong to the old meshes
   next.source = std::move(source);
   next.target = std::move(target);
-  source_name_ = std::move(source_name);
-  target_name_ = std::move(target_name);
-  commit(v, std::move(next), std::move(edit));
+  history_.push(Snapshot{std::move(next), std::move(source_name), std::move(target_name), ++last_revision_}, std::move(edit));
+  refresh_pickables();
   clear_picks();
   painted_.clear();
   update_scene(v);
@@ -133,8 +132,8 @@ void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, b
   try {
     auto mesh = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(path));
     const std::string name = path.filename().string();
-    if (as_source) replace_meshes(v, mesh, name, setup().target, target_name_, "open source " + name);
-    else replace_meshes(v, setup().source, source_name_, mesh, name, "open target " + name);
+    if (as_source) replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name);
+    else replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name);
   } catch (const Error& e) {
     v.flash(std::string("open failed: ") + e.what());
   }
@@ -378,8 +377,8 @@ void MergeApp::on_exit(viewer::Viewer& v) {
 
 void MergeApp::benchmark_fields(nlohmann::json& j) const {
   j["app"] = "lapis-merge";
-  j["source"] = source_name_;
-  j["target"] = target_name_;
+  j["source"] = source_name();
+  j["target"] = target_name();
   j["source_vertices"] = setup().source ? setup().source->num_vertices() : 0;
   j["target_vertices"] = setup().target ? setup().target->num_vertices() : 0;
   j["merge_job_ms"] = job_ms_;

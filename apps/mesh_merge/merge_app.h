@@ -36,6 +36,7 @@ const char* tool_name(Tool t);
 // redo, so a merge result can be matched to the setup it was computed for.
 struct Snapshot {
   MergeSetup setup;
+  std::string source_name, target_name;  // as the panel shows them (they change with the meshes)
   std::uint64_t revision = 0;
 };
 
@@ -84,6 +85,8 @@ class MergeApp final : public viewer::ViewerApp {
  private:
   const MergeSetup& setup() const { return history_.current().setup; }
   std::uint64_t revision() const { return history_.current().revision; }
+  const std::string& source_name() const { return history_.current().source_name; }
+  const std::string& target_name() const { return history_.current().target_name; }
   void commit(viewer::Viewer& v, MergeSetup next, std::string name);
   void undo(viewer::Viewer& v);
   void redo(viewer::Viewer& v);
@@ -135,7 +138,6 @@ class MergeApp final : public viewer::ViewerApp {
 
   viewer::UndoHistory<Snapshot> history_;
   std::uint64_t last_revision_ = 1;
-  std::string source_name_, target_name_;
   AppPaths paths_;
   PickableMesh source_, target_;
 

@@ -61,8 +61,8 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::Begin("Merge", nullptr, ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_AlwaysAutoResize);
   draw_menu(v);
   ImGui::PushItemWidth(150);
-  ImGui::Text("source: %s (%d vertices, %zu loops)", source_name_.c_str(), source_.mesh.num_vertices(), source_.loops().size());
-  ImGui::Text("target: %s (%d vertices, %zu loops)", target_name_.c_str(), target_.mesh.num_vertices(), target_.loops().size());
+  ImGui::Text("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(), source_.loops().size());
+  ImGui::Text("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(), target_.loops().size());
   ImGui::Separator();
   const Tool tools[] = {Tool::PairLoops, Tool::Keys, Tool::Handles, Tool::Move, Tool::Paint};
   for (int i = 0; i < 5; ++i) {
