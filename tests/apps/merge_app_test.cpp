@@ -98,6 +98,14 @@ struct DefaultScene {
   }
 };
 
+// An event log with one key press: M (merge) at frame 5.
+void write_merge_key_events(const fs::path& path) {
+  std::ofstream out(path);
+  out << R"({"format": "lapis-events", "version": 1, "width": 800, "height": 600, "events": [)"
+      << R"({"type": "key", "frame": 5, "key": 77, "action": 1, "mods": 0},)"
+      << R"({"type": "key", "frame": 6, "key": 77, "action": 0, "mods": 0}]})";
+}
+
 struct Exported {
   geometry::TriMesh merged, source, target;
   std::vector<mesh_merge::LoopPair> pairs;
@@ -219,12 +227,7 @@ TEST_CASE("apps: merge app — the headless screenshot after a merge is neither 
 
 TEST_CASE("apps: merge app — merging before anything is paired reports the module's error and keeps running") {
   const fs::path dir = scratch_dir(), events = dir / "merge_now.json", log = dir / "merge_now.log";
-  {
-    std::ofstream out(events);  // one key press: M, at frame 5
-    out << R"({"format": "lapis-events", "version": 1, "width": 800, "height": 600, "events": [)"
-        << R"({"type": "key", "frame": 5, "key": 77, "action": 1, "mods": 0},)"
-        << R"({"type": "key", "frame": 6, "key": 77, "action": 0, "mods": 0}]})";
-  }
+  write_merge_key_events(events);
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
   const std::string text = text_of(log);
   CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
@@ -346,4 +349,16 @@ TEST_CASE("apps: merge app — undo takes the key back (the module's error names
   CHECK(e.pairs[0].keys.size() == 1);
   check_watertight_seam(e);
   check_equals_cli(e, dir / "redone_cli.obj");
+}
+
+TEST_CASE("apps: merge app — a non-manifold source is refused with the module's message, not a crash") {
+  const fs::path dir = scratch_dir(), bad = dir / "fin.obj", events = dir / "merge_now.json", log = dir / "fin.log";
+  {
+    std::ofstream out(bad);  // three triangles on the edge (0, 1): a fin, open but not manifold
+    out << "v 0 0 0\nv 1 0 0\nv 0.5 1 0\nv 0.5 -1 0\nv 0.5 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  }
+  write_merge_key_events(events);
+  REQUIRE(run_under_xvfb(kApp + " --headless --source " + bad.string() + " --target " + (kSource / "assets/merge/neck.obj").string() +
+                         " --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
+  CHECK(text_of(log).find("merge failed: mesh_merge::check_merge_input(): the source is not manifold") != std::string::npos);
 }
