@@ -19,12 +19,13 @@ int main(int argc, char** argv) {
           "                   [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
           "                   [--benchmark OUT.json] [--size WxH]\n"
           "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
-          "Left-click with the current tool (1 pair loops, 2 key correspondences, 3 fixed handles), right-drag\n"
-          "orbits, middle-drag pans, wheel zooms, F frames. D switches independent / dependent mode, M merges,\n"
-          "Tab shows result or inputs, Ctrl+Z /\n"
-          "Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged), PREFIX_pairs.json, PREFIX_source.obj,\n"
-          "PREFIX_target.obj and the equivalent `lapis merge` command (default PREFIX out/merge); with\n"
-          "--export the files are also written on exit. Ctrl+P screenshot, Ctrl+Q quit.\n");
+          "Left-click with the current tool: 1 pair loops, 2 key correspondences, 3 fixed handles; left-drag:\n"
+          "4 moves the source with the gizmo, 5 paints a region (Shift erases) that C cuts off. Right-drag orbits,\n"
+          "middle-drag pans, wheel zooms, F frames. D switches independent / dependent mode, M merges, Tab\n"
+          "shows result or inputs, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged),\n"
+          "PREFIX_source.obj, PREFIX_target.obj, PREFIX_pairs.json and the equivalent `lapis merge` command\n"
+          "(default PREFIX out/merge); with --export the files are also written on exit. Ctrl+P screenshot,\n"
+          "Ctrl+Q quit.\n");
       return 0;
     }
     const cli::Args args(rest);
