@@ -1,7 +1,6 @@
 // `lapis merge`: Poisson mesh merging (thesis §3.3) headless — a source part deformed onto a
 // target's open boundary, zipped and smoothed, with seam and detail metrics as JSON.
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "args.h"
@@ -10,6 +9,7 @@
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/metrics.h"
+#include "lapis/mesh_merge/pairs_file.h"
 
 namespace lapis::cli {
 namespace {
@@ -27,53 +27,6 @@ constexpr const char* kUsage =
     "  H.json: {\"handles\": [5, 6, 7]}. --smooth: umbrella iterations on the seam (default 3).\n"
     "  Prints the report (timings, seam validity and smoothness, detail preservation) as JSON.\n";
 
-nlohmann::json read_json(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw IoError("lapis merge: cannot open " + std::string(what) + " file " + path);
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw IoError("lapis merge: " + path + " is not valid JSON: " + e.what());
-  }
-}
-
-int vertex_index(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_number_integer()) throw InvalidArgument("lapis merge: " + where + " must be an integer vertex index");
-  return j.get<int>();
-}
-
-std::vector<mesh_merge::LoopPair> read_pairs(const std::string& path) {
-  const nlohmann::json j = read_json(path, "pairs");
-  if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
-    throw InvalidArgument("lapis merge: " + path + ": expected {\"pairs\": [{\"keys\": [...]}, ...]}");
-  std::vector<mesh_merge::LoopPair> pairs;
-  for (size_t p = 0; p < j["pairs"].size(); ++p) {
-    const auto& jp = j["pairs"][p];
-    const std::string where = path + ": pairs[" + std::to_string(p) + "]";
-    if (!jp.is_object() || !jp.contains("keys") || !jp["keys"].is_array())
-      throw InvalidArgument("lapis merge: " + where + " needs a \"keys\" array");
-    mesh_merge::LoopPair pair;
-    for (size_t k = 0; k < jp["keys"].size(); ++k) {
-      const auto& jk = jp["keys"][k];
-      const std::string kw = where + ".keys[" + std::to_string(k) + "]";
-      if (!jk.is_object() || !jk.contains("source") || !jk.contains("target"))
-        throw InvalidArgument("lapis merge: " + kw + " needs \"source\" and \"target\"");
-      pair.keys.push_back({vertex_index(jk["source"], kw + ".source"), vertex_index(jk["target"], kw + ".target")});
-    }
-    pairs.push_back(std::move(pair));
-  }
-  return pairs;
-}
-
-std::vector<int> read_handles(const std::string& path) {
-  const nlohmann::json j = read_json(path, "handles");
-  if (!j.is_object() || !j.contains("handles") || !j["handles"].is_array())
-    throw InvalidArgument("lapis merge: " + path + ": expected {\"handles\": [vertex, ...]}");
-  std::vector<int> h;
-  for (size_t k = 0; k < j["handles"].size(); ++k) h.push_back(vertex_index(j["handles"][k], path + ": handles[" + std::to_string(k) + "]"));
-  return h;
-}
-
 int run(const std::vector<std::string>& argv) {
   const Args args(argv);
   args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width", "--report"});
@@ -86,14 +39,14 @@ int run(const std::vector<std::string>& argv) {
   }
   if (args.has("--handles")) {
     if (o.mode != mesh_merge::MergeMode::Dependent) throw UsageError("--handles needs --mode dependent");
-    o.handles = read_handles(args.get("--handles"));
+    o.handles = mesh_merge::read_handles_file(args.get("--handles"));
   }
   o.smooth_iterations = static_cast<int>(args.get_int("--smooth", o.smooth_iterations, 0, 1000));
   o.roi_width = args.get_double("--roi-width", 0.0, 0.0, 1e300);
   const std::string out = args.get("--out");
   const geometry::TriMesh source = geometry::read_mesh(args.get("--source"));
   const geometry::TriMesh target = geometry::read_mesh(args.get("--target"));
-  const std::vector<mesh_merge::LoopPair> pairs = read_pairs(args.get("--pairs"));
+  const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
 
   const mesh_merge::MergeResult r = mesh_merge::merge(source, target, pairs, o);
   const mesh_merge::SeamQuality q = mesh_merge::seam_quality(target, r);

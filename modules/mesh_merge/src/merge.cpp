@@ -102,6 +102,13 @@ Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)
 
 Merger::~Merger() = default;
 
+void Merger::set_smoothing(int iterations, int rings, double lambda) {
+  MergeOptions o = options_;
+  o.smooth_iterations = iterations, o.smooth_rings = rings, o.smooth_lambda = lambda;
+  check_options(source_, o);
+  options_ = std::move(o);
+}
+
 MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pairs) {
   const auto t_total = std::chrono::steady_clock::now();
   auto t0 = t_total;

@@ -91,7 +91,13 @@ class Merger {
   // Throws check_merge_input()'s errors for bad pairs and zip_seams()'s errors.
   MergeResult merge(const TriMesh& target, const std::vector<LoopPair>& pairs);
 
+  // Seam smoothing runs after the solve, so changing it needs no new precompute (an app's
+  // slider re-merges at merge() cost). Throws InvalidArgument "mesh_merge::merge(): ..." for
+  // values out of range, as the constructor does.
+  void set_smoothing(int iterations, int rings, double lambda);
+
   double precompute_ms() const { return precompute_ms_; }
+  const MergeOptions& options() const { return options_; }
   const TriMesh& source() const { return source_; }
 
  private:

@@ -1,0 +1,395 @@
+#include "merge_app.h"
+
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "bundled_meshes.h"
+#include "lapis/geometry/io.h"
+#include "lapis/viewer/picking.h"
+
+namespace lapis::merge_app {
+
+namespace {
+
+constexpr double kPickPixels = 14.0;      // how near a click must be to a loop or vertex
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool same_options(const mesh_merge::MergeOptions& a, const mesh_merge::MergeOptions& b) {
+  // What the Merger's precompute depends on (smoothing is set per merge).
+  return a.mode == b.mode && a.roi_width == b.roi_width && a.handles == b.handles && a.refine_ratio == b.refine_ratio &&
+         a.refine_levels == b.refine_levels;
+}
+
+}  // namespace
+
+const char* tool_name(Tool t) {
+  switch (t) {
+    case Tool::PairLoops: return "pair loops";
+    case Tool::Keys: return "key correspondences";
+    case Tool::Handles: return "fixed handles";
+    case Tool::Move: return "move source";
+    case Tool::Paint: return "paint & cut";
+  }
+  return "?";
+}
+
+MergeApp::MergeApp(MergeSetup setup, std::string source_name, std::string target_name, AppPaths paths)
+    : history_(Snapshot{std::move(setup), std::move(source_name), std::move(target_name), 1}),
+      paths_(std::move(paths)) {
+  refresh_pickables();
+}
+
+MergeApp::~MergeApp() = default;
+
+void MergeApp::on_start(viewer::Viewer& v) {
+  v.camera().yaw = kViewYaw;
+  v.camera().pitch = kViewPitch;
+  update_scene(v);
+  frame(v);
+}
+
+// The panels take the right kPanelWidth pixels: fit and centre the meshes in what is left.
+void MergeApp::frame(viewer::Viewer& v) {
+  v.frame_scene();
+  fit_beside_panels(v.camera(), v.width(), v.height());
+}
+
+bool MergeApp::busy() const {
+  return worker_.busy() || export_pending_ || (requested_revision_ == revision() && (!last_ || last_->revision != requested_revision_));
+}
+
+// ---------------------------------------------------------------- edits and history
+
+void MergeApp::commit(viewer::Viewer&, MergeSetup next, std::string name) {
+  history_.push(Snapshot{std::move(next), source_name(), target_name(), ++last_revision_}, std::move(name));
+  refresh_pickables();
+  scene_dirty_ = true;
+}
+
+void MergeApp::undo(viewer::Viewer& v) {
+  if (!history_.can_undo()) return v.flash("nothing to undo");
+  v.flash("undo: " + history_.undo_label());
+  history_.undo();
+  after_history_step();
+}
+
+void MergeApp::redo(viewer::Viewer& v) {
+  if (!history_.can_redo()) return v.flash("nothing to redo");
+  v.flash("redo: " + history_.redo_label());
+  history_.redo();
+  after_history_step();
+}
+
+void MergeApp::after_history_step() {
+  refresh_pickables();
+  clear_picks();  // half-made picks and paint index a mesh the step may have replaced
+  painted_.clear();
+  scene_dirty_ = true;
+}
+
+void MergeApp::clear_picks() { pending_source_loop_ = pending_target_loop_ = pending_key_source_ = pending_key_target_ = -1; }
+
+void MergeApp::refresh_pickables() {
+  auto rebuild = [](PickableMesh& p, const std::shared_ptr<const geometry::TriMesh>& rest, const Eigen::Matrix4d& placement,
+                    const MergeSetup& s, bool is_source) {
+    if (p.rest == rest && p.placement == placement && p.conn) return;
+    p.rest = rest;
+    p.placement = placement;
+    p.mesh = is_source ? mesh_merge::placed_source(s) : *rest;
+    p.conn = std::make_unique<geometry::Connectivity>(p.mesh);
+    p.bvh = std::make_unique<geometry::Bvh>(p.mesh);
+  };
+  rebuild(source_, setup().source, setup().placement, setup(), true);
+  rebuild(target_, setup().target, Eigen::Matrix4d::Identity(), setup(), false);
+}
+
+void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry::TriMesh> source, std::string source_name,
+                              std::shared_ptr<const geometry::TriMesh> target, std::string target_name, std::string edit,
+                              bool keep_placement) {
+  MergeSetup next = setup();
+  if (source != next.source) {
+    next.options.handles.clear();  // vertex indices of the old source
+    if (!keep_placement) next.placement.setIdentity();
+  }
+  next.pairs.clear();  // loop indices belong to the old meshes
+  next.source = std::move(source);
+  next.target = std::move(target);
+  history_.push(Snapshot{std::move(next), std::move(source_name), std::move(target_name), ++last_revision_}, std::move(edit));
+  refresh_pickables();
+  clear_picks();
+  painted_.clear();
+  update_scene(v);
+  if (!keep_placement) frame(v);
+}
+
+void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, bool as_source) {
+  try {
+    auto mesh = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(path));
+    const std::string name = path.filename().string();
+    if (as_source) replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name);
+    else replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name);
+  } catch (const Error& e) {
+    v.flash(std::string("open failed: ") + e.what());
+  }
+}
+
+void MergeApp::load_preset(viewer::Viewer& v, int preset) {
+  try {
+    MeshPair p = load_preset_meshes(preset, paths_.source_dir);
+    replace_meshes(v, p.source, p.source_name, p.target, p.target_name, "open preset");
+    if (p.place_source) {
+      MergeSetup next = setup();
+      next.placement = mesh_merge::suggest_placement(*p.source, *p.target);
+      commit(v, std::move(next), "place source");
+      update_scene(v);
+      frame(v);
+    }
+  } catch (const Error& e) {
+    v.flash(std::string("open failed: ") + e.what());
+  }
+}
+
+// ---------------------------------------------------------------- input
+
+bool MergeApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
+  using viewer::EventType;
+  if (e.type == EventType::Key) return handle_key(v, e);
+  if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
+    if (e.action == GLFW_PRESS) {
+      if (tool_ == Tool::Move) press_move(v, e.x, e.y);
+      else if (tool_ == Tool::Paint) press_paint(v, e.x, e.y, e.mods & GLFW_MOD_SHIFT);
+      else click(v, e.x, e.y);
+      return true;
+    }
+    if (e.action == GLFW_RELEASE && (drag_start_ || painting_)) {
+      if (drag_start_) release_move(v);
+      painting_ = false;
+      return true;
+    }
+  }
+  if (e.type == EventType::MouseMove) {
+    if (drag_start_) return drag_move(v, e.x, e.y), true;
+    if (painting_) return drag_paint(v, e.x, e.y), true;
+    if (tool_ == Tool::Move) gizmo_.hovered = gizmo_.hit(v.camera_matrices(), {e.x, e.y});
+  }
+  return false;
+}
+
+bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
+  if (e.action != GLFW_PRESS) return false;
+  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
+  if (ctrl && e.key == GLFW_KEY_Z) return shift ? redo(v) : undo(v), true;
+  if (ctrl && e.key == GLFW_KEY_Y) return redo(v), true;
+  if (ctrl && e.key == GLFW_KEY_E) return export_pending_ = true, true;
+  if (ctrl) return false;
+  switch (e.key) {
+    case GLFW_KEY_1: tool_ = Tool::PairLoops; break;
+    case GLFW_KEY_2: tool_ = Tool::Keys; break;
+    case GLFW_KEY_3: tool_ = Tool::Handles; break;
+    case GLFW_KEY_4: tool_ = Tool::Move; break;
+    case GLFW_KEY_5: tool_ = Tool::Paint; break;
+    case GLFW_KEY_C: cut_painted(v); break;
+    case GLFW_KEY_D: {  // the mode switch of the panel, from the keyboard (and replays)
+      MergeSetup next = setup();
+      const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;
+      next.options.mode = dependent ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+      commit(v, std::move(next), "mode");
+      break;
+    }
+    case GLFW_KEY_M: requested_revision_ = 0, request_merge(); break;  // explicit: even when incomplete
+    case GLFW_KEY_TAB: show_result_ = !show_result_, scene_dirty_ = true; break;
+    case GLFW_KEY_F: frame(v); break;  // before the viewer's own F, which ignores the panels
+    case GLFW_KEY_ESCAPE: clear_picks(); break;
+    default: return false;
+  }
+  scene_dirty_ = true;
+  return true;
+}
+
+std::vector<const geometry::Bvh*> MergeApp::occluders() const { return {source_.bvh.get(), target_.bvh.get()}; }
+
+int MergeApp::pair_of_source_loop(int loop) const {
+  for (size_t p = 0; p < setup().pairs.size(); ++p)
+    if (setup().pairs[p].source_loop == loop) return static_cast<int>(p);
+  return -1;
+}
+
+int MergeApp::pair_of_target_loop(int loop) const {
+  for (size_t p = 0; p < setup().pairs.size(); ++p)
+    if (setup().pairs[p].target_loop == loop) return static_cast<int>(p);
+  return -1;
+}
+
+void MergeApp::click(viewer::Viewer& v, double x, double y) {
+  switch (tool_) {
+    case Tool::PairLoops: click_pair_loops(v, x, y); break;
+    case Tool::Keys: click_keys(v, x, y); break;
+    case Tool::Handles: click_handles(v, x, y); break;
+    case Tool::Move:
+    case Tool::Paint: break;  // drags, see on_event()
+  }
+  scene_dirty_ = true;
+}
+
+void MergeApp::click_pair_loops(viewer::Viewer& v, double x, double y) {
+  const auto cam = v.camera_matrices();
+  const viewer::LoopPick s = viewer::pick_loop(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders());
+  const viewer::LoopPick t = viewer::pick_loop(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders());
+  if (!s && !t) {
+    pending_source_loop_ = pending_target_loop_ = -1;
+    return v.flash("no boundary loop there: click near a loop (drawn as a line)");
+  }
+  if (s && (!t || s.pixels <= t.pixels)) pending_source_loop_ = s.loop;
+  else pending_target_loop_ = t.loop;
+  if (pending_source_loop_ < 0 || pending_target_loop_ < 0) return;
+  MergeSetup next = setup();
+  mesh_merge::pair_loops(next, pending_source_loop_, pending_target_loop_);
+  pending_source_loop_ = pending_target_loop_ = -1;
+  commit(v, std::move(next), "pair loops");
+  tool_ = Tool::Keys;  // a pair needs a key next
+}
+
+void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
+  std::vector<int> source_loops, target_loops;
+  for (const auto& p : setup().pairs) source_loops.push_back(p.source_loop), target_loops.push_back(p.target_loop);
+  if (source_loops.empty()) return v.flash("pair a source loop with a target loop first (tool 1)");
+  const auto cam = v.camera_matrices();
+  const viewer::LoopPick s = viewer::pick_loop_vertex(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders(), source_loops);
+  const viewer::LoopPick t = viewer::pick_loop_vertex(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders(), target_loops);
+  if (!s && !t) return v.flash("no vertex of a paired loop there");
+  if (s && (!t || s.pixels <= t.pixels)) pending_key_source_ = s.vertex;
+  else pending_key_target_ = t.vertex;
+  if (pending_key_source_ < 0 || pending_key_target_ < 0) return;
+  // Both ends picked: they must lie on the two loops of one pair.
+  int pair = -1;
+  for (size_t p = 0; p < setup().pairs.size(); ++p) {
+    const auto& sl = source_.loops()[static_cast<size_t>(setup().pairs[p].source_loop)];
+    const auto& tl = target_.loops()[static_cast<size_t>(setup().pairs[p].target_loop)];
+    if (std::find(sl.begin(), sl.end(), pending_key_source_) != sl.end() &&
+        std::find(tl.begin(), tl.end(), pending_key_target_) != tl.end())
+      pair = static_cast<int>(p);
+  }
+  const int ks = pending_key_source_, kt = pending_key_target_;
+  pending_key_source_ = pending_key_target_ = -1;
+  if (pair < 0) return v.flash("the two key vertices lie on loops of different pairs");
+  MergeSetup next = setup();
+  try {
+    mesh_merge::add_key(next, pair, {ks, kt}, source_.loops()[static_cast<size_t>(next.pairs[static_cast<size_t>(pair)].source_loop)]);
+  } catch (const Error& e) {
+    return v.flash(e.what());
+  }
+  commit(v, std::move(next), "key correspondence");
+}
+
+void MergeApp::click_handles(viewer::Viewer& v, double x, double y) {
+  const auto hit = viewer::pick(*source_.bvh, v.camera_matrices(), x, y);
+  if (!hit) return v.flash("fixed handles are source vertices: click on the source");
+  const int vertex = viewer::nearest_corner(source_.mesh, *hit);
+  if (source_.conn->is_boundary_vertex(vertex)) return v.flash("a fixed handle cannot lie on the merging boundary");
+  MergeSetup next = setup();
+  mesh_merge::toggle_handle(next, vertex);
+  if (next.options.mode != mesh_merge::MergeMode::Dependent) v.flash("fixed handles act in configuration-dependent mode");
+  commit(v, std::move(next), "fixed handle");
+}
+
+// ---------------------------------------------------------------- engine
+
+bool MergeApp::auto_merge_allowed() const {
+  if (!auto_merge_) return false;
+  if (!mesh_merge::missing_input(setup(), static_cast<int>(source_.loops().size())).empty()) return false;
+  return job_ms_.empty() || job_ms_.back() < kAutoMergeMs;
+}
+
+void MergeApp::request_merge() {
+  if (requested_revision_ == revision()) return;  // already on its way (or done)
+  requested_revision_ = revision();
+  auto slot = engine_;
+  const MergeSetup s = setup();
+  const std::uint64_t revision = this->revision();
+  worker_.submit([slot, s, revision] {
+    MergeOutcome out;
+    out.revision = revision;
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      if (!slot->merger || slot->source != s.source || slot->placement != s.placement || !same_options(slot->options, s.options)) {
+        slot->merger.reset();  // free the old factorization before building the next
+        slot->merger = std::make_unique<mesh_merge::Merger>(mesh_merge::placed_source(s), s.options);
+        slot->source = s.source;
+        slot->placement = s.placement;
+        slot->options = s.options;
+      } else {
+        out.reused = true;
+      }
+      out.precompute_ms = slot->merger->precompute_ms();
+      slot->merger->set_smoothing(s.options.smooth_iterations, s.options.smooth_rings, s.options.smooth_lambda);
+      out.result = slot->merger->merge(*s.target, mesh_merge::loop_pairs(s));
+      out.quality = mesh_merge::seam_quality(*s.target, out.result);
+      out.detail = mesh_merge::detail_preservation(slot->merger->source(), out.result);
+    } catch (const Error& e) {
+      out.error = e.what();
+    } catch (const std::exception& e) {  // e.g. out of memory: reported, never a crash
+      out.error = std::string("internal error: ") + e.what();
+    }
+    out.job_ms = ms_since(t0);
+    return out;
+  });
+}
+
+void MergeApp::receive_merge(viewer::Viewer& v) {
+  std::optional<MergeOutcome> r = worker_.take();
+  if (!r) return;
+  job_ms_.push_back(r->job_ms);
+  frame_at_merge_ms_.push_back(v.last_frame_ms());
+  if (!r->error.empty()) v.flash("merge failed: " + r->error);
+  else shown_ = *r, scene_dirty_ = true;
+  last_ = std::move(r);
+}
+
+void MergeApp::on_frame(viewer::Viewer& v) {
+  receive_merge(v);
+  if (revision() != requested_revision_ && auto_merge_allowed()) request_merge();
+  if (export_pending_ && !worker_.busy()) {
+    if (last_ && last_->revision == revision()) export_all(v);
+    else if (requested_revision_ != revision()) request_merge();  // export what is on screen, up to date
+  }
+  if (scene_dirty_) update_scene(v);
+  update_gizmo(v);
+}
+
+void MergeApp::on_exit(viewer::Viewer& v) {
+  worker_.wait();
+  receive_merge(v);
+  if (paths_.export_on_exit) {
+    if (!last_ || last_->revision != revision()) {
+      request_merge();
+      worker_.wait();
+      receive_merge(v);
+    }
+    export_all(v);
+  }
+}
+
+void MergeApp::benchmark_fields(nlohmann::json& j) const {
+  j["app"] = "lapis-merge";
+  j["source"] = source_name();
+  j["target"] = target_name();
+  j["source_vertices"] = setup().source ? setup().source->num_vertices() : 0;
+  j["target_vertices"] = setup().target ? setup().target->num_vertices() : 0;
+  j["merge_job_ms"] = job_ms_;
+  j["frame_ms_when_merge_arrived"] = frame_at_merge_ms_;
+  if (shown_) {
+    const auto& t = shown_->result.timings;
+    j["last_merge"] = {{"precompute_ms", shown_->precompute_ms}, {"precompute_reused", shown_->reused}, {"setup_ms", t.setup_ms}, {"solve_ms", t.solve_ms},
+                       {"zip_ms", t.zip_ms}, {"smooth_ms", t.smooth_ms}, {"merge_ms", t.total_ms},
+                       {"job_ms", shown_->job_ms}, {"seam_valid", shown_->quality.valid()},
+                       {"merged_vertices", shown_->result.mesh.num_vertices()}};
+  }
+}
+
+}  // namespace lapis::merge_app

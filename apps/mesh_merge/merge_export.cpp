@@ -1,0 +1,52 @@
+// Exports of lapis-merge (Ctrl+E, File menu, --export on exit): the merged mesh and everything
+// `lapis merge` needs to produce the same mesh from files — the source as placed, the target,
+// the pairs file, the handles file in dependent mode — plus that command line, so an
+// interactive result can be reproduced and checked headless.
+#include <charconv>
+#include <cstdio>
+
+#include "lapis/geometry/atomic_file.h"
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_merge/pairs_file.h"
+#include "merge_app.h"
+
+namespace lapis::merge_app {
+namespace {
+
+std::string shortest(double x) {  // round-trips, so the command reproduces the option exactly
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+}  // namespace
+
+void MergeApp::export_all(viewer::Viewer& v) {
+  export_pending_ = false;
+  if (!last_ || last_->revision != revision()) return v.flash("export: no merge of the current setup");
+  if (!last_->error.empty()) return v.flash("export: nothing to export, the merge failed: " + last_->error);
+  const std::string p = paths_.export_prefix.string();
+  const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj", pairs = p + "_pairs.json",
+                    handles = p + "_handles.json", command = p + "_command.txt";
+  try {
+    if (paths_.export_prefix.has_parent_path()) std::filesystem::create_directories(paths_.export_prefix.parent_path());
+    const MergeSetup& s = setup();
+    geometry::write_mesh(merged, last_->result.mesh);
+    geometry::write_mesh(source, mesh_merge::placed_source(s));
+    geometry::write_mesh(target, *s.target);
+    mesh_merge::write_pairs_file(pairs, mesh_merge::loop_pairs(s));
+    std::string cmd = "lapis merge --source " + source + " --target " + target + " --pairs " + pairs + " --out " + merged +
+                      " --smooth " + std::to_string(s.options.smooth_iterations);
+    if (s.options.mode == mesh_merge::MergeMode::Dependent) {
+      mesh_merge::write_handles_file(handles, s.options.handles);
+      cmd += " --mode dependent --handles " + handles + " --roi-width " + shortest(s.options.roi_width);
+    }
+    geometry::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
+    v.flash("exported " + merged + " and " + pairs);
+    std::printf("exported %s, %s, %s, %s\n", merged.c_str(), source.c_str(), target.c_str(), pairs.c_str());
+  } catch (const Error& e) {
+    v.flash(std::string("export failed: ") + e.what());
+  }
+}
+
+}  // namespace lapis::merge_app

@@ -1,0 +1,226 @@
+// lapis-merge's Dear ImGui panels: the file menu (bundled meshes and presets), the merge panel
+// (tools, pairs, mode, options, Merge) and the result panel (seam quality, timings). Every edit
+// goes through an undoable commit; sliders commit when released (one undo step per drag).
+#include <imgui.h>
+
+#include "bundled_meshes.h"
+#include "merge_app.h"
+
+namespace lapis::merge_app {
+namespace {
+
+void tooltip(const char* text) {
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", text);
+}
+
+const char* kTransitionTooltip =
+    "Not implemented yet: the mesh_merge module has no overlapped transition regions (thesis 3.3.3, E_T with w_T = 0.1).";
+const char* kOptimalTooltip = "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
+
+}  // namespace
+
+void MergeApp::on_gui(viewer::Viewer& v) {
+  draw_merge_panel(v);
+  draw_result_panel(v);
+  draw_labels(v);
+  draw_overlay(v);
+}
+
+void MergeApp::draw_menu(viewer::Viewer& v) {
+  // In the panel's own menu bar: a main menu bar would sit under the viewer's overlay.
+  if (!ImGui::BeginMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::BeginMenu("Presets")) {
+      for (size_t i = 0; i < preset_names().size(); ++i)
+        if (ImGui::MenuItem(preset_names()[i].c_str())) load_preset(v, static_cast<int>(i));
+      ImGui::EndMenu();
+    }
+    for (int side = 0; side < 2; ++side) {
+      if (!ImGui::BeginMenu(side == 0 ? "Open source" : "Open target")) continue;
+      for (const BundledMesh& m : bundled_meshes(paths_.source_dir))
+        if (ImGui::MenuItem(m.label.c_str())) load_mesh(v, m.path, side == 0);
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Export merged mesh + pairs", "Ctrl+E")) export_pending_ = true;
+    if (ImGui::MenuItem("Screenshot", "Ctrl+P")) v.request_screenshot(paths_.export_prefix.string() + "_screenshot.png");
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) v.close();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, history_.can_undo())) undo(v);
+    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, history_.can_redo())) redo(v);
+    ImGui::EndMenu();
+  }
+  ImGui::EndMenuBar();
+}
+
+void MergeApp::draw_merge_panel(viewer::Viewer& v) {
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth - 8, 0), ImVec2(kPanelWidth - 8, 1e6f));
+  ImGui::Begin("Merge", nullptr, ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_AlwaysAutoResize);
+  draw_menu(v);
+  ImGui::PushItemWidth(150);
+  ImGui::Text("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(), source_.loops().size());
+  ImGui::Text("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(), target_.loops().size());
+  ImGui::Separator();
+  const Tool tools[] = {Tool::PairLoops, Tool::Keys, Tool::Handles, Tool::Move, Tool::Paint};
+  for (int i = 0; i < 5; ++i) {
+    if (i % 2) ImGui::SameLine();
+    if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) tool_ = tools[i], scene_dirty_ = true;
+  }
+  ImGui::TextDisabled("keys 1-5 tools, D mode, M merge, Tab result/inputs");
+  if (tool_ == Tool::Paint) draw_paint_controls(v);
+
+  MergeSetup next = setup();
+  std::string edit;
+  // Pairs, with their keys; X removes.
+  for (size_t p = 0; p < next.pairs.size(); ++p) {
+    ImGui::PushID(static_cast<int>(p));
+    const auto& pair = next.pairs[p];
+    ImGui::Text("pair %zu: loops %d <-> %d, %zu key%s", p + 1, pair.source_loop, pair.target_loop, pair.keys.size(),
+                pair.keys.size() == 1 ? "" : "s");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("x")) next.pairs.erase(next.pairs.begin() + static_cast<long>(p)), edit = "remove pair";
+    else if (!pair.keys.empty()) {
+      ImGui::SameLine();
+      if (ImGui::SmallButton("-key")) next.pairs[p].keys.pop_back(), edit = "remove key";
+    }
+    ImGui::PopID();
+    if (!edit.empty()) break;
+  }
+
+  ImGui::Separator();
+  int mode = next.options.mode == mesh_merge::MergeMode::Independent ? 0 : 1;
+  if (ImGui::RadioButton("configuration-independent (thesis 3.3.1)", mode == 0)) mode = 0, edit = "mode";
+  if (ImGui::RadioButton("configuration-dependent (thesis 3.3.2)", mode == 1)) mode = 1, edit = "mode";
+  next.options.mode = mode == 0 ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+  ImGui::BeginDisabled();
+  bool off = false;
+  ImGui::RadioButton("transition regions (thesis 3.3.3)", off);
+  tooltip(kTransitionTooltip);
+  ImGui::RadioButton("optimal boundary (thesis 3.4)", off);
+  tooltip(kOptimalTooltip);
+  float band[2] = {0.1f, 0.1f};
+  ImGui::SliderFloat2("band widths", band, 0.0f, 1.0f);
+  tooltip(kTransitionTooltip);
+  ImGui::EndDisabled();
+
+  if (next.options.mode == mesh_merge::MergeMode::Dependent) {
+    float width = static_cast<float>(next.options.roi_width);
+    ImGui::SliderFloat("ROI width (0: auto)", &width, 0.0f, static_cast<float>(std::max(1e-3, source_.mesh.V.colwise().maxCoeff().maxCoeff() - source_.mesh.V.colwise().minCoeff().minCoeff())));
+    if (ImGui::IsItemDeactivatedAfterEdit()) next.options.roi_width = width, edit = "ROI width";
+    ImGui::Text("%zu fixed handles (tool 3: click the source)", next.options.handles.size());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("clear")) next.options.handles.clear(), edit = "clear handles";
+  }
+  int smooth = next.options.smooth_iterations;
+  ImGui::SliderInt("smoothing iterations", &smooth, 0, 30);
+  if (ImGui::IsItemDeactivatedAfterEdit()) next.options.smooth_iterations = smooth, edit = "smoothing";
+  if (ImGui::Button("place source at the first pair") && !next.pairs.empty()) {
+    // The placed source has the rest source's connectivity, so its loops index the rest mesh too.
+    next.placement = mesh_merge::suggest_placement(*next.source, source_.loops()[static_cast<size_t>(next.pairs[0].source_loop)],
+                                                   *next.target, target_.loops()[static_cast<size_t>(next.pairs[0].target_loop)]);
+    edit = "place source";
+  }
+  if (!edit.empty()) commit(v, std::move(next), edit);
+
+  ImGui::Separator();
+  if (ImGui::Button("Merge (M)")) requested_revision_ = 0, request_merge();
+  ImGui::SameLine();
+  ImGui::Checkbox("auto-merge", &auto_merge_);
+  tooltip("Merge after every change while the last merge took under 0.5 s.");
+  if (auto_merge_ && !job_ms_.empty() && job_ms_.back() >= kAutoMergeMs)
+    ImGui::TextDisabled("auto-merge paused: the last merge took %.2f s", job_ms_.back() / 1000.0);
+  const std::string missing = mesh_merge::missing_input(setup(), static_cast<int>(source_.loops().size()));
+  if (!missing.empty()) ImGui::TextWrapped("next: %s", missing.c_str());
+  if (last_ && !last_->error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.35f, 1.0f), "%s", last_->error.c_str());
+  ImGui::BeginDisabled(!history_.can_undo());
+  if (ImGui::Button("Undo")) undo(v);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!history_.can_redo());
+  if (ImGui::Button("Redo")) redo(v);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Export (Ctrl+E)")) export_pending_ = true;
+  ImGui::PopItemWidth();
+  merge_panel_bottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
+  ImGui::End();
+}
+
+void MergeApp::draw_paint_controls(viewer::Viewer& v) {
+  ImGui::SliderFloat("brush (px)", &brush_px_, 4.0f, 80.0f);
+  ImGui::Text("%zu vertices painted on the %s", painted_.size(), painted_on_source_ ? "source" : "target");
+  const PickableMesh& m = painted_on_source_ ? source_ : target_;
+  if (ImGui::SmallButton("grow")) painted_ = viewer::grow_rings(*m.conn, painted_, 1), scene_dirty_ = true;
+  ImGui::SameLine();
+  if (ImGui::SmallButton("shrink")) painted_ = viewer::shrink_rings(*m.conn, painted_, 1), scene_dirty_ = true;
+  ImGui::SameLine();
+  if (ImGui::SmallButton("clear")) painted_.clear(), scene_dirty_ = true;
+  ImGui::SameLine();
+  if (ImGui::SmallButton("cut (C)")) cut_painted(v);
+  ImGui::TextDisabled("source keeps the painted part, target the rest");
+}
+
+void MergeApp::draw_result_panel(viewer::Viewer& v) {
+  // Under the merge panel, whose height changes with the tool and the mode.
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, merge_panel_bottom_ + 6), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth - 8, 0), ImVec2(kPanelWidth - 8, 1e6f));
+  ImGui::Begin("Result", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (!shown_) {
+    ImGui::TextDisabled("no merge yet");
+    ImGui::End();
+    return;
+  }
+  const auto& r = shown_->result;
+  const auto& q = shown_->quality;
+  const auto& t = r.timings;
+  if (shown_->revision != revision()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "setup changed since this merge");
+  ImGui::Text("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(), r.strip_faces.size());
+  ImGui::TextColored(q.valid() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.4f, 0.3f, 1), "seam %s",
+                     q.valid() ? "watertight and manifold" : "NOT valid");
+  ImGui::Text("seam boundary edges %d, degenerate faces %d", q.seam_boundary_edges, q.degenerate_faces);
+  ImGui::Text("non-manifold edges %d, vertices %d", q.non_manifold_edges, q.non_manifold_vertices);
+  ImGui::Text("min strip angle %.1f deg", q.min_strip_angle_deg);
+  ImGui::Text("seam dihedral mean %.1f / max %.1f deg", q.seam_dihedral_mean_deg, q.seam_dihedral_max_deg);
+  ImGui::Text("target dihedral mean %.1f / p95 %.1f deg", q.target_dihedral_mean_deg, q.target_dihedral_p95_deg);
+  ImGui::Text("target moved outside the seam band: %.2g", q.max_target_displacement);
+  ImGui::Text("detail: Laplacian residual %.3f", shown_->detail.laplacian_residual);
+  ImGui::Text("  max distance after alignment %.3f", shown_->detail.max_distance);
+  ImGui::Separator();
+  ImGui::Text("precompute %.0f ms%s", shown_->precompute_ms, shown_->reused ? " (earlier, reused)" : "");
+  ImGui::Text("merge %.0f ms: setup %.0f, solve %.0f,", t.total_ms, t.setup_ms, t.solve_ms);
+  ImGui::Text("  zip %.0f, smooth %.0f", t.zip_ms, t.smooth_ms);
+  ImGui::Text("job (with metrics) %.0f ms", shown_->job_ms);
+  ImGui::Text("refine levels %d, ROI %d vertices", r.refine_levels, r.roi_vertices);
+  bool result = show_result_;
+  if (ImGui::Checkbox("show result (Tab)", &result)) show_result_ = result, scene_dirty_ = true;
+  ImGui::End();
+}
+
+void MergeApp::draw_overlay(viewer::Viewer& v) {
+  v.overlay(std::string("tool: ") + tool_name(tool_));
+  if (tool_ == Tool::PairLoops) {
+    if (pending_source_loop_ >= 0) v.overlay("source loop picked: now click a target loop");
+    else if (pending_target_loop_ >= 0) v.overlay("target loop picked: now click a source loop");
+    else v.overlay("click a boundary loop of each mesh to pair them");
+  } else if (tool_ == Tool::Move) {
+    v.overlay("drag an arrow (move), a ring (rotate) or the centre square (scale) to place the source");
+  } else if (tool_ == Tool::Paint) {
+    v.overlay("left-drag paints on either mesh, Shift+drag erases; C cuts along the painted border");
+  } else if (tool_ == Tool::Keys) {
+    if (pending_key_source_ >= 0) v.overlay("source vertex picked: now click a vertex of its paired target loop");
+    else if (pending_key_target_ >= 0) v.overlay("target vertex picked: now click a vertex of its paired source loop");
+    else v.overlay("click a vertex on each loop of a pair: a key correspondence");
+  }
+  if (show_result_ && shown_ && !v.scene().meshes["source"].visible) v.overlay("Tab: show the inputs to pick on the source");
+  if (worker_.busy()) v.overlay("merging...");
+  if (shown_) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "last merge %.0f ms (job %.0f ms)", shown_->result.timings.total_ms, shown_->job_ms);
+    v.overlay(buf);
+  }
+}
+
+}  // namespace lapis::merge_app

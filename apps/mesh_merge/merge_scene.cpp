@@ -1,0 +1,170 @@
+// What lapis-merge draws: the target and the (placed) source, the merged result with its source
+// part tinted and its seam strips outlined, every boundary loop (paired loops in their pair's
+// colour, a half-made pick in yellow), the key correspondences as numbered markers and the
+// fixed handles.
+#include <imgui.h>
+
+#include "merge_app.h"
+
+namespace lapis::merge_app {
+namespace {
+
+const Eigen::Vector3f kTargetColor{0.62f, 0.68f, 0.78f}, kSourceColor{0.90f, 0.72f, 0.52f};
+const Eigen::Vector3f kLoopColor{0.85f, 0.85f, 0.85f}, kPendingColor{1.0f, 0.92f, 0.25f};
+const Eigen::Vector3f kSeamColor{1.0f, 0.85f, 0.1f}, kHandleColor{0.95f, 0.2f, 0.2f};
+const Eigen::Vector3f kPaintColor{0.85f, 0.25f, 0.35f};
+
+Eigen::Vector3f pair_color(int pair) {
+  static const Eigen::Vector3f palette[] = {{0.2f, 0.8f, 1.0f}, {0.3f, 1.0f, 0.45f}, {1.0f, 0.45f, 0.85f},
+                                            {0.65f, 0.55f, 1.0f}, {1.0f, 0.6f, 0.2f}};
+  return palette[pair % 5];
+}
+
+std::vector<Eigen::Vector3d> loop_points(const geometry::TriMesh& m, const std::vector<int>& loop) {
+  std::vector<Eigen::Vector3d> pts;
+  for (int v : loop) pts.push_back(m.V.row(v).transpose());
+  if (!loop.empty()) pts.push_back(m.V.row(loop.front()).transpose());  // closed
+  return pts;
+}
+
+void add_point(viewer::PointItem& item, const Eigen::Vector3d& p, const Eigen::Vector3f& c) {
+  const Eigen::Index n = item.points.rows();
+  item.points.conservativeResize(n + 1, 3);
+  item.colors.conservativeResize(n + 1, 3);
+  item.points.row(n) = p.cast<float>().transpose();
+  item.colors.row(n) = c.transpose();
+}
+
+}  // namespace
+
+void MergeApp::update_scene(viewer::Viewer& v) {
+  auto& scene = v.scene();
+  const bool result = show_result_ && shown_.has_value();
+
+  // The painted region, on whichever mesh it is.
+  auto paint = [&](viewer::MeshItem& item, const Eigen::Vector3f& base, bool on_this) {
+    item.colors.resize(0, 3);
+    if (!on_this || painted_.empty()) return;
+    item.colors = base.transpose().replicate(item.mesh.num_vertices(), 1);
+    for (int p : painted_)
+      if (p < item.mesh.num_vertices()) item.colors.row(p) = kPaintColor.transpose();
+  };
+  auto& target = scene.meshes["target"];
+  target.mesh = target_.mesh;
+  target.base_color = kTargetColor;
+  paint(target, kTargetColor, !painted_on_source_);
+  target.visible = !result;  // the result contains the target part
+  ++target.version;
+
+  auto& source = scene.meshes["source"];
+  source.mesh = source_.mesh;
+  source.base_color = kSourceColor;
+  // Beside the result the source is a ghost where the user placed it, shown only where the
+  // placement matters: dependent mode keeps it, and the move tool moves it.
+  source.alpha = result ? 0.3f : 1.0f;
+  source.visible = !result || setup().options.mode == mesh_merge::MergeMode::Dependent || tool_ == Tool::Move;
+  paint(source, kSourceColor, painted_on_source_);
+  ++source.version;
+
+  auto& merged = scene.meshes["result"];
+  merged.visible = result;
+  if (result) {
+    const mesh_merge::MergeResult& r = shown_->result;
+    merged.mesh = r.mesh;
+    merged.colors = kTargetColor.transpose().replicate(r.mesh.num_vertices(), 1);
+    for (int m : r.source_map)
+      if (m >= 0) merged.colors.row(m) = kSourceColor.transpose();
+  }
+  ++merged.version;
+
+  auto& seam = scene.lines["seam"];
+  seam.clear();
+  seam.visible = result;
+  if (result) {
+    const geometry::TriMesh& m = shown_->result.mesh;
+    for (int f : shown_->result.strip_faces)
+      seam.add_strip(std::vector<Eigen::Vector3d>{m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)), m.V.row(m.F(f, 0))},
+                     kSeamColor);
+  }
+  seam.width = 1.5f;
+
+  // Loops on top of everything: they are what the user clicks. The source's go with the
+  // source (hidden beside an independent result: Tab shows the inputs to pick on).
+  for (int side = 0; side < 2; ++side) {
+    const PickableMesh& pm = side == 0 ? source_ : target_;
+    auto& item = scene.lines[side == 0 ? "loops source" : "loops target"];
+    item.clear();
+    item.visible = side == 1 || source.visible;
+    item.on_top = true;
+    item.width = 3.0f;
+    for (size_t l = 0; l < pm.loops().size(); ++l) {
+      const int loop = static_cast<int>(l);
+      const int pair = side == 0 ? pair_of_source_loop(loop) : pair_of_target_loop(loop);
+      const bool pending = loop == (side == 0 ? pending_source_loop_ : pending_target_loop_);
+      item.add_strip(loop_points(pm.mesh, pm.loops()[l]), pending ? kPendingColor : pair >= 0 ? pair_color(pair) : kLoopColor);
+    }
+  }
+
+  auto& keys = scene.points["keys"];
+  keys.points.resize(0, 3);
+  keys.colors.resize(0, 3);
+  keys.size = 11.0f;
+  for (size_t p = 0; p < setup().pairs.size(); ++p)
+    for (const auto& k : setup().pairs[p].keys) {
+      if (source.visible) add_point(keys, source_.mesh.V.row(k.source).transpose(), pair_color(static_cast<int>(p)));
+      add_point(keys, target_.mesh.V.row(k.target).transpose(), pair_color(static_cast<int>(p)));
+    }
+  if (pending_key_source_ >= 0) add_point(keys, source_.mesh.V.row(pending_key_source_).transpose(), kPendingColor);
+  if (pending_key_target_ >= 0) add_point(keys, target_.mesh.V.row(pending_key_target_).transpose(), kPendingColor);
+  ++keys.version;
+
+  auto& handles = scene.points["handles"];
+  handles.points.resize(0, 3);
+  handles.colors.resize(0, 3);
+  handles.size = 7.0f;
+  handles.on_top = false;
+  for (int h : setup().options.handles)
+    if (h >= 0 && h < source_.mesh.num_vertices()) add_point(handles, source_.mesh.V.row(h).transpose(), kHandleColor);
+  handles.visible = setup().options.mode == mesh_merge::MergeMode::Dependent;
+  ++handles.version;
+  scene_dirty_ = false;
+}
+
+// The gizmo sits at the placed source's centroid and keeps its size on screen, so it is
+// redrawn every frame (the camera may have moved).
+void MergeApp::update_gizmo(viewer::Viewer& v) {
+  auto& item = v.scene().lines["gizmo"];
+  item.visible = tool_ == Tool::Move && source_.mesh.num_vertices() > 0;
+  if (!item.visible) return;
+  gizmo_.set_center(source_.mesh.V.colwise().mean().transpose());
+  gizmo_.draw(v.camera_matrices(), item);
+  ++item.version;
+}
+
+// Numbered markers: "1", "2", ... per pair (prefixed with the pair's number when there are
+// several), beside both ends of every key correspondence.
+void MergeApp::draw_labels(viewer::Viewer& v) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const auto cam = v.camera_matrices();
+  const bool several = setup().pairs.size() > 1;
+  const bool source_shown = v.scene().meshes["source"].visible;
+  for (size_t p = 0; p < setup().pairs.size(); ++p) {
+    const Eigen::Vector3f c = pair_color(static_cast<int>(p));
+    const ImU32 color = ImGui::ColorConvertFloat4ToU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
+    const auto& keys = setup().pairs[p].keys;
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const std::string label = several ? std::to_string(p + 1) + "." + std::to_string(k + 1) : std::to_string(k + 1);
+      for (int side = source_shown ? 0 : 1; side < 2; ++side) {
+        const Eigen::Vector3d w = side == 0 ? Eigen::Vector3d(source_.mesh.V.row(keys[k].source))
+                                            : Eigen::Vector3d(target_.mesh.V.row(keys[k].target));
+        const Eigen::Vector3d s = geometry::project(cam, w);
+        if (s.z() <= 0 || s.z() >= 1) continue;
+        const ImVec2 at(static_cast<float>(s.x()) + 8, static_cast<float>(s.y()) - 18);
+        draw->AddText(ImVec2(at.x + 1, at.y + 1), IM_COL32(0, 0, 0, 255), label.c_str());
+        draw->AddText(at, color, label.c_str());
+      }
+    }
+  }
+}
+
+}  // namespace lapis::merge_app

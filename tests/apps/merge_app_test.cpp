@@ -1,0 +1,364 @@
+// The merge app, for real: driven by xdotool under Xvfb (pair two loops, set a key, merge,
+// export; move the source with the gizmo; paint and cut a closed source; a dependent merge with
+// a handle), replayed from the committed recording of such a session (also with undo / redo),
+// and rendered headless. The exports must be watertight where the paired loops were and equal
+// `lapis merge` on the exported files; bad input must come back as the module's messages.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "app_runner.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_merge/merge_setup.h"
+#include "lapis/mesh_merge/pairs_file.h"
+#include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/orbit_camera.h"
+#include "first_view.h"  // lapis-merge's camera angles and panel width
+
+using namespace lapis;
+using namespace lapis::apps_test;
+
+namespace {
+
+const std::string kApp = LAPIS_MERGE_APP_EXE;
+const std::string kCli = LAPIS_CLI_EXE;
+const fs::path kSource = LAPIS_SOURCE_DIR;
+constexpr int kWidth = 1000, kHeight = 700;
+const std::string kSize = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+
+geometry::TriMesh asset(const std::string& name) { return geometry::read_mesh(kSource / "assets/merge" / name); }
+
+// The app's first view of the default preset (dome onto neck, the dome placed beside the neck's
+// rim): the camera of MergeApp::on_start() framed on both meshes.
+geometry::CameraMatrices first_view(const geometry::TriMesh& source, const geometry::TriMesh& target) {
+  viewer::OrbitCamera cam;
+  cam.yaw = merge_app::kViewYaw, cam.pitch = merge_app::kViewPitch;
+  const Eigen::Vector3d lo = source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose());
+  const Eigen::Vector3d hi = source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose());
+  cam.frame(lo, hi);
+  merge_app::fit_beside_panels(cam, kWidth, kHeight);
+  return cam.matrices(kWidth, kHeight);
+}
+
+std::string pixel(const Eigen::Vector3d& s) {
+  return std::to_string(std::lround(s.x())) + " " + std::to_string(std::lround(s.y()));
+}
+
+// A shell script that starts the app under xdotool with `flags`, runs `actions` ($w is its
+// window) and quits it.
+std::string xdotool_session(const std::string& flags, const std::string& actions) {
+  return "sh -c '" + kApp + kSize + " " + flags +
+         " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-merge 2>/dev/null | head -n1);"
+         " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
+         actions + " xdotool key --window $w ctrl+q; wait $app'";
+}
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string click(const Eigen::Vector2i& p) {
+  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " sleep 0.3 click 1 sleep 0.5; ";
+}
+
+// Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
+std::string pair_and_key_clicks(const Eigen::Vector2i& s, const Eigen::Vector2i& t) {
+  return click(s) + click(t) + click(s) + click(t);
+}
+
+struct DefaultScene {
+  geometry::TriMesh source, target;
+  geometry::CameraMatrices camera;
+  std::vector<int> sloop, tloop;  // the dome's rim and the neck rim facing it
+  DefaultScene() : target(asset("neck.obj")) {
+    const geometry::TriMesh dome = asset("dome.obj");
+    mesh_merge::MergeSetup s;
+    s.source = std::make_shared<const geometry::TriMesh>(dome);
+    s.placement = mesh_merge::suggest_placement(dome, target);
+    source = mesh_merge::placed_source(s);
+    camera = first_view(source, target);
+    const geometry::Connectivity sc(source), tc(target);
+    sloop = sc.boundary_loops().at(0);
+    tloop = tc.boundary_loops().at(static_cast<size_t>(mesh_merge::facing_target_loop(source, sloop, target, tc.boundary_loops())));
+  }
+  std::string pair_and_key() const { return pair_and_key_clicks(front_pixel(source, sloop), front_pixel(target, tloop)); }
+  // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
+  Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
+    const Eigen::Vector3d eye = geometry::eye_position(camera);
+    int best = loop[0];
+    for (int v : loop)
+      if ((m.V.row(v).transpose() - eye).norm() < (m.V.row(best).transpose() - eye).norm()) best = v;
+    const Eigen::Vector3d s = geometry::project(camera, m.V.row(best).transpose());
+    return {static_cast<int>(std::lround(s.x())), static_cast<int>(std::lround(s.y()))};
+  }
+};
+
+// An event log with one key press: M (merge) at frame 5.
+void write_merge_key_events(const fs::path& path) {
+  std::ofstream out(path);
+  out << R"({"format": "lapis-events", "version": 1, "width": 800, "height": 600, "events": [)"
+      << R"({"type": "key", "frame": 5, "key": 77, "action": 1, "mods": 0},)"
+      << R"({"type": "key", "frame": 6, "key": 77, "action": 0, "mods": 0}]})";
+}
+
+struct Exported {
+  geometry::TriMesh merged, source, target;
+  std::vector<mesh_merge::LoopPair> pairs;
+  std::string command;
+};
+
+Exported read_exports(const fs::path& prefix) {
+  Exported e;
+  const std::string p = prefix.string();
+  e.merged = geometry::read_mesh(p + ".obj");
+  e.source = geometry::read_mesh(p + "_source.obj");
+  e.target = geometry::read_mesh(p + "_target.obj");
+  e.pairs = mesh_merge::read_pairs_file(p + "_pairs.json");
+  std::ifstream in(p + "_command.txt");
+  std::getline(in, e.command);
+  return e;
+}
+
+// Watertight where the paired loops were: the merged mesh's boundary is exactly the target's
+// unpaired loops (target vertices away from the seam never move), nothing of the paired ones.
+void check_watertight_seam(const Exported& e) {
+  const geometry::Connectivity tc(e.target), mc(e.merged), sc(e.source);
+  std::set<int> paired_target_loops;
+  for (const auto& p : e.pairs)
+    for (size_t l = 0; l < tc.boundary_loops().size(); ++l) {
+      const auto& loop = tc.boundary_loops()[l];
+      if (std::find(loop.begin(), loop.end(), p.keys.at(0).target) != loop.end()) paired_target_loops.insert(static_cast<int>(l));
+    }
+  REQUIRE(paired_target_loops.size() == e.pairs.size());
+  std::set<std::array<double, 3>> kept;
+  for (size_t l = 0; l < tc.boundary_loops().size(); ++l)
+    if (!paired_target_loops.count(static_cast<int>(l)))
+      for (int v : tc.boundary_loops()[l]) kept.insert({e.target.V(v, 0), e.target.V(v, 1), e.target.V(v, 2)});
+  const size_t expected_loops = tc.boundary_loops().size() + sc.boundary_loops().size() - 2 * e.pairs.size();
+  CHECK(mc.boundary_loops().size() == expected_loops);
+  size_t boundary_vertices = 0;
+  for (const auto& loop : mc.boundary_loops())
+    for (int v : loop) {
+      ++boundary_vertices;
+      CHECK(kept.count({e.merged.V(v, 0), e.merged.V(v, 1), e.merged.V(v, 2)}) == 1);
+    }
+  CHECK(boundary_vertices == kept.size());
+  CHECK(geometry::validate(e.merged).ok());
+}
+
+// Runs the exported `lapis merge` command with another --out and compares (1e-9).
+void check_equals_cli(const Exported& e, const fs::path& out) {
+  REQUIRE(e.command.rfind("lapis merge ", 0) == 0);
+  std::istringstream words(e.command.substr(6));
+  std::string cmd = kCli, w;
+  while (words >> w) {
+    if (w == "--out") {
+      words >> w;
+      w = out.string();
+      cmd += " --out";
+    }
+    cmd += " " + w;
+  }
+  REQUIRE_MESSAGE(run(cmd + " > /dev/null") == 0, cmd);
+  const geometry::TriMesh cli = geometry::read_mesh(out);
+  REQUIRE(cli.F == e.merged.F);
+  CHECK((cli.V - e.merged.V).cwiseAbs().maxCoeff() <= 1e-9);
+}
+
+}  // namespace
+
+TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then merge and export") {
+  const fs::path dir = scratch_dir();
+  const DefaultScene scene;
+  const auto& sloop = scene.sloop;
+  const auto& tloop = scene.tloop;
+  const Eigen::Vector2i s = scene.front_pixel(scene.source, sloop), t = scene.front_pixel(scene.target, tloop);
+  // Clear of the panels on the right and the menu bar.
+  REQUIRE(s.x() > 0);
+  REQUIRE(s.x() < kWidth - merge_app::kPanelWidth);
+  REQUIRE(t.x() < kWidth - merge_app::kPanelWidth);
+  REQUIRE(std::min(s.y(), t.y()) > 30);
+  const fs::path events = dir / "merge_events.json", prefix = dir / "live";
+  REQUIRE(run_under_xvfb(xdotool_session("--record " + events.string() + " --export " + prefix.string(),
+                                         pair_and_key_clicks(s, t) + "xdotool key --window $w m; sleep 8;"
+                                         " xdotool key --window $w ctrl+e; sleep 2;")) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  REQUIRE(e.pairs[0].keys.size() == 1);
+  // The key joins the two clicked loops.
+  CHECK(std::find(sloop.begin(), sloop.end(), e.pairs[0].keys[0].source) != sloop.end());
+  CHECK(std::find(tloop.begin(), tloop.end(), e.pairs[0].keys[0].target) != tloop.end());
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "live_cli.obj");
+}
+
+TEST_CASE("apps: merge app — replaying the recorded pairing session merges watertight and equals lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "replayed";
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +
+                         " --exit-after-replay --export " + prefix.string()) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  REQUIRE(e.pairs[0].keys.size() == 1);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "replayed_cli.obj");
+}
+
+TEST_CASE("apps: merge app — the headless screenshot after a merge is neither blank nor the unedited scene") {
+  const fs::path dir = scratch_dir(), before = dir / "before.png", after = dir / "after.png";
+  REQUIRE(run_under_xvfb(kApp + kSize + " --headless --screenshot " + before.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +
+                         " --screenshot " + after.string()) == 0);
+  const viewer::Image a = viewer::read_png(before), b = viewer::read_png(after);
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  CHECK(foreground_fraction(a) > 0.03);
+  CHECK(foreground_fraction(b) > 0.03);
+  size_t differ = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4)
+    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) + std::abs(a.rgba[k + 2] - b.rgba[k + 2]) > 30)
+      ++differ;
+  CHECK(static_cast<double>(differ) / static_cast<double>(a.rgba.size() / 4) > 0.01);
+}
+
+TEST_CASE("apps: merge app — merging before anything is paired reports the module's error and keeps running") {
+  const fs::path dir = scratch_dir(), events = dir / "merge_now.json", log = dir / "merge_now.log";
+  write_merge_key_events(events);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
+  const std::string text = text_of(log);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
+        std::string::npos);
+}
+
+TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis; the merge still equals lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "moved";
+  const DefaultScene scene;
+  // The gizmo sits on the placed source's centroid; grab its y arrow near the tip (beyond the
+  // rings) and drag it 60 pixels up the screen (world y is the screen's up).
+  viewer::Gizmo gizmo;
+  const Eigen::Vector3d c = scene.source.V.colwise().mean().transpose();
+  gizmo.set_center(c);
+  const Eigen::Vector3d grab = geometry::project(scene.camera, c + 0.9 * gizmo.world_size(scene.camera) * Eigen::Vector3d::UnitY());
+  REQUIRE(gizmo.hit(scene.camera, grab.head<2>()) == viewer::GizmoPart::TranslateY);
+  std::string drag = "xdotool key --window $w 4; sleep 0.5; xdotool mousemove --window $w " + pixel(grab) +
+                     " sleep 0.3 mousedown 1";
+  for (int k = 1; k <= 12; ++k)
+    drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " + std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
+  drag += " mouseup 1; sleep 1; ";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
+                                         scene.pair_and_key() +
+                                         drag + "xdotool key --window $w m; sleep 6;")) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.source.num_vertices() == scene.source.num_vertices());
+  // A pure translation along +y: every vertex moved by the same vector.
+  const Eigen::RowVector3d d = e.source.V.row(0) - scene.source.V.row(0);
+  CHECK(d.y() > 0.05);
+  CHECK(std::abs(d.x()) < 1e-9);
+  CHECK(std::abs(d.z()) < 1e-9);
+  CHECK(((e.source.V - scene.source.V).rowwise() - d).cwiseAbs().maxCoeff() < 1e-9);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "moved_cli.obj");
+}
+
+TEST_CASE("apps: merge app — painting a region on a closed source and cutting gives it an open rim") {
+  // The cactus is closed: merging it says so. Painted across its middle and cut, it has one
+  // boundary loop, so the module's complaint becomes the missing pair.
+  const fs::path dir = scratch_dir(), log = dir / "paint.log";
+  const fs::path cactus = kSource / "assets/external/cactus.off", other = kSource / "assets/merge/dome_placed.obj";  // beside the cactus, not around it
+  REQUIRE_MESSAGE(fs::exists(cactus), "run scripts/setup");
+  const geometry::TriMesh source = geometry::read_mesh(cactus), target = geometry::read_mesh(other);
+  const geometry::CameraMatrices cam = first_view(source, target);
+  const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
+  std::string paint = "xdotool key --window $w m; sleep 1; xdotool key --window $w 5; sleep 0.3; xdotool mousemove --window $w " +
+                      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
+  for (int k = 1; k <= 8; ++k)
+    paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.05";
+  paint += " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; xdotool key --window $w m; sleep 2;";
+  REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) + " 2> " +
+                         log.string()) == 0);
+  const std::string text = text_of(log);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): the source is closed (no boundary loop)") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
+        std::string::npos);
+  CHECK(text.find("not manifold") == std::string::npos);
+}
+
+TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and exports what lapis merge needs") {
+  const fs::path dir = scratch_dir(), prefix = dir / "dependent";
+  const DefaultScene scene;
+  // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
+  // of the dome, clicked with tool 3.
+  double zmin = 1e300, zmax = -1e300;
+  for (int v = 0; v < scene.source.num_vertices(); ++v) zmin = std::min(zmin, scene.source.V(v, 2)), zmax = std::max(zmax, scene.source.V(v, 2));
+  const Eigen::Vector3d eye = geometry::eye_position(scene.camera);
+  int handle = -1;
+  for (int v = 0; v < scene.source.num_vertices(); ++v)
+    if (scene.source.V(v, 2) > 0.5 * (zmin + zmax) &&
+        (handle < 0 || (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
+      handle = v;
+  const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
+  const std::string actions = scene.pair_and_key() +
+                              "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
+                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; xdotool key --window $w m; sleep 6;";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
+  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
+  REQUIRE(handles.size() == 1);
+  // Dependent merging keeps the placement and the handles exactly: the merged mesh has a vertex
+  // at the handle's placed position, bit for bit.
+  bool found = false;
+  for (int v = 0; v < e.merged.num_vertices() && !found; ++v) found = e.merged.V.row(v) == e.source.V.row(handles[0]);
+  CHECK(found);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "dependent_cli.obj");
+}
+
+TEST_CASE("apps: merge app — undo takes the key back (the module's error names it), redo restores the merge") {
+  const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log", prefix = dir / "redone";
+  // The recorded session, then Ctrl+Z, M, Ctrl+Shift+Z, M.
+  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
+  long frame = j["events"].back()["frame"].get<long>();
+  auto key = [&](int k, int mods) {
+    frame += 20;
+    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", k}, {"action", 1}, {"mods", mods}});
+    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", k}, {"action", 0}, {"mods", mods}});
+  };
+  constexpr int kZ = 90, kM = 77, kCtrl = 2, kShift = 1;
+  key(kZ, kCtrl);
+  key(kM, 0);
+  key(kZ, kCtrl | kShift);
+  key(kM, 0);
+  {
+    std::ofstream out(events);
+    out << j.dump();
+  }
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string() +
+                         " 2> " + log.string()) == 0);
+  const std::string text = text_of(log);
+  CHECK(text.find("undo: key correspondence") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): pair 0 has no key correspondence, expected at least one") !=
+        std::string::npos);
+  CHECK(text.find("redo: key correspondence") != std::string::npos);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  CHECK(e.pairs[0].keys.size() == 1);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "redone_cli.obj");
+}
+
+TEST_CASE("apps: merge app — a non-manifold source is refused with the module's message, not a crash") {
+  const fs::path dir = scratch_dir(), bad = dir / "fin.obj", events = dir / "merge_now.json", log = dir / "fin.log";
+  {
+    std::ofstream out(bad);  // three triangles on the edge (0, 1): a fin, open but not manifold
+    out << "v 0 0 0\nv 1 0 0\nv 0.5 1 0\nv 0.5 -1 0\nv 0.5 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+  }
+  write_merge_key_events(events);
+  REQUIRE(run_under_xvfb(kApp + " --headless --source " + bad.string() + " --target " + (kSource / "assets/merge/neck.obj").string() +
+                         " --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
+  CHECK(text_of(log).find("merge failed: mesh_merge::check_merge_input(): the source is not manifold") != std::string::npos);
+}
