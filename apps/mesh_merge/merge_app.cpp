@@ -48,6 +48,7 @@ MergeApp::MergeApp(MergeSetup setup, std::string source_name, std::string target
 MergeApp::~MergeApp() = default;
 
 void MergeApp::on_start(viewer::Viewer& v) {
+  worker_.set_on_done([&v] { v.wake(); });  // a finished merge: redraw now
   v.camera().yaw = kViewYaw;
   v.camera().pitch = kViewPitch;
   update_scene(v);
@@ -364,6 +365,7 @@ void MergeApp::on_frame(viewer::Viewer& v) {
 
 void MergeApp::on_exit(viewer::Viewer& v) {
   worker_.wait();
+  worker_.set_on_done({});  // the window goes away after this
   receive_merge(v);
   if (paths_.export_on_exit) {
     if (!last_ || last_->revision != revision()) {
