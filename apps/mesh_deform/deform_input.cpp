@@ -155,16 +155,10 @@ void DeformApp::release(viewer::Viewer& v) {
 void DeformApp::grow_or_shrink(viewer::Viewer& v, int rings) {
   const int value = target_ >= 0 ? state_.active_handle : target_;
   if (value == VertexLabels::kNone) return v.flash("grow/shrink: pick ROI, fixed or handle as the target");
-  const std::vector<int> set = state_.labels->with(value);
-  if (set.empty()) return v.flash("grow/shrink: nothing painted with the current target");
+  if (state_.labels->acting_as(value).empty()) return v.flash("grow/shrink: nothing acts as the current target yet");
   auto labels = std::make_shared<VertexLabels>(*state_.labels);
-  if (rings > 0) {
-    labels->paint(viewer::grow_rings(*conn_, set, rings), value);
-  } else {
-    const std::vector<int> kept = viewer::shrink_rings(*conn_, set, -rings);
-    labels->paint(set, VertexLabels::kNone);
-    labels->paint(kept, value);
-  }
+  grow_labels(*labels, *conn_, value, rings);
+  if (labels->label == state_.labels->label) return v.flash(rings > 0 ? "grow: nothing to grow into" : "shrink: nothing left to shrink");
   set_labels(std::move(labels), rings > 0 ? "grow" : "shrink");
 }
 

@@ -18,7 +18,8 @@ constexpr const char* kUsage =
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
     "                    [--exit-after-replay] [--benchmark OUT.json] [--size WxH]\n"
-    "Opens MESH (OBJ/OFF/PLY/STL; default assets/external/armadillo.off). Paint with B (brush) or L\n"
+    "Opens MESH (OBJ/OFF/PLY/STL; default assets/external/armadillo.off) and the selection files if\n"
+    "the ROI file exists (else Ctrl+S creates them). Paint with B (brush) or L\n"
     "(lasso) onto 1 ROI, 2 fixed, 3 handle (N: new handle), Shift erases; +/- grow/shrink by a ring;\n"
     "drag the gizmo (arrows move, rings rotate, square scales); right-drag orbits, middle-drag pans,\n"
     "wheel zooms, F frames. Ctrl+Z / Ctrl+Shift+Z undo / redo, R reset pose, C colour by distortion,\n"
@@ -67,8 +68,9 @@ int main(int argc, char** argv) {
     deform_app::DeformApp app(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));
     viewer::Viewer viewer(options);
     // A selection given on the command line is opened before the first frame (its errors are
-    // shown in the window, like every other).
-    if (args.has("--roi") || args.has("--handles")) app.open_selection_on_start();
+    // shown in the window, like every other); a ROI file that does not exist yet is where
+    // Ctrl+S will save.
+    if (args.has("--roi") && std::filesystem::exists(paths.roi)) app.open_selection_on_start();
     return viewer.run(app);
   } catch (const cli::UsageError& e) {
     std::fprintf(stderr, "lapis-deform: %s (see --help)\n", e.what());

@@ -8,7 +8,10 @@
 #include "app_runner.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/selection_io.h"
+#include "lapis/geometry/connectivity.h"
 #include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/input_events.h"
+#include "lapis/viewer/surface_select.h"
 #include "lapis/viewer/orbit_camera.h"
 
 using namespace lapis;
@@ -96,7 +99,140 @@ int run_window(const std::string& app_args, const std::string& actions, const fs
   return run_under_xvfb(script);
 }
 
+// Builds an event log frame by frame (GLFW codes: keys, buttons, Ctrl).
+struct EventScript {
+  static constexpr int kKeyB = 66, kKeyL = 76, kKey2 = 50, kKey3 = 51, kKeyEqual = 61, kKeyZ = 90, kKeyS = 83;
+  static constexpr int kCtrl = 2, kShift = 1;
+  viewer::EventLog log;
+  long frame = 10;  // after the app has opened the mesh and the selection
+
+  void add(viewer::InputEvent e) {
+    e.frame = frame;
+    log.events.push_back(e);
+  }
+  void key(int code, int mods = 0) {
+    for (int action : {1, 0}) {
+      viewer::InputEvent e{viewer::EventType::Key};
+      e.key = code, e.action = action, e.mods = mods;
+      add(e);
+      ++frame;
+    }
+  }
+  void move(const Eigen::Vector2d& p) {
+    viewer::InputEvent e{viewer::EventType::MouseMove};
+    e.x = p.x(), e.y = p.y();
+    add(e);
+    ++frame;
+  }
+  void button(const Eigen::Vector2d& p, int action) {
+    viewer::InputEvent e{viewer::EventType::MouseButton};
+    e.x = p.x(), e.y = p.y(), e.button = 0, e.action = action;
+    add(e);
+    ++frame;
+  }
+  // Left-drag through the points.
+  void drag(const std::vector<Eigen::Vector2d>& path) {
+    move(path.front());
+    button(path.front(), 1);
+    for (const auto& p : path) move(p);
+    button(path.back(), 0);
+  }
+};
+
+std::vector<int> complement(const std::vector<int>& set, int n) {
+  std::vector<char> in(static_cast<size_t>(n), 0);
+  for (int v : set) in[static_cast<size_t>(v)] = 1;
+  std::vector<int> out;
+  for (int v = 0; v < n; ++v)
+    if (!in[static_cast<size_t>(v)]) out.push_back(v);
+  return out;
+}
+
 }  // namespace
+
+TEST_CASE("apps: deform app — lasso a handle, brush the fixed feet, grow, undo, save: the files say so") {
+  const fs::path dir = scratch_dir();
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  // The lasso: a rectangle around the head (the vertices the saved test selection's handle holds).
+  const std::vector<int> head = mesh_deform::read_handles(kHandles).selection.region_handles.at(0);
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (int v : head) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  lo = rounded(lo.array() - 4), hi = rounded(hi.array() + 4);
+  const std::vector<Eigen::Vector2d> rect{lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  // The brush: a stroke across the feet, 24 px (the default radius) deep.
+  Eigen::Vector2d left(1e9, 0), right(-1e9, 0);
+  const double foot_y = mesh.V.col(1).minCoeff() + 0.03;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.V(v, 1) < foot_y) {
+      const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+      if (p.x() < left.x()) left = p;
+      if (p.x() > right.x()) right = p;
+    }
+  left = rounded(left), right = rounded(right);
+  REQUIRE(right.x() - left.x() > 40);
+
+  EventScript paint;
+  paint.key(EventScript::kKeyL);
+  paint.key(EventScript::kKey3);
+  paint.drag({rect[0], rect[1], rect[2], rect[3], rect[0] + Eigen::Vector2d(0, 1)});
+  paint.key(EventScript::kKeyB);
+  paint.key(EventScript::kKey2);
+  std::vector<Eigen::Vector2d> stroke;
+  for (int k = 0; k <= 10; ++k) stroke.push_back(rounded(left + (right - left) * (k / 10.0)));
+  paint.drag(stroke);
+  paint.key(EventScript::kKeyS, EventScript::kCtrl);
+  paint.frame += 5;
+  paint.log.width = kWidth, paint.log.height = kHeight;
+  paint.log.save(dir / "paint.json");
+  const fs::path roi = dir / "sel.roi.txt", handles = dir / "sel.handles.json";
+  const std::string files = " --mesh " + kMesh.string() + " --roi " + roi.string() + " --handles " + handles.string();
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "paint.json").string() + " --exit-after-replay") == 0);
+
+  // The handle: what the lasso enclosed and the camera saw.
+  REQUIRE(fs::exists(handles));
+  const mesh_deform::Drag saved = mesh_deform::read_handles(handles);
+  REQUIRE(saved.selection.region_handles.size() == 1);
+  const std::vector<int>& handle = saved.selection.region_handles[0];
+  CHECK(handle.size() > 100);
+  for (int v : handle) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    CHECK(viewer::point_in_polygon(rect, p));
+  }
+  // The fixed region (outside the ROI, as no ROI was painted): within the brush of the stroke.
+  const std::vector<int> fixed = complement(mesh_deform::read_roi(roi), mesh.num_vertices());
+  CHECK(fixed.size() > 20);
+  for (int v : fixed) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    CHECK(viewer::distance_to_segment(p, left, right) < 24 + 4);  // + perspective across the feet
+  }
+
+  // Second session: open the saved files, grow the fixed region twice, undo once, redo nothing,
+  // save: one ring more than before.
+  fs::copy_file(roi, dir / "first.roi.txt");
+  EventScript edit;
+  edit.key(EventScript::kKey2);
+  edit.key(EventScript::kKeyEqual);
+  edit.key(EventScript::kKeyEqual);
+  edit.key(EventScript::kKeyZ, EventScript::kCtrl);
+  edit.key(EventScript::kKeyS, EventScript::kCtrl);
+  edit.frame += 5;
+  edit.log.width = kWidth, edit.log.height = kHeight;
+  edit.log.save(dir / "edit.json");
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "edit.json").string() + " --exit-after-replay") == 0);
+  const std::vector<int> grown = complement(mesh_deform::read_roi(roi), mesh.num_vertices());
+  const geometry::Connectivity conn(mesh);
+  std::vector<int> expected = viewer::grow_rings(conn, fixed, 1);
+  // Growth never takes handle vertices.
+  std::vector<char> is_handle(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : handle) is_handle[static_cast<size_t>(v)] = 1;
+  std::erase_if(expected, [&](int v) { return is_handle[static_cast<size_t>(v)] != 0; });
+  CHECK(grown == expected);
+  CHECK(grown.size() > fixed.size());
+}
 
 TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle, and the export equals lapis deform") {
   const fs::path dir = scratch_dir();

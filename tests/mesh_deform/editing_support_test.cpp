@@ -220,3 +220,40 @@ TEST_CASE("mesh_deform: a live deformer sets up once per selection and its histo
   r.selection_revision = 4;
   CHECK(live.update(r).did_setup);
 }
+
+TEST_CASE("mesh_deform: growing and shrinking labels by rings works on what acts as ROI, fixed or handle") {
+  const TriMesh grid = test::planar_grid(10, 10, 0.0);  // vertex j * 10 + i
+  const lapis::geometry::Connectivity conn(grid);
+  auto column = [](int i) {
+    std::vector<int> c;
+    for (int j = 0; j < 10; ++j) c.push_back(j * 10 + i);
+    return c;
+  };
+  VertexLabels labels(100);
+  labels.paint(column(0), VertexLabels::kFixed);
+  labels.paint(column(9), 0);
+  // No ROI painted: the ROI is columns 1-8; growing the fixed region takes column 1.
+  grow_labels(labels, conn, VertexLabels::kFixed, 1);
+  CHECK(labels.acting_as(VertexLabels::kFixed).size() == 20);
+  CHECK(labels.acting_as(VertexLabels::kRoi).size() == 70);
+  // Growing the ROI takes the fixed columns back but never the handle.
+  grow_labels(labels, conn, VertexLabels::kRoi, 5);
+  CHECK(labels.acting_as(VertexLabels::kFixed).empty());
+  CHECK(labels.acting_as(0) == column(9));
+  // Shrinking the handle by a ring gives its border to the ROI: column 9 has no interior, so
+  // it all goes, but grown first by two it keeps one column.
+  grow_labels(labels, conn, 0, 2);
+  CHECK(labels.acting_as(0).size() == 30);
+  grow_labels(labels, conn, 0, -1);
+  CHECK(labels.acting_as(0).size() == 20);
+  // With an ROI painted, unpainted vertices are fixed; shrinking the ROI makes its border fixed.
+  VertexLabels painted(100);
+  std::vector<int> middle;
+  for (int i = 3; i <= 6; ++i)
+    for (int v : column(i)) middle.push_back(v);
+  painted.paint(middle, VertexLabels::kRoi);
+  grow_labels(painted, conn, VertexLabels::kRoi, -1);
+  CHECK(painted.acting_as(VertexLabels::kRoi).size() == 20);  // columns 4 and 5
+  CHECK(painted.acting_as(VertexLabels::kFixed).size() == 80);
+  CHECK_THROWS_AS(grow_labels(painted, lapis::geometry::Connectivity(test::planar_grid(3, 3, 0.0)), 0, 1), lapis::InvalidArgument);
+}

@@ -36,6 +36,59 @@ int VertexLabels::handle_count() const {
 
 bool VertexLabels::any(int value) const { return std::find(label.begin(), label.end(), value) != label.end(); }
 
+std::vector<int> VertexLabels::acting_as(int value) const {
+  if (value >= 0 || (value != kRoi && value != kFixed)) return with(value);
+  const bool roi_painted = any(kRoi);
+  std::vector<int> out;
+  for (size_t v = 0; v < label.size(); ++v) {
+    const int l = label[v];
+    const bool fixed = l == kFixed || (l == kNone && roi_painted);
+    if (l >= 0) continue;
+    if ((value == kFixed) == fixed) out.push_back(static_cast<int>(v));
+  }
+  return out;
+}
+
+void VertexLabels::make_act_as(const std::vector<int>& vertices, int value) {
+  // kNone means ROI while no ROI is painted and fixed once one is: pick the label that says
+  // what is wanted whatever else gets painted later.
+  if (value == kRoi && !any(kRoi)) {
+    // Keep "unpainted = ROI" for the rest: painting kNone is enough.
+    paint(vertices, kNone);
+    return;
+  }
+  paint(vertices, value);
+}
+
+void grow_labels(VertexLabels& labels, const geometry::Connectivity& conn, int value, int rings) {
+  constexpr const char* fn = "mesh_deform::grow_labels()";
+  if (conn.num_vertices() != static_cast<int>(labels.label.size()))
+    throw InvalidArgument(std::string(fn) + ": connectivity has " + std::to_string(conn.num_vertices()) + " vertices, labels " +
+                          std::to_string(labels.label.size()));
+  if (rings == 0) return;
+  const std::vector<int> set = labels.acting_as(value);
+  std::vector<char> in(labels.label.size(), 0);
+  for (int v : set) in[static_cast<size_t>(v)] = 1;
+  if (rings > 0) {
+    if (set.empty()) return;
+    std::vector<int> grown;
+    for (int v : geometry::k_ring(conn, set, rings))
+      if (!in[static_cast<size_t>(v)] && (labels.label[static_cast<size_t>(v)] < 0 || labels.label[static_cast<size_t>(v)] == value))
+        grown.push_back(v);
+    labels.make_act_as(grown, value);
+    return;
+  }
+  // Shrink: what lies within |rings| of the outside leaves.
+  std::vector<int> outside;
+  for (size_t v = 0; v < in.size(); ++v)
+    if (!in[v]) outside.push_back(static_cast<int>(v));
+  if (outside.empty()) return;
+  std::vector<int> leaving;
+  for (int v : geometry::k_ring(conn, outside, -rings))
+    if (in[static_cast<size_t>(v)]) leaving.push_back(v);
+  labels.make_act_as(leaving, value == VertexLabels::kRoi ? VertexLabels::kFixed : VertexLabels::kRoi);
+}
+
 LabelledSelection to_selection(const VertexLabels& labels) {
   constexpr const char* fn = "mesh_deform::to_selection()";
   LabelledSelection out;

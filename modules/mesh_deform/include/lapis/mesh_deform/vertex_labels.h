@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "lapis/geometry/connectivity.h"
 #include "lapis/mesh_deform/deformer.h"
 
 namespace lapis::mesh_deform {
@@ -25,7 +26,20 @@ struct VertexLabels {
   // One past the highest handle label in use (0: no handle).
   int handle_count() const;
   bool any(int value) const;
+
+  // Vertices that act as `value` for the deformer, ascending: kRoi the ROI's vertices that are
+  // not handles, kFixed the vertices outside the ROI (painted fixed, or unpainted once an ROI
+  // is painted), k >= 0 handle k.
+  std::vector<int> acting_as(int value) const;
+  // Paints `vertices` so that they act as `value` (kRoi / kFixed / handle k), whichever label
+  // that takes under the rules above.
+  void make_act_as(const std::vector<int>& vertices, int value);
 };
+
+// Grows (rings > 0) or shrinks (rings < 0) the vertices acting as `value` by whole rings of
+// `conn`. Growth does not take other handles' vertices; vertices a shrink gives up join the
+// ROI (from a handle or the fixed region) or the fixed region (from the ROI).
+void grow_labels(VertexLabels& labels, const geometry::Connectivity& conn, int value, int rings);
 
 // The selection the labels stand for, and which label each of its region handles came from.
 struct LabelledSelection {
