@@ -48,7 +48,7 @@ DeformApp::DeformApp(geometry::TriMesh mesh, DeformPaths paths, MethodSettings s
       state_(initial_state(rest_.num_vertices())),
       history_(state_),
       shown_(rest_),
-      engine_(std::make_shared<EngineSlot>()) {}
+      engine_(std::make_shared<EngineSlot>(rest_)) {}
 
 DeformApp::~DeformApp() = default;
 
@@ -160,18 +160,16 @@ void DeformApp::request_solve() {
   if (needs_setup && setup_started_ < 0) setup_started_ = now_;
   const std::uint64_t id = ++submitted_, epoch = epoch_, revision = selection_revision_;
   auto slot = engine_;
-  const geometry::TriMesh* rest = &rest_;
   auto selection = std::make_shared<const Selection>(r.selection);
   const MethodSettings settings = settings_;
-  worker_.submit([slot, rest, r = std::move(r), id, epoch, revision, selection, settings] {
-    if (!slot->live) slot->live = std::make_unique<LiveDeformer>(*rest);
+  worker_.submit([slot, r = std::move(r), id, epoch, revision, selection, settings] {
     Solved s;
     s.request = id;
     s.epoch = epoch;
     s.revision = revision;
     s.selection = selection;
     s.settings = settings;
-    s.frame = slot->live->update(r);
+    s.frame = slot->live.update(r);
     return s;
   });
 }
@@ -214,13 +212,14 @@ void DeformApp::on_frame(viewer::Viewer& v) {
 }
 
 void DeformApp::on_exit(viewer::Viewer& v) {
-  // Batch runs: let the newest request finish so the export holds it.
-  for (int k = 0; k < 2; ++k) {
-    worker_.wait();
-    receive(v);
-    request_solve();
-  }
   if (paths_.export_on_exit) {
+    // Batch runs: let the newest request finish so the export holds it (twice: the result
+    // of a drag preview asks for the full pipeline once more).
+    for (int k = 0; k < 2; ++k) {
+      worker_.wait();
+      receive(v);
+      request_solve();
+    }
     pending_export_ = true;
     if (export_ready()) export_result(v);
     else std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
@@ -261,7 +260,7 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
     paths_.mesh = path;
     // Jobs still running hold the old slot (and read the old mesh only through it, which
     // they copied): a new slot and epoch make their results stale.
-    engine_ = std::make_shared<EngineSlot>();
+    engine_ = std::make_shared<EngineSlot>(rest_);
     ++epoch_;
     last_.reset();
     last_key_.clear();

@@ -113,6 +113,7 @@ class DeformApp final : public viewer::ViewerApp {
   // Drawing (deform_scene.cpp) and panels (deform_panels.cpp).
   void update_surface(viewer::Viewer& v);
   void update_gizmo(viewer::Viewer& v);
+  bool gizmo_shown() const;  // a valid selection and a painted active handle
   void update_markers(viewer::Viewer& v);
   void draw_tools_panel(viewer::Viewer& v);
   void draw_method_panel(viewer::Viewer& v);
@@ -156,8 +157,11 @@ class DeformApp final : public viewer::ViewerApp {
   double legend_hi_ = 0;
 
   // Engine: solves never block input; the previous result stays until a newer one arrives.
+  // One per opened mesh, with its own copy of the mesh: a job still running on an old slot
+  // never reads the app's current mesh.
   struct EngineSlot {
-    std::unique_ptr<LiveDeformer> live;
+    explicit EngineSlot(const geometry::TriMesh& mesh) : live(mesh) {}
+    LiveDeformer live;
   };
   std::shared_ptr<EngineSlot> engine_;
   std::uint64_t epoch_ = 0;        // bumped when a new mesh is opened

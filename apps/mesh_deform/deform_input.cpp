@@ -22,7 +22,7 @@ bool DeformApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
       move(v, {e.x, e.y});
       return true;
     }
-    gizmo_.hovered = selection_ ? gizmo_.hit(v.camera_matrices(), {e.x, e.y}) : viewer::GizmoPart::None;
+    gizmo_.hovered = gizmo_shown() ? gizmo_.hit(v.camera_matrices(), {e.x, e.y}) : viewer::GizmoPart::None;
   }
   return false;
 }
@@ -88,7 +88,7 @@ void DeformApp::ensure_pick_structures() {
 
 bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
   const auto cam = v.camera_matrices();
-  if (selection_ && gizmo_.begin_drag(cam, p)) {
+  if (gizmo_shown() && gizmo_.begin_drag(cam, p)) {
     dragging_ = true;
     drag_start_ = active_transform();
     return true;

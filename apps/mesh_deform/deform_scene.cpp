@@ -39,11 +39,12 @@ void DeformApp::update_surface(viewer::Viewer& v) {
   surface_dirty_ = false;
 }
 
+bool DeformApp::gizmo_shown() const { return selection_ && state_.labels->any(state_.active_handle); }
+
 void DeformApp::update_gizmo(viewer::Viewer& v) {
   auto& item = v.scene().lines["gizmo"];
-  const bool show = selection_ && state_.labels->any(state_.active_handle);
-  item.visible = show;
-  if (!show) return;
+  item.visible = gizmo_shown();
+  if (!item.visible) return;
   // The gizmo sits on the active handle where its transform puts it.
   const Eigen::Vector3d c = handle_rest_centroid(state_.active_handle);
   const Eigen::Matrix4d& T = state_.transforms[static_cast<size_t>(state_.active_handle)];

@@ -1,6 +1,6 @@
 // lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]
 //              [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]
-//              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit]
+//              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--size WxH]
 #include <cstdio>
@@ -16,6 +16,7 @@ constexpr const char* kUsage =
     "usage: lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]\n"
     "                    [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]\n"
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
+    "                    [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
     "                    [--exit-after-replay] [--benchmark OUT.json] [--size WxH]\n"
     "Opens MESH (OBJ/OFF/PLY/STL; default assets/external/armadillo.off) and the selection files if\n"
@@ -43,7 +44,10 @@ int main(int argc, char** argv) {
     if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
     const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
     args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations",
-                     "--full-while-dragging", "--export", "--export-on-exit"});
+                     "--full-while-dragging", "--export", "--export-on-exit", "--msaa"});
+    // Multisampling multiplies the fragment work of software rendering (Mesa llvmpipe), which
+    // a 150K-vertex mesh feels: --msaa 0 trades the smooth edges for frame time.
+    options.msaa_samples = static_cast<int>(args.get_int("--msaa", options.msaa_samples, 0, 16));
     const std::filesystem::path source_dir = LAPIS_SOURCE_DIR;
     deform_app::DeformPaths paths;
     paths.bundled_dir = source_dir / "assets/external";

@@ -178,7 +178,7 @@ void Viewer::dispatch(const InputEvent& e) {
     case EventType::Scroll: if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y); break;
     case EventType::Key: if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods); break;
     case EventType::Char: if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint); break;
-    case EventType::Resize: break;
+    case EventType::Resize: case EventType::Idle: break;
   }
   const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
   if (keyboard && io.WantCaptureKeyboard) return;
@@ -319,8 +319,18 @@ int Viewer::run(ViewerApp& app) {
   while (!glfwWindowShouldClose(w)) {
     glfwPollEvents();
     if (replay_)
-      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame <= frame_)
+      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame + replay_delay_ <= frame_) {
+        if (replay_->events[replay_next_].type == EventType::Idle) {
+          // Hold here while the app works; what follows is delayed by the frames waited.
+          if (app.busy()) {
+            ++replay_delay_;
+            break;
+          }
+          ++replay_next_;
+          continue;
+        }
         dispatch(replay_->events[replay_next_++]);
+      }
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
