@@ -298,6 +298,9 @@ void DeformApp::load_selection(viewer::Viewer& v) {
   try {
     Drag drag = read_handles(paths_.handles);
     drag.selection.roi = read_roi(paths_.roi);
+    // The deformer's own rules (handles inside the ROI, no duplicates, indices in range), so a
+    // file the CLI would reject is rejected here too, with the same message.
+    (void)make_layout(drag.selection, rest_.num_vertices(), "mesh_deform::Deformer::precompute()");
     auto labels = std::make_shared<VertexLabels>(from_selection(drag.selection, rest_.num_vertices()));
     // The handles' last frame is their pose; point handles become translated region handles.
     const HandleTransforms& last = drag.frames.back();

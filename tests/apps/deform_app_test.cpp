@@ -340,4 +340,12 @@ TEST_CASE("apps: deform app — bad input is reported, not a crash") {
   const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
   CHECK(text2.find("out of range") != std::string::npos);
   CHECK(!fs::exists(dir / "none.obj"));
+  // A handle outside the ROI: the message `lapis deform` gives for the same files.
+  std::ofstream(dir / "h2.json") << R"({"regions": [{"vertices": [7], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
+                         " --handles " + (dir / "h2.json").string() + " --screenshot " + (dir / "err3.png").string() +
+                         " 2> " + (dir / "err3.txt").string()) == 0);
+  std::ifstream err3(dir / "err3.txt");
+  const std::string text3((std::istreambuf_iterator<char>(err3)), std::istreambuf_iterator<char>());
+  CHECK(text3.find("mesh_deform::Deformer::precompute(): region handle 0 vertex 7 is outside the ROI") != std::string::npos);
 }
