@@ -3,19 +3,17 @@
 // frame and a JSON report (timings, degenerate vertices, distortion metrics).
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "args.h"
 #include "command.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
-#include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/metrics.h"
-#include "lapis/mesh_deform/naive_laplacian.h"
+#include "lapis/mesh_deform/methods.h"
+#include "lapis/mesh_deform/selection_io.h"
 
 namespace lapis::cli {
 namespace {
@@ -36,95 +34,12 @@ constexpr const char* kUsage =
     "  --scale-features: implicit Eq. 2.11 instead of 2.10. --iterations: ARAP per frame (10).\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
-std::vector<int> read_indices(const std::string& spec, int n, const char* what) {
-  std::vector<int> out;
-  if (spec == "all") {
-    for (int i = 0; i < n; ++i) out.push_back(i);
-    return out;
-  }
-  std::ifstream in(spec);
-  if (!in) throw IoError("cannot open " + std::string(what) + " file '" + spec + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  const size_t first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && text[first] == '[') {
-    try {
-      return json::parse(text).get<std::vector<int>>();
-    } catch (const json::exception& e) {
-      throw IoError("" + spec + ": expected a JSON array of vertex indices (" + e.what() + ")");
-    }
-  }
-  std::istringstream is(text);
-  long v;
-  while (is >> v) out.push_back(static_cast<int>(v));
-  if (!is.eof()) throw IoError("" + spec + ": expected whitespace-separated vertex indices");
+// 'all' or a ROI file (the format is mesh_deform's, shared with the deform app).
+std::vector<int> read_roi_arg(const std::string& spec, int n) {
+  if (spec != "all") return read_roi(spec);
+  std::vector<int> out(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) out[static_cast<size_t>(i)] = i;
   return out;
-}
-
-Eigen::Matrix4d matrix4(const json& m, const std::string& where) {
-  if (!m.is_array() || m.size() != 4) throw IoError("" + where + ": expected 4 rows of 4 numbers");
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r) {
-    if (!m[r].is_array() || m[r].size() != 4) throw IoError("" + where + ": expected 4 rows of 4 numbers");
-    for (int c = 0; c < 4; ++c) T(r, c) = m[r][c].get<double>();
-  }
-  return T;
-}
-
-struct Drag {
-  Selection selection;
-  std::vector<HandleTransforms> frames;
-};
-
-Drag read_handles(const std::string& path, std::vector<int> roi) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot open handles file '" + path + "'");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::exception& e) {
-    throw IoError("" + path + ": " + e.what());
-  }
-  Drag d;
-  d.selection.roi = std::move(roi);
-  std::vector<std::vector<Eigen::Matrix4d>> region_frames;
-  std::vector<std::vector<Eigen::Vector3d>> point_frames;
-  size_t frames = 1;
-  try {
-    for (const json& r : j.value("regions", json::array())) {
-      d.selection.region_handles.push_back(r.at("vertices").get<std::vector<int>>());
-      std::vector<Eigen::Matrix4d> f;
-      const std::string where = path + ": region handle " + std::to_string(region_frames.size());
-      for (const json& m : r.at("transforms")) f.push_back(matrix4(m, where));
-      if (f.empty()) throw IoError("" + where + ": no transforms");
-      frames = std::max(frames, f.size());
-      region_frames.push_back(std::move(f));
-    }
-    for (const json& p : j.value("points", json::array())) {
-      d.selection.point_handles.push_back(p.at("vertex").get<int>());
-      std::vector<Eigen::Vector3d> f;
-      for (const json& t : p.at("translations")) f.emplace_back(t.at(0).get<double>(), t.at(1).get<double>(), t.at(2).get<double>());
-      if (f.empty()) throw IoError("" + path + ": point handle without translations");
-      frames = std::max(frames, f.size());
-      point_frames.push_back(std::move(f));
-    }
-  } catch (const json::exception& e) {
-    throw IoError("" + path + ": " + e.what());
-  }
-  auto at = [&](const auto& list, size_t k) {
-    if (list.size() != 1 && list.size() != frames)
-      throw IoError("" + path + ": handles have different frame counts (" + std::to_string(list.size()) +
-                    " and " + std::to_string(frames) + ")");
-    return list[std::min(k, list.size() - 1)];
-  };
-  for (size_t k = 0; k < frames; ++k) {
-    HandleTransforms t;
-    for (const auto& f : region_frames) t.regions.push_back(at(f, k));
-    for (const auto& f : point_frames) t.points.push_back(at(f, k));
-    d.frames.push_back(std::move(t));
-  }
-  return d;
 }
 
 json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95", s.p95}}; }
@@ -134,31 +49,24 @@ int run(const std::vector<std::string>& argv) {
   args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out", "--report"});
   const std::string method = args.get("--method");
   const std::string weights = args.get("--weights", "cotan");
-  if (method != "naive" && method != "implicit" && method != "arap")
-    throw UsageError("--method must be naive, implicit or arap, not '" + method + "'");
+  bool known = false;
+  for (const MethodInfo& m : methods()) known = known || method == m.name;
+  if (!known) throw UsageError("--method must be naive, implicit or arap, not '" + method + "'");
   if (weights != "cotan" && weights != "uniform")
     throw UsageError("--weights must be cotan or uniform, not '" + weights + "'");
   const std::string out_path = args.get("--out");
   const geometry::TriMesh mesh = geometry::read_mesh(args.get("--mesh"));
-  const Drag drag = read_handles(args.get("--handles"), read_indices(args.get("--roi"), mesh.num_vertices(), "ROI"));
+  Drag drag = read_handles(args.get("--handles"));
+  drag.selection.roi = read_roi_arg(args.get("--roi"), mesh.num_vertices());
   const LaplacianWeights w = weights == "cotan" ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
 
-  std::unique_ptr<Deformer> d;
-  ImplicitLaplacianDeformer* implicit = nullptr;
-  if (method == "naive") d = std::make_unique<NaiveLaplacianDeformer>(mesh, NaiveOptions{w});
-  if (method == "arap") {
-    ArapOptions o;
-    o.max_iterations = static_cast<int>(args.get_int("--iterations", 10, 1, 1000000));
-    d = std::make_unique<ArapDeformer>(mesh, o);
-  }
-  if (method == "implicit") {
-    ImplicitOptions o;
-    o.weights = w;
-    if (args.has("--scale-features")) o.shearing = ShearingRemoval::ScaleFeatures;
-    auto p = std::make_unique<ImplicitLaplacianDeformer>(mesh, o);
-    implicit = p.get();
-    d = std::move(p);
-  }
+  MethodSettings settings;
+  settings.method = method_from_name(method);
+  settings.weights = w;
+  settings.scale_features = args.has("--scale-features");
+  settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000000));
+  const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
+  const auto* implicit = dynamic_cast<const ImplicitLaplacianDeformer*>(d.get());
   using clock = std::chrono::steady_clock;
   auto ms = [](clock::time_point t0) { return std::chrono::duration<double, std::milli>(clock::now() - t0).count(); };
   d->set_selection(drag.selection);

@@ -82,3 +82,17 @@ TEST_CASE("viewer: PNG write then read returns the pixels") {
   write(p, "not a png");
   CHECK_THROWS_AS(read_png(p), IoError);
 }
+
+TEST_CASE("viewer: an idle event (a replay barrier) survives a round trip and carries only its frame") {
+  const fs::path p = temp_file("idle.json");
+  write(p, R"({"format": "lapis-events", "width": 640, "height": 480, "events": [
+    {"type": "move", "frame": 1, "x": 3, "y": 4}, {"type": "idle", "frame": 2}, {"type": "key", "frame": 2, "key": 67, "action": 1}]})");
+  const EventLog log = EventLog::load(p);
+  REQUIRE(log.events.size() == 3);
+  CHECK(log.events[1].type == EventType::Idle);
+  CHECK(log.events[1].frame == 2);
+  log.save(p);
+  const EventLog again = EventLog::load(p);
+  CHECK(again.events[1].type == EventType::Idle);
+  CHECK(std::string(to_string(EventType::Idle)) == "idle");
+}

@@ -10,7 +10,7 @@ namespace lapis::viewer {
 namespace {
 
 constexpr EventType kTypes[] = {EventType::MouseMove, EventType::MouseButton, EventType::Scroll,
-                                EventType::Key, EventType::Char, EventType::Resize};
+                                EventType::Key, EventType::Char, EventType::Resize, EventType::Idle};
 
 EventType parse_type(const std::string& s, const std::string& where) {
   for (EventType t : kTypes)
@@ -28,6 +28,7 @@ const char* to_string(EventType t) {
     case EventType::Key: return "key";
     case EventType::Char: return "char";
     case EventType::Resize: return "resize";
+    case EventType::Idle: return "idle";
   }
   return "?";
 }
@@ -48,6 +49,7 @@ void EventLog::save(const std::filesystem::path& path) const {
       case EventType::Key: o["key"] = e.key, o["action"] = e.action, o["mods"] = e.mods; break;
       case EventType::Char: o["codepoint"] = e.codepoint; break;
       case EventType::Resize: o["width"] = e.width, o["height"] = e.height; break;
+      case EventType::Idle: break;
     }
     list.push_back(std::move(o));
   }

@@ -191,7 +191,7 @@ void Viewer::dispatch(const InputEvent& e) {
     case EventType::Scroll: if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y); break;
     case EventType::Key: if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods); break;
     case EventType::Char: if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint); break;
-    case EventType::Resize: break;
+    case EventType::Resize: case EventType::Idle: break;
   }
   const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
   if (keyboard && io.WantCaptureKeyboard) return;
@@ -339,10 +339,12 @@ int Viewer::run(ViewerApp& app) {
     const bool busy = app.busy();
     const bool settled = frame_ - last_input_frame_ > kSettleFrames && busy == was_busy;
     if (replaying()) {
-      const long next_event = replay_->events[replay_next_].frame;
-      if (settled && next_event > frame_) {
+      const InputEvent& next = replay_->events[replay_next_];
+      const long next_frame = next.frame + replay_delay_;
+      const bool held_until_idle = next.type == EventType::Idle && next_frame <= frame_ && busy;
+      if (settled && (next_frame > frame_ || held_until_idle)) {
         if (busy) glfwWaitEventsTimeout(kBusyRedrawSeconds);
-        else frame_ = next_event;
+        else frame_ = next_frame;
       }
       glfwPollEvents();
     } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames) {
@@ -353,8 +355,18 @@ int Viewer::run(ViewerApp& app) {
     was_busy = busy;
     const auto frame_start = Clock::now();
     if (replay_)
-      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame <= frame_)
+      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame + replay_delay_ <= frame_) {
+        if (replay_->events[replay_next_].type == EventType::Idle) {
+          // Hold here while the app works; what follows is delayed by the frames waited.
+          if (app.busy()) {
+            ++replay_delay_;
+            break;
+          }
+          ++replay_next_;
+          continue;
+        }
         dispatch(replay_->events[replay_next_++]);
+      }
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();

@@ -1,5 +1,6 @@
 #include "lapis/mesh_deform/implicit_laplacian.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -65,6 +66,15 @@ void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
     throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight and transform_weight must be > 0");
   options_ = options;
   mark_dirty();
+}
+
+std::vector<int> ImplicitLaplacianDeformer::degenerate_vertices() const {
+  std::vector<int> out;
+  if (!impl_) return out;
+  for (int v : impl_->w.moved)
+    if (v < mesh_.num_vertices()) out.push_back(v);
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 void ImplicitLaplacianDeformer::setup(const Layout& layout) {
@@ -291,7 +301,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   }
   stats_.first_solve_ms = ms_since(t0);
 
-  if (options_.shearing == ShearingRemoval::None) {
+  if (options_.shearing == ShearingRemoval::None || preview_) {
     // Pull-back of displaced vertices (§2.4.3): ṽ_i = M_i (v_i − v'_i) + ṽ'_i.
     const Vertices Xv = X;
     for (int v : m.free)

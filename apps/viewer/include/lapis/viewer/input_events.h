@@ -11,7 +11,9 @@
 
 namespace lapis::viewer {
 
-enum class EventType { MouseMove, MouseButton, Scroll, Key, Char, Resize };
+// Idle is never recorded: written into a log by hand or a generator, it holds the replay until
+// the app is no longer busy (a setup finished), and the events after it keep their spacing.
+enum class EventType { MouseMove, MouseButton, Scroll, Key, Char, Resize, Idle };
 
 struct InputEvent {
   EventType type = EventType::MouseMove;

@@ -131,6 +131,7 @@ class Viewer {
   EventLog recording_;
   std::optional<EventLog> replay_;
   size_t replay_next_ = 0;
+  long replay_delay_ = 0;  // frames the replay waited at Idle events
 };
 
 }  // namespace lapis::viewer

@@ -66,6 +66,16 @@ class ImplicitLaplacianDeformer final : public Deformer {
   const ImplicitStats& stats() const { return stats_; }
   std::string name() const override { return "implicit"; }
 
+  // §2.5's preview while dragging: with preview on, deform() stops after the first system (as
+  // ShearingRemoval::None does) but keeps the second system's factorization, so turning it
+  // off again (on release) gives the full pipeline without a new setup. The accumulated
+  // handle rotations carry on either way.
+  void set_preview(bool on) { preview_ = on; }
+  bool preview() const { return preview_; }
+
+  // Original vertices the last setup found degenerate or displaced (§2.4.3), ascending.
+  std::vector<int> degenerate_vertices() const;
+
  protected:
   void setup(const Layout& layout) override;
   void solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) override;
@@ -75,6 +85,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
   struct Impl;
   ImplicitOptions options_;
   ImplicitStats stats_;
+  bool preview_ = false;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -1,0 +1,372 @@
+// The deform app's state: edits and their undo history, the engine requests and results, and
+// the files (open mesh, save / open selection, export).
+#include "deform_app.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <nlohmann/json.hpp>
+
+#include "lapis/geometry/atomic_file.h"
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/selection_io.h"
+#include "lapis/viewer/colormap.h"
+
+namespace lapis::deform_app {
+
+const char* tool_name(Tool t) {
+  switch (t) {
+    case Tool::Move: return "move (gizmo)";
+    case Tool::Brush: return "brush";
+    case Tool::Lasso: return "lasso";
+  }
+  return "?";
+}
+
+namespace {
+
+EditState initial_state(int num_vertices) {
+  EditState s;
+  s.labels = std::make_shared<const VertexLabels>(num_vertices);
+  return s;
+}
+
+// Appends the raw bytes of a value: requests compare equal exactly when nothing changed.
+template <class T>
+void append_bytes(std::string& key, const T& value) {
+  key.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+}  // namespace
+
+DeformApp::DeformApp(geometry::TriMesh mesh, DeformPaths paths, MethodSettings settings, bool preview_while_dragging)
+    : rest_(std::move(mesh)),
+      conn_(std::make_unique<geometry::Connectivity>(rest_)),
+      paths_(std::move(paths)),
+      settings_(settings),
+      preview_while_dragging_(preview_while_dragging),
+      state_(initial_state(rest_.num_vertices())),
+      history_(state_),
+      shown_(rest_),
+      engine_(std::make_shared<EngineSlot>(rest_)) {}
+
+DeformApp::~DeformApp() = default;
+
+void DeformApp::on_start(viewer::Viewer& v) {
+  worker_.set_on_done([&v] { v.wake(); });  // a finished solve: redraw now
+  now_ = v.time();
+  update_surface(v);
+  v.frame_scene();
+  labels_changed();
+  if (load_on_start_) load_selection(v);
+}
+
+bool DeformApp::busy() const {
+  if (pending_export_ || frame_ - result_frame_ < 3) return true;
+  return worker_.busy() || (selection_ && received_ != submitted_);
+}
+
+// ---------------------------------------------------------------- edits
+
+void DeformApp::commit(std::string label) { history_.push(state_, std::move(label)); }
+
+void DeformApp::set_labels(std::shared_ptr<const VertexLabels> labels, const std::string& label) {
+  state_.labels = std::move(labels);
+  const int handles = state_.labels->handle_count();
+  if (static_cast<int>(state_.transforms.size()) < handles) state_.transforms.resize(static_cast<size_t>(handles), Eigen::Matrix4d::Identity());
+  commit(label);
+  labels_changed();
+}
+
+void DeformApp::labels_changed() {
+  ++selection_revision_;
+  surface_dirty_ = markers_dirty_ = true;
+  try {
+    selection_ = to_selection(*state_.labels);
+    selection_error_.clear();
+    if (state_.active_handle >= state_.labels->handle_count() || !state_.labels->any(state_.active_handle))
+      state_.active_handle = selection_->handle_label.front();
+  } catch (const Error& e) {
+    selection_.reset();
+    selection_error_ = e.what();
+  }
+}
+
+void DeformApp::undo(viewer::Viewer& v) { step_history(v, false); }
+void DeformApp::redo(viewer::Viewer& v) { step_history(v, true); }
+
+void DeformApp::step_history(viewer::Viewer& v, bool forward) {
+  if (forward ? !history_.can_redo() : !history_.can_undo()) return v.flash(forward ? "nothing to redo" : "nothing to undo");
+  v.flash((forward ? "redo " : "undo ") + (forward ? history_.redo_label() : history_.undo_label()));
+  const auto before = state_.labels;
+  state_ = forward ? history_.redo() : history_.undo();
+  if (before != state_.labels) labels_changed();  // a handle move keeps the selection (and its setup)
+  markers_dirty_ = true;
+}
+
+void DeformApp::reset_pose(viewer::Viewer&) {
+  for (auto& T : state_.transforms) T.setIdentity();
+  commit("reset pose");
+}
+
+Eigen::Matrix4d& DeformApp::active_transform() {
+  const size_t h = static_cast<size_t>(std::max(0, state_.active_handle));
+  if (state_.transforms.size() <= h) state_.transforms.resize(h + 1, Eigen::Matrix4d::Identity());
+  return state_.transforms[h];
+}
+
+Eigen::Vector3d DeformApp::handle_rest_centroid(int label) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (size_t v = 0; v < state_.labels->label.size(); ++v)
+    if (state_.labels->label[v] == label) sum += rest_.V.row(static_cast<Eigen::Index>(v)).transpose(), ++n;
+  return n ? Eigen::Vector3d(sum / n) : Eigen::Vector3d::Zero();
+}
+
+void DeformApp::new_handle() {
+  state_.active_handle = state_.labels->handle_count();
+  if (state_.transforms.size() <= static_cast<size_t>(state_.active_handle))
+    state_.transforms.resize(static_cast<size_t>(state_.active_handle) + 1, Eigen::Matrix4d::Identity());
+  target_ = 0;
+}
+
+// ---------------------------------------------------------------- engine
+
+void DeformApp::request_solve() {
+  if (!selection_) return;
+  LiveRequest r;
+  r.settings = settings_;
+  r.selection = selection_->selection;
+  r.selection_revision = selection_revision_;
+  for (int label : selection_->handle_label) r.transforms.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
+  r.preview = dragging_ && preview_while_dragging_;
+  if (color_mode_ == ColorMode::Distortion) r.field = field_;
+
+  std::string key;
+  append_bytes(key, epoch_);
+  append_bytes(key, selection_revision_);
+  append_bytes(key, settings_.method);
+  append_bytes(key, settings_.weights);
+  append_bytes(key, settings_.scale_features);
+  append_bytes(key, settings_.arap_iterations);
+  append_bytes(key, r.preview);
+  append_bytes(key, r.field ? static_cast<int>(*r.field) : -1);
+  for (const auto& T : r.transforms.regions) key.append(reinterpret_cast<const char*>(T.data()), sizeof(double) * 16);
+  if (key == last_key_) return;
+  last_key_ = key;
+
+  // The progress indicator: shown while a request that needs a new setup is running.
+  const bool needs_setup = !last_ || last_->epoch != epoch_ || !(last_->settings == settings_) ||
+                           last_->revision != selection_revision_;
+  if (needs_setup && setup_started_ < 0) setup_started_ = now_;
+  const std::uint64_t id = ++submitted_, epoch = epoch_, revision = selection_revision_;
+  auto slot = engine_;
+  auto selection = std::make_shared<const Selection>(r.selection);
+  const MethodSettings settings = settings_;
+  worker_.submit([slot, r = std::move(r), id, epoch, revision, selection, settings] {
+    Solved s;
+    s.request = id;
+    s.epoch = epoch;
+    s.revision = revision;
+    s.selection = selection;
+    s.settings = settings;
+    s.frame = slot->live.update(r);
+    return s;
+  });
+}
+
+void DeformApp::receive(viewer::Viewer& v) {
+  std::optional<Solved> s;
+  try {
+    s = worker_.take();
+  } catch (const Error& e) {
+    // The newest request failed (a selection the deformer rejects): nothing more is coming.
+    engine_error_ = e.what();
+    received_ = submitted_;
+    setup_started_ = -1;
+    v.flash(std::string("deformation failed: ") + e.what());
+    return;
+  }
+  if (!s || s->epoch != epoch_) return;  // nothing new, or from a mesh no longer open
+  engine_error_.clear();
+  received_ = s->request;
+  if (s->frame.did_setup) setup_ms_.push_back(s->frame.setup_ms);
+  if (s->revision == selection_revision_ && s->settings == settings_) setup_started_ = -1;
+  solve_ms_.push_back(s->frame.solve_ms);
+  shown_.V = s->frame.positions;
+  if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));
+  last_ = std::move(s);
+  result_frame_ = v.frame();
+  pick_stale_ = true;
+  surface_dirty_ = markers_dirty_ = true;
+}
+
+void DeformApp::on_frame(viewer::Viewer& v) {
+  now_ = v.time();
+  frame_ = v.frame();
+  receive(v);
+  request_solve();  // no-op unless something changed
+  if (pending_export_ && export_ready()) export_result(v);
+  if (surface_dirty_) update_surface(v);
+  if (markers_dirty_) update_markers(v);
+  update_gizmo(v);
+}
+
+void DeformApp::on_exit(viewer::Viewer& v) {
+  worker_.set_on_done({});  // the window goes away after this
+  if (paths_.export_on_exit) {
+    // Batch runs: let the newest request finish so the export holds it (twice: the result
+    // of a drag preview asks for the full pipeline once more).
+    for (int k = 0; k < 2; ++k) {
+      worker_.wait();
+      receive(v);
+      request_solve();
+    }
+    pending_export_ = true;
+    if (export_ready()) export_result(v);
+    else std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
+                      !selection_error_.empty() ? selection_error_.c_str() : engine_error_.c_str());
+    pending_export_ = false;
+  }
+}
+
+void DeformApp::benchmark_fields(nlohmann::json& j) const {
+  j["app"] = "lapis-deform";
+  j["vertices"] = rest_.num_vertices();
+  j["method"] = method_info(settings_.method).name;
+  j["weights"] = to_string(settings_.weights);
+  j["preview_while_dragging"] = preview_while_dragging_;
+  j["solve_ms"] = solve_ms_;
+  j["setup_ms"] = setup_ms_;
+  j["requests"] = submitted_;
+  j["solved"] = solve_ms_.size();
+  j["stale_dropped"] = submitted_ - solve_ms_.size();
+  j["drag_events"] = drag_frames_;
+  if (!solve_ms_.empty()) {
+    std::vector<double> s = solve_ms_;
+    std::sort(s.begin(), s.end());
+    j["solve_ms_median"] = s[s.size() / 2];
+    j["solve_ms_max"] = s.back();
+  }
+  if (last_) j["degenerate_vertices"] = last_->frame.degenerate_vertices.size();
+}
+
+// ---------------------------------------------------------------- files
+
+void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
+  try {
+    geometry::TriMesh mesh = geometry::read_mesh(path);
+    auto conn = std::make_unique<geometry::Connectivity>(mesh);
+    rest_ = std::move(mesh);
+    conn_ = std::move(conn);
+    paths_.mesh = path;
+    // Jobs still running hold the old slot (and read the old mesh only through it, which
+    // they copied): a new slot and epoch make their results stale.
+    engine_ = std::make_shared<EngineSlot>(rest_);
+    ++epoch_;
+    last_.reset();
+    last_key_.clear();
+    received_ = submitted_;
+    state_ = initial_state(rest_.num_vertices());
+    history_.reset(state_);
+    shown_ = rest_;
+    pick_bvh_.reset();
+    pick_stale_ = true;
+    labels_changed();
+    update_surface(v);
+    v.frame_scene();
+    v.flash("opened " + path.string() + " (" + std::to_string(rest_.num_vertices()) + " vertices)");
+  } catch (const Error& e) {
+    v.flash(std::string("open failed: ") + e.what());
+  }
+}
+
+void DeformApp::save_selection(viewer::Viewer& v) {
+  if (!selection_) return v.flash("save selection: " + selection_error_);
+  try {
+    for (const auto* p : {&paths_.roi, &paths_.handles})
+      if (p->has_parent_path()) fs::create_directories(p->parent_path());
+    HandleTransforms now;
+    for (int label : selection_->handle_label) now.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
+    write_roi(paths_.roi, selection_->selection.roi);
+    write_handles(paths_.handles, selection_->selection, {now});
+    v.flash("saved " + paths_.roi.string() + " and " + paths_.handles.string());
+  } catch (const Error& e) {
+    v.flash(std::string("save failed: ") + e.what());
+  }
+}
+
+void DeformApp::load_selection(viewer::Viewer& v) {
+  try {
+    Drag drag = read_handles(paths_.handles);
+    drag.selection.roi = read_roi(paths_.roi);
+    // The deformer's own rules (handles inside the ROI, no duplicates, indices in range), so a
+    // file the CLI would reject is rejected here too, with the same message.
+    (void)make_layout(drag.selection, rest_.num_vertices(), "mesh_deform::Deformer::precompute()");
+    auto labels = std::make_shared<VertexLabels>(from_selection(drag.selection, rest_.num_vertices()));
+    // The handles' last frame is their pose; point handles become translated region handles.
+    const HandleTransforms& last = drag.frames.back();
+    std::vector<Eigen::Matrix4d> transforms = last.regions;
+    for (const auto& t : last.points) {
+      Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+      T.topRightCorner<3, 1>() = t;
+      transforms.push_back(T);
+    }
+    state_.transforms = std::move(transforms);
+    state_.active_handle = 0;
+    set_labels(std::move(labels), "open selection");
+    v.flash("opened " + paths_.roi.string() + " and " + paths_.handles.string());
+  } catch (const Error& e) {
+    v.flash(std::string("open selection failed: ") + e.what());
+  }
+}
+
+bool DeformApp::export_ready() const {
+  // The newest request solved, by the full pipeline (not a drag preview).
+  return last_ && !worker_.busy() && received_ == submitted_ && last_->request == submitted_ && !last_->frame.preview;
+}
+
+void DeformApp::export_result(viewer::Viewer& v) {
+  pending_export_ = false;
+  if (!export_ready()) {
+    if (!selection_) return v.flash("export: " + selection_error_);
+    if (!engine_error_.empty()) return v.flash("export: " + engine_error_);
+    pending_export_ = true;  // written once the newest solve arrives
+    return v.flash("export: waiting for the solve to finish");
+  }
+  try {
+    const fs::path& out = paths_.export_mesh;
+    if (out.has_parent_path()) fs::create_directories(out.parent_path());
+    const fs::path stem = out.parent_path() / out.stem();
+    geometry::TriMesh result = rest_;
+    result.V = last_->frame.positions;
+    geometry::write_mesh(out, result);
+    // What `lapis deform` needs to reproduce the export: the selection and every frame this
+    // setup solved (the implicit method unwraps rotations over them, ARAP warm-starts).
+    const fs::path roi = stem.string() + ".roi.txt", handles = stem.string() + ".handles.json";
+    write_roi(roi, last_->selection->roi);
+    write_handles(handles, *last_->selection, last_->frame.history);
+    const MethodSettings& s = last_->settings;
+    std::string command = "lapis deform --mesh " + paths_.mesh.string() + " --roi " + roi.string() + " --handles " +
+                          handles.string() + " --method " + method_info(s.method).name + " --weights " +
+                          (s.weights == LaplacianWeights::Cotangent ? "cotan" : "uniform") +
+                          (s.scale_features ? " --scale-features" : "") + " --iterations " +
+                          std::to_string(s.arap_iterations) + " --out OUT.obj";
+    nlohmann::json j = {{"mesh", paths_.mesh.string()},
+                        {"roi", roi.string()},
+                        {"handles", handles.string()},
+                        {"method", method_info(s.method).name},
+                        {"weights", s.weights == LaplacianWeights::Cotangent ? "cotan" : "uniform"},
+                        {"scale_features", s.scale_features},
+                        {"iterations", s.arap_iterations},
+                        {"frames", last_->frame.history.size()},
+                        {"cli", command}};
+    geometry::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+    v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json)");
+    std::printf("exported %s\n", out.string().c_str());
+  } catch (const Error& e) {
+    v.flash(std::string("export failed: ") + e.what());
+  }
+}
+
+}  // namespace lapis::deform_app

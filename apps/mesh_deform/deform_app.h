@@ -1,0 +1,183 @@
+// lapis-deform: paint a region of interest, a fixed region and handles on a mesh, drag a
+// handle with the gizmo and watch the mesh follow (thesis ch. 2 and its baselines). The app
+// wires the viewer's input and panels to the mesh_deform module: painted labels become a
+// Selection (vertex_labels.h), a LiveDeformer on a worker thread sets up once per selection
+// and solves each frame, and the newest finished frame is drawn when it is ready.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lapis/geometry/bvh.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/mesh_deform/live_deformer.h"
+#include "lapis/mesh_deform/vertex_labels.h"
+#include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/latest_worker.h"
+#include "lapis/viewer/undo_history.h"
+#include "lapis/viewer/viewer.h"
+
+namespace lapis::deform_app {
+
+using namespace lapis::mesh_deform;
+namespace fs = std::filesystem;
+
+enum class Tool { Move, Brush, Lasso };
+const char* tool_name(Tool t);
+
+enum class ColorMode { Selection, Distortion };
+
+// Colour of region handle `label` on the surface and in the panels.
+Eigen::Vector3f handle_color(int label);
+
+struct DeformPaths {
+  fs::path mesh;                     // the mesh opened (the CLI's --mesh for the export)
+  fs::path roi, handles;             // selection files: Ctrl+S saves, Ctrl+O opens
+  fs::path export_mesh;              // Ctrl+E; beside it <stem>.roi.txt, .handles.json, .deform.json
+  bool export_on_exit = false;       // batch runs: export when the app closes
+  fs::path bundled_dir;              // meshes the file panel offers (assets/external)
+};
+
+// The undoable state: painted labels (shared between snapshots that did not repaint) and
+// one transform per handle label.
+struct EditState {
+  std::shared_ptr<const VertexLabels> labels;
+  std::vector<Eigen::Matrix4d> transforms;  // by handle label; identity = rest pose
+  int active_handle = 0;
+};
+
+// What the worker hands back for one request.
+struct Solved {
+  std::uint64_t request = 0, epoch = 0, revision = 0;  // request id, mesh epoch, selection revision
+  std::shared_ptr<const Selection> selection;
+  MethodSettings settings;
+  LiveFrame frame;
+};
+
+class DeformApp final : public viewer::ViewerApp {
+ public:
+  DeformApp(geometry::TriMesh mesh, DeformPaths paths, MethodSettings settings, bool preview_while_dragging = true);
+  ~DeformApp() override;
+
+  void on_start(viewer::Viewer& v) override;
+  bool on_event(viewer::Viewer& v, const viewer::InputEvent& e) override;
+  void on_frame(viewer::Viewer& v) override;
+  void on_gui(viewer::Viewer& v) override;
+  void on_exit(viewer::Viewer& v) override;
+  bool busy() const override;
+  void benchmark_fields(nlohmann::json& j) const override;
+
+  // Opens the ROI and handles files of the paths when the app starts.
+  void open_selection_on_start() { load_on_start_ = true; }
+
+ private:
+  // Loads the ROI and handles files (CLI formats); errors are shown, not thrown.
+  void load_selection(viewer::Viewer& v);
+  // Input (deform_input.cpp).
+  bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
+  bool press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods);
+  void move(viewer::Viewer& v, const Eigen::Vector2d& p);
+  void release(viewer::Viewer& v);
+  void paint_at(viewer::Viewer& v, const Eigen::Vector2d& p);
+  int paint_value() const;  // the label the current target paints
+  void ensure_pick_structures();
+
+  // Edits (deform_app.cpp).
+  void commit(std::string label);  // pushes state_ onto the undo history
+  void set_labels(std::shared_ptr<const VertexLabels> labels, const std::string& label);
+  void labels_changed();           // rebuilds the selection from the labels
+  void undo(viewer::Viewer& v);
+  void redo(viewer::Viewer& v);
+  void step_history(viewer::Viewer& v, bool forward);
+  void reset_pose(viewer::Viewer& v);
+  void grow_or_shrink(viewer::Viewer& v, int rings);
+  void clear_target(viewer::Viewer& v);
+  void new_handle();
+  Eigen::Matrix4d& active_transform();
+  Eigen::Vector3d handle_rest_centroid(int label) const;
+
+  // Files.
+  void open_mesh(viewer::Viewer& v, const fs::path& path);
+  void save_selection(viewer::Viewer& v);
+  void export_result(viewer::Viewer& v);
+  bool export_ready() const;
+
+  // Engine.
+  void request_solve();
+  void receive(viewer::Viewer& v);
+
+  // Drawing (deform_scene.cpp) and panels (deform_panels.cpp).
+  void update_surface(viewer::Viewer& v);
+  void update_gizmo(viewer::Viewer& v);
+  bool gizmo_shown() const;  // a valid selection and a painted active handle
+  void update_markers(viewer::Viewer& v);
+  void draw_tools_panel(viewer::Viewer& v);
+  void draw_method_panel(viewer::Viewer& v);
+  void draw_handle_panel(viewer::Viewer& v);
+  void draw_file_panel(viewer::Viewer& v);
+  void draw_legend(viewer::Viewer& v);
+  void draw_overlay(viewer::Viewer& v);
+  void draw_cursor(viewer::Viewer& v);
+
+  geometry::TriMesh rest_;
+  std::unique_ptr<geometry::Connectivity> conn_;
+  DeformPaths paths_;
+  MethodSettings settings_;
+  bool preview_while_dragging_ = true;  // implicit: first system while dragging (§2.5)
+  bool load_on_start_ = false;
+
+  // Editing.
+  EditState state_;
+  viewer::UndoHistory<EditState> history_;
+  std::optional<LabelledSelection> selection_;
+  std::string selection_error_;
+  std::uint64_t selection_revision_ = 0;
+  std::shared_ptr<VertexLabels> stroke_;  // labels being painted (committed on release)
+  std::vector<Eigen::Vector2d> lasso_;
+  Eigen::Vector2d last_paint_ = Eigen::Vector2d::Zero();
+  Tool tool_ = Tool::Move;
+  int target_ = VertexLabels::kRoi;  // kRoi, kFixed, kNone (erase) or 0 = the active handle
+  bool erase_ = false;                // Shift held at press: this stroke erases
+  float brush_px_ = 24;
+  viewer::Gizmo gizmo_;
+  Eigen::Matrix4d drag_start_ = Eigen::Matrix4d::Identity();
+  bool dragging_ = false;
+
+  // Display.
+  geometry::TriMesh shown_;  // the surface on screen: rest faces, rest or newest solved positions
+  std::unique_ptr<geometry::Bvh> pick_bvh_;
+  bool pick_stale_ = true, surface_dirty_ = true, markers_dirty_ = true;
+  ColorMode color_mode_ = ColorMode::Selection;
+  DistortionField field_ = DistortionField::EdgeLength;
+  bool show_degenerate_ = true;
+  double legend_hi_ = 0;
+
+  // Engine: solves never block input; the previous result stays until a newer one arrives.
+  // One per opened mesh, with its own copy of the mesh: a job still running on an old slot
+  // never reads the app's current mesh.
+  struct EngineSlot {
+    explicit EngineSlot(const geometry::TriMesh& mesh) : live(mesh) {}
+    LiveDeformer live;
+  };
+  std::shared_ptr<EngineSlot> engine_;
+  std::uint64_t epoch_ = 0;        // bumped when a new mesh is opened
+  std::uint64_t submitted_ = 0;    // id of the newest request
+  std::uint64_t received_ = 0;     // id of the newest result taken (or failed)
+  std::string last_key_;           // what the newest request asked for, to skip repeats
+  std::optional<Solved> last_;
+  std::string engine_error_;
+  double setup_started_ = -1;      // time a request needing setup was submitted
+  bool pending_export_ = false;
+  std::vector<double> solve_ms_, setup_ms_;  // for --benchmark
+  long drag_frames_ = 0;
+  double now_ = 0;
+  long frame_ = 0, result_frame_ = -10;  // a new result settles (panels resize) before it counts as shown
+
+  viewer::LatestWorker<Solved> worker_;  // last: joined first, before what jobs use
+};
+
+}  // namespace lapis::deform_app

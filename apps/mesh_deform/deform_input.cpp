@@ -1,0 +1,177 @@
+// The deform app's mouse and keys: the gizmo takes a press that hits it (in any tool), the
+// brush and the lasso paint the current target, keys switch tools and targets.
+#include <GLFW/glfw3.h>
+
+#include "deform_app.h"
+#include "lapis/viewer/surface_select.h"
+
+namespace lapis::deform_app {
+
+bool DeformApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
+  using viewer::EventType;
+  if (e.type == EventType::Key) return handle_key(v, e);
+  if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
+    if (e.action == GLFW_PRESS) return press(v, {e.x, e.y}, e.mods);
+    if (e.action == GLFW_RELEASE && (dragging_ || stroke_)) {
+      release(v);
+      return true;
+    }
+  }
+  if (e.type == EventType::MouseMove) {
+    if (dragging_ || stroke_) {
+      move(v, {e.x, e.y});
+      return true;
+    }
+    gizmo_.hovered = gizmo_shown() ? gizmo_.hit(v.camera_matrices(), {e.x, e.y}) : viewer::GizmoPart::None;
+  }
+  return false;
+}
+
+bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
+  if (e.action != GLFW_PRESS && e.action != GLFW_REPEAT) return false;
+  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
+  if (ctrl) {
+    switch (e.key) {
+      case GLFW_KEY_Z: shift ? redo(v) : undo(v); return true;
+      case GLFW_KEY_Y: redo(v); return true;
+      case GLFW_KEY_S: save_selection(v); return true;
+      case GLFW_KEY_O: load_selection(v); return true;
+      case GLFW_KEY_E: export_result(v); return true;
+      default: return false;  // Ctrl+P, Ctrl+Q: the viewer's
+    }
+  }
+  switch (e.key) {
+    case GLFW_KEY_M: tool_ = Tool::Move; return true;
+    case GLFW_KEY_B: tool_ = Tool::Brush; return true;
+    case GLFW_KEY_L: tool_ = Tool::Lasso; return true;
+    case GLFW_KEY_1: target_ = VertexLabels::kRoi; return true;
+    case GLFW_KEY_2: target_ = VertexLabels::kFixed; return true;
+    case GLFW_KEY_3: target_ = 0; return true;
+    case GLFW_KEY_4: target_ = VertexLabels::kNone; return true;
+    case GLFW_KEY_N: new_handle(); return true;
+    case GLFW_KEY_TAB: {
+      // Next painted handle.
+      const int n = state_.labels->handle_count();
+      for (int k = 1; k <= n; ++k)
+        if (state_.labels->any((state_.active_handle + k) % n)) {
+          state_.active_handle = (state_.active_handle + k) % n;
+          break;
+        }
+      return true;
+    }
+    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: grow_or_shrink(v, 1); return true;
+    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: grow_or_shrink(v, -1); return true;
+    case GLFW_KEY_LEFT_BRACKET: brush_px_ = std::max(3.0f, brush_px_ / 1.25f); return true;
+    case GLFW_KEY_RIGHT_BRACKET: brush_px_ = std::min(300.0f, brush_px_ * 1.25f); return true;
+    case GLFW_KEY_C:
+      color_mode_ = color_mode_ == ColorMode::Selection ? ColorMode::Distortion : ColorMode::Selection;
+      surface_dirty_ = true;
+      return true;
+    case GLFW_KEY_R: reset_pose(v); return true;
+    case GLFW_KEY_DELETE: clear_target(v); return true;
+    default: return false;
+  }
+}
+
+int DeformApp::paint_value() const {
+  if (erase_) return VertexLabels::kNone;
+  return target_ >= 0 ? state_.active_handle : target_;
+}
+
+void DeformApp::ensure_pick_structures() {
+  // Picking follows what is on screen: the BVH is rebuilt on the displayed positions the
+  // first time a stroke needs it after they changed.
+  if (pick_bvh_ && !pick_stale_) return;
+  pick_bvh_ = std::make_unique<geometry::Bvh>(shown_);
+  pick_stale_ = false;
+}
+
+bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
+  const auto cam = v.camera_matrices();
+  if (gizmo_shown() && gizmo_.begin_drag(cam, p)) {
+    dragging_ = true;
+    drag_start_ = active_transform();
+    return true;
+  }
+  if (tool_ == Tool::Move) return false;  // the camera's
+  erase_ = mods & GLFW_MOD_SHIFT;
+  stroke_ = std::make_shared<VertexLabels>(*state_.labels);
+  if (tool_ == Tool::Brush) {
+    last_paint_ = p;
+    paint_at(v, p);
+  } else {
+    lasso_.assign(1, p);
+    markers_dirty_ = true;
+  }
+  return true;
+}
+
+void DeformApp::move(viewer::Viewer& v, const Eigen::Vector2d& p) {
+  if (dragging_) {
+    active_transform() = gizmo_.drag_to(p) * drag_start_;
+    ++drag_frames_;
+    return;
+  }
+  if (tool_ == Tool::Brush) {
+    // Dabs every half radius along the path, so a fast stroke leaves no gaps.
+    const double step = std::max(1.0, 0.5 * brush_px_);
+    const double length = (p - last_paint_).norm();
+    for (double t = step; t < length; t += step) paint_at(v, last_paint_ + (p - last_paint_) * (t / length));
+    paint_at(v, p);
+    last_paint_ = p;
+  } else if (tool_ == Tool::Lasso && (p - lasso_.back()).norm() >= 3) {
+    lasso_.push_back(p);
+    markers_dirty_ = true;
+  }
+}
+
+void DeformApp::paint_at(viewer::Viewer& v, const Eigen::Vector2d& p) {
+  ensure_pick_structures();
+  const std::vector<int> vs = viewer::brush_vertices(shown_, *conn_, *pick_bvh_, v.camera_matrices(), p, {brush_px_});
+  stroke_->paint(vs, paint_value());
+  surface_dirty_ = true;
+}
+
+void DeformApp::release(viewer::Viewer& v) {
+  if (dragging_) {
+    gizmo_.end_drag();
+    dragging_ = false;
+    commit(std::string("move handle ") + std::to_string(state_.active_handle));
+    return;  // the next request is the full pipeline (preview off)
+  }
+  if (tool_ == Tool::Lasso && lasso_.size() >= 3) {
+    ensure_pick_structures();
+    stroke_->paint(viewer::lasso_vertices(shown_, *pick_bvh_, v.camera_matrices(), lasso_), paint_value());
+  }
+  lasso_.clear();
+  markers_dirty_ = true;
+  auto labels = std::move(stroke_);
+  stroke_.reset();
+  if (labels->label == state_.labels->label) return;  // painted nothing new
+  const int value = paint_value();
+  set_labels(std::move(labels), std::string(tool_name(tool_)) + (value == VertexLabels::kNone ? " erase" : " paint"));
+}
+
+void DeformApp::grow_or_shrink(viewer::Viewer& v, int rings) {
+  const int value = target_ >= 0 ? state_.active_handle : target_;
+  if (value == VertexLabels::kNone) return v.flash("grow/shrink: pick ROI, fixed or handle as the target");
+  if (state_.labels->acting_as(value).empty()) return v.flash("grow/shrink: nothing acts as the current target yet");
+  auto labels = std::make_shared<VertexLabels>(*state_.labels);
+  grow_labels(*labels, *conn_, value, rings);
+  if (labels->label == state_.labels->label) return v.flash(rings > 0 ? "grow: nothing to grow into" : "shrink: nothing left to shrink");
+  set_labels(std::move(labels), rings > 0 ? "grow" : "shrink");
+}
+
+void DeformApp::clear_target(viewer::Viewer& v) {
+  const int value = target_ >= 0 ? state_.active_handle : target_;
+  auto labels = std::make_shared<VertexLabels>(*state_.labels);
+  if (value == VertexLabels::kNone) {
+    labels = std::make_shared<VertexLabels>(rest_.num_vertices());  // erase target: clear everything
+  } else {
+    labels->paint(labels->with(value), VertexLabels::kNone);
+  }
+  if (labels->label == state_.labels->label) return v.flash("clear: nothing to clear");
+  set_labels(std::move(labels), "clear");
+}
+
+}  // namespace lapis::deform_app

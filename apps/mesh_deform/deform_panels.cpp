@@ -1,0 +1,271 @@
+// The deform app's Dear ImGui panels: tools and paint targets, method and its options, the
+// active handle's exact transform, files, the distortion legend and the timing overlay.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "deform_app.h"
+#include "lapis/geometry/polar.h"
+#include "lapis/viewer/colormap.h"
+#include "lapis/viewer/gizmo.h"
+
+namespace lapis::deform_app {
+namespace {
+
+ImVec4 to_imvec(const Eigen::Vector3f& c) { return ImVec4(c.x(), c.y(), c.z(), 1.0f); }
+
+// The active handle's transform as the panel edits it: a uniform scale and a rotation about
+// the handle's rest centroid c, then a translation of c (x' = t + c + s R (x − c)).
+struct HandlePose {
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+  Eigen::Vector3d euler_deg = Eigen::Vector3d::Zero();  // about x, then y, then z (R = Rz Ry Rx)
+  double scale = 1;
+};
+
+HandlePose decompose(const Eigen::Matrix4d& T, const Eigen::Vector3d& c) {
+  HandlePose p;
+  const Eigen::Matrix3d L = T.topLeftCorner<3, 3>();
+  p.scale = std::cbrt(std::abs(L.determinant()));
+  const Eigen::Matrix3d R = geometry::polar_rotation(L / std::max(p.scale, 1e-12));
+  // R = Rz(c) Ry(b) Rx(a) with b in [-90°, 90°]: small turns read as small angles (Eigen's
+  // eulerAngles() would give 180, -180, 141 for a 39° turn about z).
+  const double ry = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  const double rx = std::atan2(R(2, 1), R(2, 2)), rz = std::atan2(R(1, 0), R(0, 0));
+  p.euler_deg = Eigen::Vector3d(rx, ry, rz) * 180 / std::numbers::pi;
+  p.translation = L * c + T.topRightCorner<3, 1>() - c;
+  return p;
+}
+
+Eigen::Matrix4d compose(const HandlePose& p, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d a = p.euler_deg * std::numbers::pi / 180;
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(a.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a.y(), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(a.x(), Eigen::Vector3d::UnitX())).toRotationMatrix();
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = p.scale * R;
+  T.topRightCorner<3, 1>() = p.translation + c - p.scale * R * c;
+  return T;
+}
+
+}  // namespace
+
+void DeformApp::on_gui(viewer::Viewer& v) {
+  draw_tools_panel(v);
+  draw_method_panel(v);
+  draw_handle_panel(v);
+  draw_file_panel(v);
+  draw_legend(v);
+  draw_overlay(v);
+  draw_cursor(v);
+}
+
+void DeformApp::draw_tools_panel(viewer::Viewer& v) {
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Selection");
+  for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso}) {
+    if (t != Tool::Move) ImGui::SameLine();
+    if (ImGui::RadioButton(tool_name(t), tool_ == t)) tool_ = t;
+  }
+  ImGui::TextDisabled("M move  B brush  L lasso  Shift: erase");
+  ImGui::Text("paint:");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("ROI", target_ == VertexLabels::kRoi)) target_ = VertexLabels::kRoi;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("fixed", target_ == VertexLabels::kFixed)) target_ = VertexLabels::kFixed;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("handle", target_ >= 0)) target_ = 0;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("erase", target_ == VertexLabels::kNone)) target_ = VertexLabels::kNone;
+  ImGui::TextDisabled("1 ROI  2 fixed  3 handle  4 erase  N new handle");
+  // Handles: pick the active one (the gizmo's and the target's).
+  const int handles = state_.labels->handle_count();
+  for (int h = 0; h <= std::max(handles - 1, state_.active_handle); ++h) {
+    ImGui::PushID(h);
+    ImGui::ColorButton("##c", to_imvec(handle_color(h)), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+    ImGui::SameLine();
+    const int count = static_cast<int>(state_.labels->with(h).size());
+    const std::string label = "handle " + std::to_string(h) + " (" + std::to_string(count) + " vertices)";
+    if (ImGui::Selectable(label.c_str(), state_.active_handle == h)) state_.active_handle = h, target_ = 0;
+    ImGui::PopID();
+  }
+  if (ImGui::Button("new handle (N)")) new_handle();
+  ImGui::SliderFloat("brush px ([ ])", &brush_px_, 3, 300, "%.0f", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::Button("grow (+)")) grow_or_shrink(v, 1);
+  ImGui::SameLine();
+  if (ImGui::Button("shrink (-)")) grow_or_shrink(v, -1);
+  ImGui::SameLine();
+  if (ImGui::Button("clear (Del)")) clear_target(v);
+  ImGui::BeginDisabled(!history_.can_undo());
+  if (ImGui::Button("undo")) undo(v);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!history_.can_redo());
+  if (ImGui::Button("redo")) redo(v);
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("reset pose (R)")) reset_pose(v);
+  if (!selection_error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
+  else if (selection_)
+    ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(), selection_->selection.region_handles.size());
+  ImGui::End();
+}
+
+void DeformApp::draw_method_panel(viewer::Viewer& v) {
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 330), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Method");
+  MethodSettings s = settings_;
+  const auto& list = methods();
+  if (ImGui::BeginCombo("method", method_info(s.method).label)) {
+    for (const MethodInfo& m : list)
+      if (ImGui::Selectable(m.label, m.method == s.method)) s.method = m.method;
+    ImGui::EndCombo();
+  }
+  if (s.method != Method::Arap) {
+    int w = s.weights == LaplacianWeights::Cotangent ? 0 : 1;
+    if (ImGui::Combo("weights", &w, "cotangent\0uniform\0")) s.weights = w == 0 ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
+  }
+  if (s.method == Method::Implicit) {
+    ImGui::Checkbox("feature scaling (Eq. 2.11)", &s.scale_features);
+    int mode = preview_while_dragging_ ? 0 : 1;
+    if (ImGui::Combo("while dragging", &mode, "first system (preview)\0full pipeline every frame\0"))
+      preview_while_dragging_ = mode == 0;
+  }
+  if (s.method == Method::Arap) {
+    ImGui::SliderInt("iterations / frame", &s.arap_iterations, 1, 50);
+  }
+  if (!(s == settings_)) settings_ = s;  // the next request sets up again
+  ImGui::Separator();
+  int mode = color_mode_ == ColorMode::Selection ? 0 : 1 + static_cast<int>(field_);
+  if (ImGui::Combo("colour (C)", &mode, "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0")) {
+    color_mode_ = mode == 0 ? ColorMode::Selection : ColorMode::Distortion;
+    if (mode > 0) field_ = static_cast<DistortionField>(mode - 1);
+    surface_dirty_ = true;
+  }
+  if (ImGui::Checkbox("degenerate vertices", &show_degenerate_)) markers_dirty_ = true;
+  ImGui::End();
+}
+
+void DeformApp::draw_handle_panel(viewer::Viewer& v) {
+  if (!selection_ || !state_.labels->any(state_.active_handle)) return;
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 520), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Handle transform");
+  const Eigen::Vector3d c = handle_rest_centroid(state_.active_handle);
+  HandlePose p = decompose(active_transform(), c);
+  bool changed = false, released = false;
+  changed |= ImGui::DragScalarN("move", ImGuiDataType_Double, p.translation.data(), 3, 0.002f);
+  released |= ImGui::IsItemDeactivatedAfterEdit();
+  changed |= ImGui::DragScalarN("rotate (deg)", ImGuiDataType_Double, p.euler_deg.data(), 3, 0.5f);
+  released |= ImGui::IsItemDeactivatedAfterEdit();
+  const double lo = 0.05, hi = 20;
+  changed |= ImGui::DragScalar("scale", ImGuiDataType_Double, &p.scale, 0.005f, &lo, &hi);
+  released |= ImGui::IsItemDeactivatedAfterEdit();
+  if (changed) active_transform() = compose(p, c);
+  if (released) commit("edit handle " + std::to_string(state_.active_handle));
+  ImGui::TextDisabled("gizmo: arrows move, rings rotate, square scales");
+  ImGui::End();
+}
+
+void DeformApp::draw_file_panel(viewer::Viewer& v) {
+  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 230), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("File");
+  if (!paths_.bundled_dir.empty() && ImGui::BeginCombo("bundled mesh", paths_.mesh.filename().string().c_str())) {
+    std::vector<fs::path> meshes;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(paths_.bundled_dir, ec)) {
+      const std::string ext = e.path().extension().string();
+      if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") meshes.push_back(e.path());
+    }
+    std::sort(meshes.begin(), meshes.end());
+    for (const auto& m : meshes)
+      if (ImGui::Selectable(m.filename().string().c_str(), m == paths_.mesh)) open_mesh(v, m);
+    ImGui::EndCombo();
+  }
+  static char roi[512] = "", handles[512] = "", out[512] = "";
+  if (!roi[0]) std::snprintf(roi, sizeof roi, "%s", paths_.roi.string().c_str());
+  if (!handles[0]) std::snprintf(handles, sizeof handles, "%s", paths_.handles.string().c_str());
+  if (!out[0]) std::snprintf(out, sizeof out, "%s", paths_.export_mesh.string().c_str());
+  ImGui::InputText("ROI file", roi, sizeof roi);
+  ImGui::InputText("handles file", handles, sizeof handles);
+  ImGui::InputText("export (.obj/.ply)", out, sizeof out);
+  paths_.roi = roi, paths_.handles = handles, paths_.export_mesh = out;
+  if (ImGui::Button("save selection (Ctrl+S)")) save_selection(v);
+  ImGui::SameLine();
+  if (ImGui::Button("open selection (Ctrl+O)")) load_selection(v);
+  if (ImGui::Button("export (Ctrl+E)")) export_result(v);
+  ImGui::SameLine();
+  if (ImGui::Button("screenshot (Ctrl+P)")) v.request_screenshot("out/deform_screenshot.png");
+  ImGui::End();
+}
+
+void DeformApp::draw_legend(viewer::Viewer& v) {
+  if (color_mode_ != ColorMode::Distortion) return;
+  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 330), ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  ImGui::Begin("##legend", nullptr, flags);
+  ImGui::Text("%s distortion", to_string(field_));
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = 240, height = 14;
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const int steps = 24;
+  for (int k = 0; k < steps; ++k) {
+    const Eigen::Vector3f a = viewer::colormap(double(k) / steps), b = viewer::colormap(double(k + 1) / steps);
+    const ImU32 ca = ImGui::GetColorU32(to_imvec(a)), cb = ImGui::GetColorU32(to_imvec(b));
+    draw->AddRectFilledMultiColor(ImVec2(origin.x + width * k / steps, origin.y), ImVec2(origin.x + width * (k + 1) / steps, origin.y + height),
+                                  ca, cb, cb, ca);
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  const char* unit = field_ == DistortionField::Angle ? " rad" : "";
+  ImGui::Text("0%s", unit);
+  ImGui::SameLine(width - 70);
+  ImGui::Text("%.3g%s (p95)", legend_hi_, unit);
+  if (!last_ || last_->frame.distortion.size() == 0) ImGui::TextDisabled("(after the next solve)");
+  ImGui::End();
+}
+
+void DeformApp::draw_overlay(viewer::Viewer& v) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%d vertices, tool: %s", rest_.num_vertices(), tool_name(tool_));
+  v.overlay(buf);
+  if (last_) {
+    const LiveFrame& f = last_->frame;
+    std::snprintf(buf, sizeof buf, "%s: solve %.1f ms%s (setup %.0f ms)", f.method.c_str(), f.solve_ms,
+                  f.preview ? " [first system]" : "", f.setup_ms);
+    v.overlay(buf);
+    if (!f.timing.empty()) v.overlay("  " + f.timing);
+    if (!f.degenerate_vertices.empty())
+      v.overlay(std::to_string(f.degenerate_vertices.size()) + " degenerate vertices (red points)");
+  }
+  if (setup_started_ >= 0 && now_ - setup_started_ > 0.2) {
+    // The setup runs on the worker: say so, with an indeterminate bar that keeps moving.
+    std::snprintf(buf, sizeof buf, "setting up %s ... %.1f s", method_info(settings_.method).name, now_ - setup_started_);
+    v.overlay(buf);
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) * 0.5f - 150, 12), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.7f);
+    ImGui::Begin("##progress", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                                            ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::Text("%s", buf);
+    ImGui::ProgressBar(static_cast<float>(std::fmod(now_ - setup_started_, 1.0)), ImVec2(300, 8), "");
+    ImGui::End();
+  } else if (worker_.busy()) {
+    v.overlay("solving...");
+  }
+  if (!engine_error_.empty()) v.overlay("error: " + engine_error_);
+  if (!selection_error_.empty()) v.overlay("selection: " + selection_error_);
+  if (pending_export_) v.overlay("export waits for the solve");
+}
+
+void DeformApp::draw_cursor(viewer::Viewer& v) {
+  if (tool_ != Tool::Brush || dragging_) return;
+  const Eigen::Vector2d p = v.cursor();
+  ImGui::GetForegroundDrawList()->AddCircle(ImVec2(static_cast<float>(p.x()), static_cast<float>(p.y())), brush_px_,
+                                            IM_COL32(255, 255, 255, 160), 48, 1.5f);
+}
+
+}  // namespace lapis::deform_app

@@ -1,0 +1,83 @@
+// What the deform app draws: the surface coloured by selection (ROI, fixed, handles) or by a
+// distortion measure, the gizmo on the active handle, the degenerate vertices the implicit
+// method found, and the lasso being drawn.
+#include "deform_app.h"
+#include "lapis/viewer/colormap.h"
+
+namespace lapis::deform_app {
+namespace {
+
+const Eigen::Vector3f kRoiColor{0.82f, 0.77f, 0.70f};    // the part that deforms: warm clay
+const Eigen::Vector3f kFixedColor{0.42f, 0.46f, 0.55f};  // outside the ROI: slate
+const Eigen::Vector3f kHandleColors[] = {{1.0f, 0.55f, 0.12f}, {0.85f, 0.25f, 0.75f}, {0.25f, 0.75f, 0.35f},
+                                         {0.2f, 0.7f, 0.95f},  {0.95f, 0.85f, 0.2f},  {0.6f, 0.4f, 0.95f}};
+
+}  // namespace
+
+Eigen::Vector3f handle_color(int label) { return kHandleColors[label % 6]; }
+
+void DeformApp::update_surface(viewer::Viewer& v) {
+  auto& item = v.scene().meshes["surface"];
+  item.mesh = shown_;
+  const int n = rest_.num_vertices();
+  item.colors.resize(n, 3);
+  const bool distortion = color_mode_ == ColorMode::Distortion && last_ && last_->frame.distortion.size() == n && !stroke_;
+  if (distortion) {
+    item.colors = viewer::colorize(last_->frame.distortion, 0.0, legend_hi_);
+  } else {
+    const VertexLabels& labels = stroke_ ? *stroke_ : *state_.labels;
+    const bool roi_painted = labels.any(VertexLabels::kRoi);
+    for (int i = 0; i < n; ++i) {
+      const int l = labels.label[static_cast<size_t>(i)];
+      // Shown as what the vertex is for the deformer: unpainted vertices are ROI unless an
+      // ROI was painted (then they are fixed).
+      const bool fixed = l == VertexLabels::kFixed || (l == VertexLabels::kNone && roi_painted);
+      item.colors.row(i) = (l >= 0 ? handle_color(l) : fixed ? kFixedColor : kRoiColor).transpose();
+    }
+  }
+  ++item.version;
+  surface_dirty_ = false;
+}
+
+bool DeformApp::gizmo_shown() const { return selection_ && state_.labels->any(state_.active_handle); }
+
+void DeformApp::update_gizmo(viewer::Viewer& v) {
+  auto& item = v.scene().lines["gizmo"];
+  item.visible = gizmo_shown();
+  if (!item.visible) return;
+  // The gizmo sits on the active handle where its transform puts it.
+  const Eigen::Vector3d c = handle_rest_centroid(state_.active_handle);
+  const Eigen::Matrix4d& T = state_.transforms[static_cast<size_t>(state_.active_handle)];
+  gizmo_.set_center(T.topLeftCorner<3, 3>() * c + T.topRightCorner<3, 1>());
+  gizmo_.draw(v.camera_matrices(), item);
+}
+
+void DeformApp::update_markers(viewer::Viewer& v) {
+  auto& points = v.scene().points["degenerate"];
+  points.points.resize(0, 3);
+  if (show_degenerate_ && last_) {
+    const auto& d = last_->frame.degenerate_vertices;
+    points.points.resize(static_cast<Eigen::Index>(d.size()), 3);
+    for (size_t k = 0; k < d.size(); ++k) points.points.row(static_cast<Eigen::Index>(k)) = shown_.V.row(d[k]).cast<float>();
+  }
+  points.base_color = {1.0f, 0.2f, 0.2f};
+  points.size = 6.0f;
+  points.on_top = false;
+  ++points.version;
+
+  // The lasso, just behind the near plane so it covers what it encloses.
+  auto& lasso = v.scene().lines["lasso"];
+  lasso.clear();
+  if (lasso_.size() >= 2) {
+    const auto cam = v.camera_matrices();
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& p : lasso_) pts.push_back(geometry::unproject(cam, p.x(), p.y(), 0.05));
+    pts.push_back(pts.front());
+    lasso.add_strip(pts, {1.0f, 1.0f, 1.0f});
+  }
+  lasso.on_top = true;
+  lasso.width = 2.0f;
+  markers_dirty_ = false;
+}
+
+}  // namespace lapis::deform_app

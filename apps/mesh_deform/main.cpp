@@ -1,0 +1,85 @@
+// lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]
+//              [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]
+//              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
+//              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
+//              [--exit-after-replay] [--benchmark OUT.json] [--size WxH]
+#include <cstdio>
+
+#include "args.h"
+#include "deform_app.h"
+#include "lapis/geometry/io.h"
+#include "lapis/geometry/procedural.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]\n"
+    "                    [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]\n"
+    "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
+    "                    [--msaa SAMPLES]\n"
+    "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
+    "                    [--exit-after-replay] [--benchmark OUT.json] [--size WxH]\n"
+    "Opens MESH (OBJ/OFF/PLY/STL; default assets/external/armadillo.off) and the selection files if\n"
+    "the ROI file exists (else Ctrl+S creates them). Paint with B (brush) or L\n"
+    "(lasso) onto 1 ROI, 2 fixed, 3 handle (N: new handle), Shift erases; +/- grow/shrink by a ring;\n"
+    "drag the gizmo (arrows move, rings rotate, square scales); right-drag orbits, middle-drag pans,\n"
+    "wheel zooms, F frames. Ctrl+Z / Ctrl+Shift+Z undo / redo, R reset pose, C colour by distortion,\n"
+    "Ctrl+S / Ctrl+O save / open the selection (ROI and handles files of `lapis deform`), Ctrl+E\n"
+    "export the deformed mesh with OUT.roi.txt, OUT.handles.json (every solved frame) and\n"
+    "OUT.deform.json (the `lapis deform` command that reproduces it), Ctrl+P screenshot, Ctrl+Q quit.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lapis;
+  try {
+    viewer::ViewerOptions options;
+    options.title = "lapis-deform";
+    std::vector<std::string> rest = viewer::parse_viewer_flags(argc, argv, options);
+    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
+      std::printf("%s", kUsage);
+      return 0;
+    }
+    std::string positional;
+    if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
+    const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
+    args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations",
+                     "--full-while-dragging", "--export", "--export-on-exit"});
+    // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
+    // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
+    const std::filesystem::path source_dir = LAPIS_SOURCE_DIR;
+    deform_app::DeformPaths paths;
+    paths.bundled_dir = source_dir / "assets/external";
+    paths.mesh = args.get("--mesh", positional.empty() ? (paths.bundled_dir / "armadillo.off").string() : positional);
+    if (!std::filesystem::exists(paths.mesh) && paths.mesh.parent_path() == paths.bundled_dir)
+      throw IoError("cannot open " + paths.mesh.string() + ": the bundled meshes are extracted by scripts/setup");
+    geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
+    if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0) mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
+    paths.roi = args.get("--roi", "out/deform_selection.roi.txt");
+    paths.handles = args.get("--handles", "out/deform_selection.handles.json");
+    paths.export_mesh = args.get("--export", "out/deformed.obj");
+    paths.export_on_exit = args.has("--export-on-exit");
+
+    mesh_deform::MethodSettings settings;
+    settings.method = mesh_deform::method_from_name(args.get("--method", "implicit"));
+    const std::string weights = args.get("--weights", "cotan");
+    if (weights != "cotan" && weights != "uniform") throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
+    settings.weights = weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
+    settings.scale_features = args.has("--scale-features");
+    settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000));
+
+    deform_app::DeformApp app(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));
+    viewer::Viewer viewer(options);
+    // A selection given on the command line is opened before the first frame (its errors are
+    // shown in the window, like every other); a ROI file that does not exist yet is where
+    // Ctrl+S will save.
+    if (args.has("--roi") && std::filesystem::exists(paths.roi)) app.open_selection_on_start();
+    return viewer.run(app);
+  } catch (const cli::UsageError& e) {
+    std::fprintf(stderr, "lapis-deform: %s (see --help)\n", e.what());
+    return 2;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "lapis-deform: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,66 @@
+// Deformation for an interactive session: keeps one deformer set up across frames and
+// re-runs the setup only when the method settings or the selection change (thesis §2.5:
+// precompute once per ROI/handle set, back-substitute per frame), records every frame it
+// solved since that setup (so a CLI run of the same frames reproduces the result: the
+// implicit method's rotation unwrapping and ARAP's warm start depend on them), and computes
+// the per-vertex distortion the app colours the surface with. Not thread-safe: one caller
+// (the app's worker thread) at a time.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lapis/mesh_deform/methods.h"
+#include "lapis/mesh_deform/vertex_distortion.h"
+
+namespace lapis::mesh_deform {
+
+struct LiveRequest {
+  MethodSettings settings;
+  Selection selection;
+  std::uint64_t selection_revision = 0;  // the caller bumps it when the selection changes
+  HandleTransforms transforms;
+  bool preview = false;  // implicit method: first system only (§2.5's preview while dragging)
+  std::optional<DistortionField> field;  // per-vertex distortion to compute, if any
+};
+
+struct LiveFrame {
+  Vertices positions;                    // #V by 3
+  Eigen::VectorXd distortion;            // #V, empty when no field was requested
+  bool did_setup = false;                // this frame ran the setup
+  bool preview = false;                  // this frame stopped after the first system
+  double setup_ms = 0;                   // of the current setup (whenever it ran)
+  double solve_ms = 0;                   // this frame's deform() call
+  double distortion_ms = 0;
+  std::string method;                    // deformer name
+  std::string timing;                    // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
+  std::vector<int> degenerate_vertices;  // implicit: found by the current setup
+  std::vector<HandleTransforms> history;  // every frame solved since the setup, this one last
+};
+
+class LiveDeformer {
+ public:
+  // rest  #V by 3 / #F by 3; copied once.
+  explicit LiveDeformer(TriMesh rest);
+  ~LiveDeformer();
+
+  // Sets up when the settings or the selection revision differ from the last call, then
+  // solves this frame. Throws what the deformer throws (InvalidArgument for a bad selection:
+  // the next call sets up again).
+  LiveFrame update(const LiveRequest& request);
+
+  const TriMesh& rest() const { return rest_; }
+
+ private:
+  TriMesh rest_;
+  std::unique_ptr<Deformer> deformer_;
+  MethodSettings settings_;
+  std::uint64_t selection_revision_ = 0;
+  double setup_ms_ = 0;
+  std::vector<HandleTransforms> history_;
+};
+
+}  // namespace lapis::mesh_deform

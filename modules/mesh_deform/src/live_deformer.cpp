@@ -1,0 +1,71 @@
+#include "lapis/mesh_deform/live_deformer.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+
+namespace lapis::mesh_deform {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string timing_of(const Deformer& d) {
+  char buf[160] = "";
+  if (const auto* i = dynamic_cast<const ImplicitLaplacianDeformer*>(&d)) {
+    const ImplicitStats& s = i->stats();
+    std::snprintf(buf, sizeof buf, "Eq. 2.8 %.0f ms, polar %.0f ms, Eq. 2.10 %.0f ms%s", s.first_solve_ms, s.polar_ms,
+                  s.second_solve_ms, s.guided ? ", guided" : "");
+  } else if (const auto* a = dynamic_cast<const ArapDeformer*>(&d)) {
+    const ArapStats& s = a->stats();
+    std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms, s.solves_ms);
+  }
+  return buf;
+}
+
+}  // namespace
+
+LiveDeformer::LiveDeformer(TriMesh rest) : rest_(std::move(rest)) {}
+LiveDeformer::~LiveDeformer() = default;
+
+LiveFrame LiveDeformer::update(const LiveRequest& r) {
+  LiveFrame f;
+  if (!deformer_ || !(r.settings == settings_) || r.selection_revision != selection_revision_ || deformer_->dirty()) {
+    deformer_.reset();  // free the old factorizations before building the new ones
+    history_.clear();
+    auto d = make_deformer(rest_, r.settings);
+    d->set_selection(r.selection);
+    const auto t0 = std::chrono::steady_clock::now();
+    d->precompute();  // throws for an invalid selection; deformer_ stays empty, so we retry
+    setup_ms_ = ms_since(t0);
+    deformer_ = std::move(d);
+    settings_ = r.settings;
+    selection_revision_ = r.selection_revision;
+    f.did_setup = true;
+  }
+  auto* implicit = dynamic_cast<ImplicitLaplacianDeformer*>(deformer_.get());
+  if (implicit) {
+    implicit->set_preview(r.preview);
+    f.preview = r.preview;
+    f.degenerate_vertices = implicit->degenerate_vertices();
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  f.positions = deformer_->deform(r.transforms);
+  f.solve_ms = ms_since(t0);
+  history_.push_back(r.transforms);
+  f.history = history_;
+  f.setup_ms = setup_ms_;
+  f.method = deformer_->name();
+  f.timing = timing_of(*deformer_);
+  if (r.field) {
+    t0 = std::chrono::steady_clock::now();
+    f.distortion = vertex_distortion(rest_, f.positions, *r.field);
+    f.distortion_ms = ms_since(t0);
+  }
+  return f;
+}
+
+}  // namespace lapis::mesh_deform

@@ -1,0 +1,54 @@
+#include "lapis/mesh_deform/methods.h"
+
+#include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/naive_laplacian.h"
+
+namespace lapis::mesh_deform {
+
+const std::vector<MethodInfo>& methods() {
+  static const std::vector<MethodInfo> list = {
+      {Method::Naive, "naive", "naive Laplacian (Eq. 2.1)"},
+      {Method::Implicit, "implicit", "implicit Laplacian (thesis ch. 2)"},
+      {Method::Arap, "arap", "ARAP (Sorkine & Alexa)"},
+  };
+  return list;
+}
+
+const MethodInfo& method_info(Method m) {
+  for (const auto& info : methods())
+    if (info.method == m) return info;
+  throw InvalidArgument("mesh_deform::method_info(): unknown method");
+}
+
+Method method_from_name(const std::string& name) {
+  std::string known;
+  for (const auto& info : methods()) {
+    if (name == info.name) return info.method;
+    known += (known.empty() ? "" : ", ") + std::string(info.name);
+  }
+  throw InvalidArgument("mesh_deform::method_from_name(): unknown method '" + name + "', expected one of " + known);
+}
+
+std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
+  switch (s.method) {
+    case Method::Naive: return std::make_unique<NaiveLaplacianDeformer>(std::move(mesh), NaiveOptions{s.weights});
+    case Method::Implicit: {
+      ImplicitOptions o;
+      o.weights = s.weights;
+      if (s.scale_features) o.shearing = ShearingRemoval::ScaleFeatures;
+      return std::make_unique<ImplicitLaplacianDeformer>(std::move(mesh), o);
+    }
+    case Method::Arap: {
+      if (s.arap_iterations < 1)
+        throw InvalidArgument("mesh_deform::make_deformer(): arap_iterations = " + std::to_string(s.arap_iterations) +
+                              ", expected >= 1");
+      ArapOptions o;
+      o.max_iterations = s.arap_iterations;
+      return std::make_unique<ArapDeformer>(std::move(mesh), o);
+    }
+  }
+  throw InvalidArgument("mesh_deform::make_deformer(): unknown method");
+}
+
+}  // namespace lapis::mesh_deform

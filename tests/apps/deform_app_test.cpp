@@ -1,0 +1,352 @@
+// The deform app, for real: under Xvfb, a gizmo drag with xdotool, an export through Ctrl+E
+// checked against `lapis deform` on the files the app wrote, and headless screenshots.
+#include <doctest/doctest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "app_runner.h"
+#include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/selection_io.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/input_events.h"
+#include "lapis/viewer/surface_select.h"
+#include "lapis/viewer/orbit_camera.h"
+
+using namespace lapis;
+using namespace lapis::apps_test;
+
+namespace {
+
+const std::string kApp = LAPIS_DEFORM_APP_EXE, kCli = LAPIS_CLI_EXE;
+const fs::path kSource = LAPIS_SOURCE_DIR;
+const fs::path kData = kSource / "tests/apps/data";
+const fs::path kMesh = kSource / "assets/external/camel.off";
+const fs::path kRoi = kData / "deform_camel.roi.txt", kHandles = kData / "deform_camel.handles.json";
+constexpr int kWidth = 900, kHeight = 700;
+const std::string kSize = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+
+// The app's first view: the orbit camera framed on the mesh's bounds.
+geometry::CameraMatrices initial_camera(const geometry::TriMesh& mesh) {
+  viewer::OrbitCamera cam;
+  cam.frame(mesh.V.colwise().minCoeff().transpose(), mesh.V.colwise().maxCoeff().transpose());
+  return cam.matrices(kWidth, kHeight);
+}
+
+Eigen::Vector2d pixel(const geometry::CameraMatrices& cam, const Eigen::Vector3d& p) {
+  return geometry::project(cam, p).head<2>();
+}
+
+std::string xy(const Eigen::Vector2d& p) {
+  return std::to_string(static_cast<int>(std::lround(p.x()))) + " " + std::to_string(static_cast<int>(std::lround(p.y())));
+}
+
+Eigen::Vector2d rounded(const Eigen::Vector2d& p) { return {std::lround(p.x()), std::lround(p.y())}; }
+
+// A drag along one gizmo arrow, planned from the app's first view.
+struct PlannedDrag {
+  int axis = -1;
+  Eigen::Vector2d from, to;     // pixels
+  double expected = 0;          // world translation along the axis the gizmo maps it to
+};
+
+PlannedDrag plan_drag(const geometry::TriMesh& mesh, const std::vector<int>& handle, const geometry::CameraMatrices& cam) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : handle) c += mesh.V.row(v).transpose();
+  c /= static_cast<double>(handle.size());
+  viewer::Gizmo gizmo;
+  gizmo.set_center(c);
+  const double L = gizmo.world_size(cam);
+  PlannedDrag best;
+  double longest = 0;
+  auto usable = [](const Eigen::Vector2d& p) {  // in the 3D view, clear of the panels
+    return p.x() > 20 && p.x() < kWidth - 350 && p.y() > 150 && p.y() < kHeight - 20;
+  };
+  for (int a = 0; a < 3; ++a) {
+    // Grab the arrow at 80% of its length and pull it 120 px along the arrow's own screen
+    // direction, outwards or back (whichever stays in the view); prefer the axis that shows
+    // longest on screen.
+    const Eigen::Vector3d axis = Eigen::Vector3d::Unit(a);
+    const Eigen::Vector2d p0 = pixel(cam, c), p1 = pixel(cam, c + L * axis);
+    if ((p1 - p0).norm() <= longest) continue;
+    const Eigen::Vector2d from = rounded(pixel(cam, c + 0.8 * L * axis));
+    for (double sign : {1.0, -1.0}) {
+      const Eigen::Vector2d to = rounded(from + sign * 120 * (p1 - p0).normalized());
+      if (!usable(from) || !usable(to)) continue;
+      longest = (p1 - p0).norm();
+      best.axis = a, best.from = from, best.to = to;
+      const auto t0 = viewer::closest_axis_parameter(geometry::unproject_ray(cam, from.x(), from.y()), c, axis);
+      const auto t1 = viewer::closest_axis_parameter(geometry::unproject_ray(cam, to.x(), to.y()), c, axis);
+      best.expected = *t1 - *t0;
+      break;
+    }
+  }
+  return best;
+}
+
+double max_difference(const geometry::Vertices& a, const geometry::Vertices& b) { return (a - b).cwiseAbs().maxCoeff(); }
+
+// Runs the app in a visible window under Xvfb: waits for it (and 6 s more, so a small mesh's
+// setup is usually done and a drag's preview frames get solved too), runs `actions` (xdotool,
+// with $w the window), waits for `wait_for` to exist (up to 240 s), quits.
+int run_window(const std::string& app_args, const std::string& actions, const fs::path& wait_for) {
+  const std::string script =
+      "sh -c '" + kApp + kSize + " " + app_args +
+      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-deform 2>/dev/null | head -n1);"
+      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 6; " +
+      actions + "; for i in $(seq 1 2400); do [ -e " + wait_for.string() +
+      " ] && break; sleep 0.1; done; sleep 0.5; xdotool key --window $w ctrl+q; wait $app'";
+  return run_under_xvfb(script);
+}
+
+// Builds an event log frame by frame (GLFW codes: keys, buttons, Ctrl).
+struct EventScript {
+  static constexpr int kKeyB = 66, kKeyL = 76, kKey2 = 50, kKey3 = 51, kKeyEqual = 61, kKeyZ = 90, kKeyS = 83;
+  static constexpr int kCtrl = 2, kShift = 1;
+  viewer::EventLog log;
+  long frame = 10;  // after the app has opened the mesh and the selection
+
+  void add(viewer::InputEvent e) {
+    e.frame = frame;
+    log.events.push_back(e);
+  }
+  void key(int code, int mods = 0) {
+    for (int action : {1, 0}) {
+      viewer::InputEvent e{viewer::EventType::Key};
+      e.key = code, e.action = action, e.mods = mods;
+      add(e);
+      ++frame;
+    }
+  }
+  void move(const Eigen::Vector2d& p) {
+    viewer::InputEvent e{viewer::EventType::MouseMove};
+    e.x = p.x(), e.y = p.y();
+    add(e);
+    ++frame;
+  }
+  void button(const Eigen::Vector2d& p, int action) {
+    viewer::InputEvent e{viewer::EventType::MouseButton};
+    e.x = p.x(), e.y = p.y(), e.button = 0, e.action = action;
+    add(e);
+    ++frame;
+  }
+  // Left-drag through the points.
+  void drag(const std::vector<Eigen::Vector2d>& path) {
+    move(path.front());
+    button(path.front(), 1);
+    for (const auto& p : path) move(p);
+    button(path.back(), 0);
+  }
+};
+
+std::vector<int> complement(const std::vector<int>& set, int n) {
+  std::vector<char> in(static_cast<size_t>(n), 0);
+  for (int v : set) in[static_cast<size_t>(v)] = 1;
+  std::vector<int> out;
+  for (int v = 0; v < n; ++v)
+    if (!in[static_cast<size_t>(v)]) out.push_back(v);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("apps: deform app — lasso a handle, brush the fixed feet, grow, undo, save: the files say so") {
+  const fs::path dir = scratch_dir();
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  // The lasso: a rectangle around the head (the vertices the saved test selection's handle holds).
+  const std::vector<int> head = mesh_deform::read_handles(kHandles).selection.region_handles.at(0);
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (int v : head) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  lo = rounded(lo.array() - 4), hi = rounded(hi.array() + 4);
+  const std::vector<Eigen::Vector2d> rect{lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  // The brush: a stroke across the feet, 24 px (the default radius) deep.
+  Eigen::Vector2d left(1e9, 0), right(-1e9, 0);
+  const double foot_y = mesh.V.col(1).minCoeff() + 0.03;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.V(v, 1) < foot_y) {
+      const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+      if (p.x() < left.x()) left = p;
+      if (p.x() > right.x()) right = p;
+    }
+  left = rounded(left), right = rounded(right);
+  REQUIRE(right.x() - left.x() > 40);
+
+  EventScript paint;
+  paint.key(EventScript::kKeyL);
+  paint.key(EventScript::kKey3);
+  paint.drag({rect[0], rect[1], rect[2], rect[3], rect[0] + Eigen::Vector2d(0, 1)});
+  paint.key(EventScript::kKeyB);
+  paint.key(EventScript::kKey2);
+  std::vector<Eigen::Vector2d> stroke;
+  for (int k = 0; k <= 10; ++k) stroke.push_back(rounded(left + (right - left) * (k / 10.0)));
+  paint.drag(stroke);
+  paint.key(EventScript::kKeyS, EventScript::kCtrl);
+  paint.frame += 5;
+  paint.log.width = kWidth, paint.log.height = kHeight;
+  paint.log.save(dir / "paint.json");
+  const fs::path roi = dir / "sel.roi.txt", handles = dir / "sel.handles.json";
+  const std::string files = " --mesh " + kMesh.string() + " --roi " + roi.string() + " --handles " + handles.string();
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "paint.json").string() + " --exit-after-replay") == 0);
+
+  // The handle: what the lasso enclosed and the camera saw.
+  REQUIRE(fs::exists(handles));
+  const mesh_deform::Drag saved = mesh_deform::read_handles(handles);
+  REQUIRE(saved.selection.region_handles.size() == 1);
+  const std::vector<int>& handle = saved.selection.region_handles[0];
+  CHECK(handle.size() > 100);
+  for (int v : handle) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    CHECK(viewer::point_in_polygon(rect, p));
+  }
+  // The fixed region (outside the ROI, as no ROI was painted): within the brush of the stroke.
+  const std::vector<int> fixed = complement(mesh_deform::read_roi(roi), mesh.num_vertices());
+  CHECK(fixed.size() > 20);
+  for (int v : fixed) {
+    const Eigen::Vector2d p = pixel(cam, mesh.V.row(v).transpose());
+    CHECK(viewer::distance_to_segment(p, left, right) < 24 + 4);  // + perspective across the feet
+  }
+
+  // Second session: open the saved files, grow the fixed region twice, undo once, redo nothing,
+  // save: one ring more than before.
+  fs::copy_file(roi, dir / "first.roi.txt");
+  EventScript edit;
+  edit.key(EventScript::kKey2);
+  edit.key(EventScript::kKeyEqual);
+  edit.key(EventScript::kKeyEqual);
+  edit.key(EventScript::kKeyZ, EventScript::kCtrl);
+  edit.key(EventScript::kKeyS, EventScript::kCtrl);
+  edit.frame += 5;
+  edit.log.width = kWidth, edit.log.height = kHeight;
+  edit.log.save(dir / "edit.json");
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "edit.json").string() + " --exit-after-replay") == 0);
+  const std::vector<int> grown = complement(mesh_deform::read_roi(roi), mesh.num_vertices());
+  const geometry::Connectivity conn(mesh);
+  std::vector<int> expected = viewer::grow_rings(conn, fixed, 1);
+  // Growth never takes handle vertices.
+  std::vector<char> is_handle(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : handle) is_handle[static_cast<size_t>(v)] = 1;
+  std::erase_if(expected, [&](int v) { return is_handle[static_cast<size_t>(v)] != 0; });
+  CHECK(grown == expected);
+  CHECK(grown.size() > fixed.size());
+}
+
+TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle, and the export equals lapis deform") {
+  const fs::path dir = scratch_dir();
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const mesh_deform::Drag saved = mesh_deform::read_handles(kHandles);
+  const std::vector<int> roi = mesh_deform::read_roi(kRoi);
+  REQUIRE(saved.selection.region_handles.size() == 1);
+  const std::vector<int>& handle = saved.selection.region_handles[0];
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  const PlannedDrag drag = plan_drag(mesh, handle, cam);
+  REQUIRE(drag.axis >= 0);
+  CAPTURE(drag.axis);
+  CAPTURE(drag.from.transpose());
+  CAPTURE(drag.to.transpose());
+
+  // Press on the arrow, pull it in small steps (a person's drag), release, export with Ctrl+E.
+  std::string actions = "xdotool mousemove --window $w " + xy(drag.from) + " sleep 0.3 mousedown 1";
+  for (int k = 1; k <= 20; ++k) actions += " mousemove --window $w " + xy(drag.from + (drag.to - drag.from) * (k / 20.0)) + " sleep 0.03";
+  actions += " sleep 0.2 mouseup 1 sleep 0.3; xdotool key --window $w ctrl+e";
+  const fs::path out = dir / "dragged.obj";
+  REQUIRE(run_window("--mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " + kHandles.string() +
+                         " --method implicit --export " + out.string(),
+                     actions, dir / "dragged.deform.json") == 0);
+  REQUIRE(fs::exists(out));
+  const geometry::TriMesh result = geometry::read_mesh(out);
+  REQUIRE(result.V.rows() == mesh.V.rows());
+
+  // The handle followed the drag: along the dragged axis, by what the cursor covered on it.
+  const Eigen::Vector3d axis = Eigen::Vector3d::Unit(drag.axis);
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int v : handle) mean += (result.V.row(v) - mesh.V.row(v)).transpose();
+  mean /= static_cast<double>(handle.size());
+  CAPTURE(mean.transpose());
+  CAPTURE(drag.expected);
+  CHECK(mean.dot(axis) * drag.expected > 0);                           // direction
+  CHECK(std::abs(mean.dot(axis)) > 0.5 * std::abs(drag.expected));     // order of magnitude
+  CHECK(std::abs(mean.dot(axis)) < 2.0 * std::abs(drag.expected));
+  CHECK((mean - mean.dot(axis) * axis).norm() < 0.1 * std::abs(drag.expected));  // along the axis only
+  // The fixed region (outside the ROI) did not move at all.
+  std::vector<char> in_roi(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : roi) in_roi[static_cast<size_t>(v)] = 1;
+  int fixed = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (!in_roi[static_cast<size_t>(v)]) {
+      ++fixed;
+      CHECK((result.V.row(v) - mesh.V.row(v)).norm() == 0);
+    }
+  CHECK(fixed > 100);
+
+  // The app recorded the transform of every frame it solved next to the export; the CLI run
+  // on those files gives the same mesh.
+  const mesh_deform::Drag recorded = mesh_deform::read_handles(dir / "dragged.handles.json");
+  REQUIRE(!recorded.frames.empty());
+  const Eigen::Matrix4d T = recorded.frames.back().regions.at(0);
+  CHECK((T.topLeftCorner<3, 3>() - Eigen::Matrix3d::Identity()).norm() < 1e-12);
+  CHECK(std::abs(T(drag.axis, 3) - mean.dot(axis)) < 1e-9);  // hard constraints: the handle moved exactly by T
+  std::ifstream report(dir / "dragged.deform.json");
+  const auto j = nlohmann::json::parse(report);
+  CHECK(j["method"] == "implicit");
+  const fs::path cli_out = dir / "cli.obj";
+  REQUIRE(run(kCli + " deform --mesh " + kMesh.string() + " --roi " + (dir / "dragged.roi.txt").string() + " --handles " +
+              (dir / "dragged.handles.json").string() + " --method implicit --weights " + j["weights"].get<std::string>() +
+              " --out " + cli_out.string() + " > /dev/null") == 0);
+  const geometry::TriMesh cli = geometry::read_mesh(cli_out);
+  CHECK(max_difference(cli.V, result.V) < 1e-9);
+}
+
+TEST_CASE("apps: deform app — a replayed drag renders headless, neither blank nor the unedited scene") {
+  const fs::path dir = scratch_dir();
+  const std::string common = " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " +
+                             kHandles.string() + " --method implicit";
+  const fs::path still = dir / "still.png", replayed = dir / "replayed.png", out = dir / "replayed.obj";
+  REQUIRE(run_under_xvfb(kApp + common + " --screenshot " + still.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + common + " --replay " + (kData / "deform_drag_events.json").string() +
+                         " --exit-after-replay --screenshot " + replayed.string() + " --export " + out.string() +
+                         " --export-on-exit") == 0);
+  const viewer::Image a = viewer::read_png(still), b = viewer::read_png(replayed);
+  CHECK(foreground_fraction(a) > 0.05);
+  CHECK(foreground_fraction(b) > 0.05);
+  REQUIRE(a.rgba.size() == b.rgba.size());
+  size_t changed = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4)
+    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) + std::abs(a.rgba[k + 2] - b.rgba[k + 2]) > 30) ++changed;
+  CHECK(changed > a.rgba.size() / 4 / 100);  // over 1% of the pixels
+  // The replay moved the handle: the exported mesh is not the rest mesh.
+  const geometry::TriMesh rest = geometry::read_mesh(kMesh), moved = geometry::read_mesh(out);
+  CHECK(max_difference(rest.V, moved.V) > 1e-3);
+}
+
+TEST_CASE("apps: deform app — bad input is reported, not a crash") {
+  const fs::path dir = scratch_dir();
+  std::ofstream(dir / "bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
+  CHECK(run(kApp + " --mesh " + (dir / "bad.off").string() + " --headless 2> " + (dir / "err.txt").string()) == 1);
+  std::ifstream err(dir / "err.txt");
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  CHECK(text.find("lapis-deform: error:") == 0);
+  CHECK(text.find("bad.off") != std::string::npos);
+  // A handle outside the mesh: the app starts, says why, and exports nothing.
+  std::ofstream(dir / "h.json") << R"({"regions": [{"vertices": [999999], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  std::ofstream(dir / "roi.txt") << "1 2 3";
+  REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
+                         " --handles " + (dir / "h.json").string() + " --export " + (dir / "none.obj").string() +
+                         " --export-on-exit --screenshot " + (dir / "err.png").string() + " 2> " + (dir / "err2.txt").string()) == 0);
+  std::ifstream err2(dir / "err2.txt");
+  const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
+  CHECK(text2.find("out of range") != std::string::npos);
+  CHECK(!fs::exists(dir / "none.obj"));
+  // A handle outside the ROI: the message `lapis deform` gives for the same files.
+  std::ofstream(dir / "h2.json") << R"({"regions": [{"vertices": [7], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
+                         " --handles " + (dir / "h2.json").string() + " --screenshot " + (dir / "err3.png").string() +
+                         " 2> " + (dir / "err3.txt").string()) == 0);
+  std::ifstream err3(dir / "err3.txt");
+  const std::string text3((std::istreambuf_iterator<char>(err3)), std::istreambuf_iterator<char>());
+  CHECK(text3.find("mesh_deform::Deformer::precompute(): region handle 0 vertex 7 is outside the ROI") != std::string::npos);
+}
