@@ -388,6 +388,8 @@ void HairSketchApp::benchmark_fields(nlohmann::json& j) const {
     if (!last_->update.solves.empty()) j["field_method"] = to_string(last_->update.solves.front().method);
   }
   j["primitives"] = document_.style().primitives.size();
+  j["drawn_segments"] = strand_budget_.value();  // 0: all
+  j["drawn_strands"] = shown_strands_;
 }
 
 }  // namespace lapis::hair_app

@@ -45,8 +45,8 @@ class HairSketchApp final : public viewer::ViewerApp {
  public:
   HairSketchApp(Head head, Hairstyle style, AppPaths paths);
   ~HairSketchApp() override;
-  // Strand segments drawn, pinned (0: all). Default: adapted to the frame time in a window,
-  // all headless.
+  // Strand segments drawn, pinned (0: all). Default: adapted to the frame time in a window
+  // (from 100K), all headless.
   void set_drawn_segments(long segments) { strand_budget_.pin(segments); }
 
   void on_start(viewer::Viewer& v) override;
@@ -114,7 +114,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   // Strand segments drawn (hair_sketch::display_strands; 0: every segment), adapted to keep
   // frames near 80 ms: software rendering of 20K full strands (4M segments, 4× MSAA) takes
   // two seconds a frame. Headless runs (screenshots, demos) draw everything.
-  viewer::AdaptiveBudget strand_budget_{200000};
+  viewer::AdaptiveBudget strand_budget_{100000};
   int shown_strands_ = 0;
   bool curves_dirty_ = true, head_dirty_ = true;
 

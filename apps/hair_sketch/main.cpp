@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
           "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
           "                         [--benchmark OUT.json] [--size WxH] [--export-hair OUT.hair]\n"
           "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
-          "                         [--draw-segments N]  (strand segments drawn; 0: all; default\n"
-          "                         200000 in a window, all with --headless)\n"
+          "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
+          "                         adapted to the frame time in a window, all with --headless)\n"
           "Left-drag sketches with the current tool (keys 1-6), right-drag orbits, middle-drag pans,\n"
           "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
           "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n");
