@@ -131,7 +131,7 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   float length = static_cast<float>(s.max_length);
   ImGui::SliderFloat("max length (d)", &length, 5, 400);
   if (ImGui::IsItemDeactivatedAfterEdit()) s.max_length = length, changed = true;
-  if (ImGui::Checkbox("scalp avoidance (§4.6)", &s.scalp_avoidance)) changed = true;
+  if (ImGui::Checkbox("scalp avoidance (thesis 4.6)", &s.scalp_avoidance)) changed = true;
   if (changed) {
     execute(v, Command{"change settings", SetSettings{s}, std::nullopt});
     settings_changed();

@@ -50,6 +50,19 @@ struct Drawer {
     for (int k = 1; k <= 10; ++k) s.push_back(s.back() + Eigen::Vector2d(0, hang / 10));
     return s;
   }
+  // From the front hairline (polar angle a0, azimuth phi0) across the temple to the side of
+  // the head (a1, phi1), then `hang` pixels down: hair swept off the face, which would
+  // otherwise fall straight over it (nothing else pushes the front roots sideways).
+  Stroke swept_aside(const CameraMatrices& c, double a0, double phi0, double a1, double phi1, double hang) const {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = 0; i <= 24; ++i) {
+      const double t = static_cast<double>(i) / 24, a = a0 + (a1 - a0) * t, phi = phi0 + (phi1 - phi0) * t;
+      pts.push_back(on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
+    }
+    Stroke s = project(c, pts);
+    for (int k = 1; k <= 10; ++k) s.push_back(s.back() + Eigen::Vector2d(0, hang / 10));
+    return s;
+  }
   CameraMatrices facing(double phi, double elevation = 0.5) const {
     const Eigen::Vector3d eye(5 * std::sin(phi), 5 * elevation, 5 * std::cos(phi));
     return look_at(eye, {0, 0.2, 0});
@@ -83,6 +96,11 @@ void smooth(Drawer& d) {
     const double phi = 0.35 * kPi + 1.3 * kPi * k / 9;
     d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.25, 1.45, 120)});
   }
+  for (int side : {-1, 1}) {  // the fringe swept to the sides, off the face
+    const double p = side * 0.3 * kPi;
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
+  }
 }
 
 // Fig. 4.7: a parting from the forehead to the crown, seven stream curves flowing away from it.
@@ -100,6 +118,12 @@ void parting(Drawer& d) {
       d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 0.3, 1.5, 110)});
     }
   d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 0.3, 1.5, 140)});
+  // The front hair swept off the face towards each side, behind the ears.
+  for (int side : {-1, 1}) {
+    const double p = side * 0.3 * kPi;
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
+  }
   // Tilt the parting's start: hair on the right side sweeps slightly back.
   const auto& dc = std::get<DividingCurve>(d.doc.style().primitives[0].shape);
   const Eigen::Vector3d foot = dc.points[2], x0 = dividing_side_axis(dc, d.head, 0.1);
@@ -109,10 +133,18 @@ void parting(Drawer& d) {
   d.add(StrokeAction::Tilt, top, {d.project(top, pts)}, 0);
 }
 
-// Fig. 4.8: two ponytails at the back of the head and four stream curves leading to them.
+// Fig. 4.8: two ponytails at the back of the head and six stream curves leading to them (the
+// front and top hair swept back over the temples).
 void ponytails(Drawer& d) {
-  for (double phi : {0.2 * kPi, -0.2 * kPi, 0.6 * kPi, -0.6 * kPi})
+  for (double phi : {0.6 * kPi, -0.6 * kPi})
     d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.2, 1.0, 30)});
+  for (int side : {-1, 1}) {  // the front and top hair swept back over the temples to the tails
+    const double p = side * 0.35 * kPi;
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.1, side * 0.72 * kPi, 20)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.22, side * 0.12 * kPi, 0.95, side * 0.78 * kPi, 20)});
+  }
   const CameraMatrices back = look_at({0, 0.8, -5}, {0, 0.2, 0});
   for (int side : {-1, 1}) {
     // Spine: from the scalp behind the ear, out and down.

@@ -25,6 +25,13 @@ namespace {
 constexpr long kSettleFrames = 3;           // frames drawn after input (ImGui hover, releases)
 constexpr double kBusyRedrawSeconds = 0.25;  // redraw period while the app's worker runs
 constexpr double kIdleRedrawSeconds = 1.0;   // and while nothing happens (overlay clock)
+
+// A run that ends by itself once the app is idle (an automatic screenshot, or a headless or
+// replayed run told to exit): it should not wait for input that will not come.
+bool finishing_run(const lapis::viewer::ViewerOptions& o) {
+  const bool replayed = !o.replay.empty();
+  return o.headless || (replayed && (o.exit_after_replay || !o.screenshot.empty()));
+}
 }  // namespace
 namespace {
 
@@ -328,6 +335,7 @@ int Viewer::run(ViewerApp& app) {
   app.on_start(*this);
   int exit_code = 0;
   double idle_since_replay = -1;
+  int idle_frames_after_replay = 0;
   bool was_busy = false;
   while (!glfwWindowShouldClose(w)) {
     // Redraw on demand. Drawing the same picture again costs a software renderer most of both
@@ -347,7 +355,7 @@ int Viewer::run(ViewerApp& app) {
         else frame_ = next_frame;
       }
       glfwPollEvents();
-    } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames) {
+    } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames && !(finishing_run(options_) && !busy)) {
       glfwWaitEventsTimeout(busy ? kBusyRedrawSeconds : kIdleRedrawSeconds);
     } else {
       glfwPollEvents();
@@ -399,7 +407,9 @@ int Viewer::run(ViewerApp& app) {
           exit_code = 1;
           glfwSetWindowShouldClose(w, GLFW_TRUE);
         }
-      } else {
+      } else if (++idle_frames_after_replay >= 2) {
+        // The second idle frame: panels that size themselves to their content (the overlay)
+        // take one frame to fit what the result just changed.
         if (auto_shot) take_screenshot(options_.screenshot), options_.screenshot.clear();
         if (options_.exit_after_replay || options_.headless) glfwSetWindowShouldClose(w, GLFW_TRUE);
       }
