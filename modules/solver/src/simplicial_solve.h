@@ -4,9 +4,11 @@
 // Why not cholmod_solve: after an update/downdate the factor is simplicial, and CHOLMOD's
 // simplicial solve is serial and keeps the right-hand sides column by column, so each row of
 // L touches one cache line per right-hand side. At the hair-sketching size (N = 37, 38M
-// entries in L) the solve is bound by streaming L from memory twice. Here the right-hand
-// sides of a row are stored together, and the subtrees under the top separators of the
-// nested-dissection ordering run on separate threads: they touch disjoint columns of L.
+// entries in L) a solve streams all of L twice (forward, backward) and that is its whole
+// cost. Here the right-hand sides of a row are stored together, supernode runs share their
+// row indices, and the subtrees under the top separators of the nested-dissection ordering
+// run on separate threads: they touch disjoint columns of L. Not for concurrent use of one
+// factor (the schedule is cached), like cholmod_solve with its workspace.
 #pragma once
 
 #include <cholmod.h>
