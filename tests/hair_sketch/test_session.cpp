@@ -130,6 +130,27 @@ TEST_CASE("hair_sketch: malformed and hostile sessions give clear errors") {
   CHECK_THROWS_WITH_AS(load_session(temp_path("absent.json")), doctest::Contains("cannot read"), lapis::IoError);
 }
 
+// Strands whose polyline crosses the disc of radius 1.2 r around the ponytail's first
+// cross-section C1 (thesis §4.5): the hair the tail gathers.
+static int strands_through_first_section(const Strands& strands, const Ponytail& tail) {
+  const Ponytail::Section c1 = tail.first_section();
+  int through = 0;
+  for (int s = 0; s < strands.count(); ++s) {
+    for (int i = strands.offsets[s]; i + 1 < strands.offsets[s + 1]; ++i) {
+      const Eigen::Vector3d a = strands.points[i].cast<double>() - c1.center;
+      const Eigen::Vector3d b = strands.points[i + 1].cast<double>() - c1.center;
+      const double ha = a.dot(c1.normal), hb = b.dot(c1.normal);
+      if ((ha < 0) == (hb < 0)) continue;
+      const Eigen::Vector3d x = a + (ha / (ha - hb)) * (b - a);
+      if (x.norm() <= 1.2 * c1.radius) {
+        ++through;
+        break;
+      }
+    }
+  }
+  return through;
+}
+
 TEST_CASE("hair_sketch: each bundled example session replays to the counts of its report") {
   const fs::path dir = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
   int found = 0;
@@ -146,6 +167,9 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
     CHECK(r.strands.count() == report["strands"].get<int>());
     CHECK(r.strands.segments() == report["segments"].get<int>());
     CHECK(r.penetrating_segments == report["penetrating_segments"].get<int>());
+    for (const auto& p : style.primitives)  // each tail gathers a fifth of the hair or more
+      if (const auto* tail = std::get_if<Ponytail>(&p.shape))
+        CHECK(strands_through_first_section(r.strands, *tail) >= r.strands.count() / 5);
     ++found;
   }
   CHECK(found == 3);
