@@ -171,6 +171,7 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     const size_t before = document_.style().primitives.size();
     apply_stroke(document_, rec, head_, grid_);
     if (document_.style().primitives.size() > before) selected_ = static_cast<int>(before);
+    if (rec.action == StrokeAction::Ponytail) warn_if_tail_too_thin(v, document_.style().primitives.back());
     last_edit_time_ = v.time();
     curves_dirty_ = true;
     request_regrowth();
@@ -181,6 +182,22 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     v.flash("stroke rejected: " + (colon == std::string::npos ? why : why.substr(colon + 4)));
   }
   update_preview_item(v);
+}
+
+// A cross-section narrower than a grid cell has no grid node inside C1 and its centripetal
+// annulus (1.3 r–1.9 r, thesis §4.5) is thinner than a cell: the field cannot gather strands
+// into it, so the tail would silently stay empty. Say so, and what to change.
+void HairSketchApp::warn_if_tail_too_thin(viewer::Viewer& v, const StylePrimitive& p) {
+  const auto* tail = std::get_if<Ponytail>(&p.shape);
+  if (!tail) return;
+  const double r = tail->first_section().radius;
+  if (r >= grid_.spacing) return;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "ponytail cross-section radius %.3f is below the grid spacing %.3f: few strands will "
+                "reach it; draw it wider or raise the grid unknowns",
+                r, grid_.spacing);
+  v.flash(text);
 }
 
 void HairSketchApp::select_at(viewer::Viewer& v, const Eigen::Vector2d& p) {

@@ -64,6 +64,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   void begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p);
   void extend_stroke(viewer::Viewer& v, const Eigen::Vector2d& p);
   void finish_stroke(viewer::Viewer& v);
+  void warn_if_tail_too_thin(viewer::Viewer& v, const hair_sketch::StylePrimitive& p);
   void select_at(viewer::Viewer& v, const Eigen::Vector2d& p);
   bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
   void execute(viewer::Viewer& v, Command command);
