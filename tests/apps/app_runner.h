@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <unistd.h>
 #include <thread>
 
 #include "lapis/viewer/png.h"
@@ -27,9 +28,13 @@ inline int run(const std::string& command) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// `command` under a fresh Xvfb server (xvfb-run picks a free display number).
+// `command` under a fresh Xvfb server. xvfb-run -a takes the first display number without a
+// lock file from its start number, so two test processes (or a test and another xvfb-run on
+// the machine) starting together can pick the same one and one app finds no display: start
+// each process's search at its own number.
 inline int run_under_xvfb(const std::string& command) {
-  return run("xvfb-run -a -s '-screen 0 1280x1024x24' " + command);
+  const int first_display = 100 + static_cast<int>(getpid() % 400) * 2;
+  return run("xvfb-run -a -n " + std::to_string(first_display) + " -s '-screen 0 1280x1024x24' " + command);
 }
 
 // Fraction of pixels that differ from the image's top-left (background) pixel.
