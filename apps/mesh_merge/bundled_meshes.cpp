@@ -33,6 +33,17 @@ const std::vector<std::string>& preset_names() {
   return names;
 }
 
+namespace {
+
+geometry::TriMesh z_up_to_y_up(geometry::TriMesh m) {
+  const Eigen::VectorXd y = m.V.col(1);
+  m.V.col(1) = m.V.col(2);
+  m.V.col(2) = -y;
+  return m;
+}
+
+}  // namespace
+
 MeshPair load_preset_meshes(int preset, const fs::path& source_dir) {
   auto shared = [](geometry::TriMesh m) { return std::make_shared<const geometry::TriMesh>(std::move(m)); };
   const fs::path merge = source_dir / "assets/merge", external = source_dir / "assets/external";
@@ -44,11 +55,16 @@ MeshPair load_preset_meshes(int preset, const fs::path& source_dir) {
       return {shared(geometry::read_mesh(merge / "dome_placed.obj")), shared(geometry::read_mesh(merge / "neck.obj")),
               "dome_placed.obj", "neck.obj", false};
     case 2: {
-      // The planes of the module's real-mesh test: the bust's head above z = -8 (40 units tall),
+      // The planes of the module's real-mesh test: the bust's head and neck above z = -14 (a
+      // round neck rim like the man's; at z = -8 the cut runs under the chin, the rim is half as
+      // deep again as wide and the merged head turns aside), the bust 40 units tall,
       // the man (1 unit tall) below his neck at z = 0.36.
-      const auto devil = mesh_merge::cut_by_plane(geometry::read_mesh(external / "mannequin-devil.off"), {0, 0, -8.0}, {0, 0, 1});
+      const auto devil = mesh_merge::cut_by_plane(geometry::read_mesh(external / "mannequin-devil.off"), {0, 0, -14.0}, {0, 0, 1});
       const auto man = mesh_merge::cut_by_plane(geometry::read_mesh(external / "man.off"), {0, 0, 0.36}, {0, 0, 1});
-      return {shared(devil.above), shared(man.below), "mannequin-devil head", "man body", true};
+      // Both meshes are z-up and the orbit camera keeps y up: turn them upright, (x, y, z) →
+      // (x, z, −y), so the man stands in the first view (a merge does not depend on it).
+      return {shared(z_up_to_y_up(devil.above)), shared(z_up_to_y_up(man.below)), "mannequin-devil head", "man body",
+              true};
     }
     default:
       throw InvalidArgument("lapis-merge: preset " + std::to_string(preset) + " out of range (0-" +

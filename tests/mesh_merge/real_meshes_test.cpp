@@ -50,9 +50,10 @@ MergeResult check_real_merge(const TriMesh& head, const TriMesh& body, int key_a
 }  // namespace
 
 TEST_CASE("mesh_merge: real meshes: the mannequin's head onto the man's body") {
-  // The devil bust's head (11.5K vertices, 40 units tall) onto the man (1 unit tall) cut at the
+  // The devil bust's head and neck (40 units tall; cut at z = -14 where the neck rim is round
+  // like the man's, not under the chin) onto the man (1 unit tall) cut at the
   // neck: different scales, positions and neck shapes.
-  const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -8.0}, {0, 0, 1});
+  const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -14.0}, {0, 0, 1});
   const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.36}, {0, 0, 1});
   const MergeResult r = check_real_merge(devil.above, man.below, 0);
   // Left for the README figure (scripts/render_mesh.py).
