@@ -1,6 +1,8 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <random>
 
 #include "grid_matrices.h"
@@ -59,6 +61,75 @@ TEST_CASE("solver: least squares with hard constraints equals a dense reference"
       CHECK((x.row(free[j]) - xf.row(static_cast<int>(j))).norm() <= 1e-9 * (1 + xf.norm()));
     for (size_t j = 0; j < fixed.size(); ++j) CHECK(x.row(fixed[j]) == c.row(static_cast<int>(j)));
   }
+}
+
+TEST_CASE("solver: least squares on thousands of unknowns (threaded assembly) equals Eigen's normal equations") {
+  // Large enough that the normal matrices are assembled by several threads, with the fixed
+  // unknowns given out of order: the reference is built by Eigen's own sparse products.
+  std::mt19937 rng(11);
+  const int n = 3000;
+  const SparseMatrix A1 = random_sparse(4000, n, 0.002, rng), A2 = random_sparse(1500, n, 0.003, rng);
+  const double w1 = 1.0, w2 = 7.5;
+  std::vector<int> fixed;
+  for (int i = n - 1; i >= 0; i -= 37) fixed.push_back(i);
+  std::shuffle(fixed.begin(), fixed.end(), rng);
+  LeastSquares ls(n);
+  ls.add_block(A1, w1);
+  ls.add_block(A2, w2);
+  ls.set_fixed(fixed);
+  ls.precompute();
+  const DenseMatrix r1 = DenseMatrix::Random(4000, 2), r2 = DenseMatrix::Random(1500, 2);
+  const DenseMatrix c = DenseMatrix::Random(static_cast<Eigen::Index>(fixed.size()), 2);
+  const DenseMatrix x = ls.solve({r1, r2}, c);
+
+  std::vector<char> is_fixed(n, 0);
+  for (int i : fixed) is_fixed[static_cast<size_t>(i)] = 1;
+  std::vector<Eigen::Triplet<double, int>> sf, sc;
+  int nf = 0;
+  for (int i = 0; i < n; ++i)
+    if (!is_fixed[static_cast<size_t>(i)]) sf.emplace_back(i, nf++, 1.0);
+  for (size_t j = 0; j < fixed.size(); ++j) sc.emplace_back(fixed[j], static_cast<int>(j), 1.0);
+  SparseMatrix Sf(n, nf), Sc(n, static_cast<int>(fixed.size()));
+  Sf.setFromTriplets(sf.begin(), sf.end());
+  Sc.setFromTriplets(sc.begin(), sc.end());
+  const SparseMatrix F1 = A1 * Sf, F2 = A2 * Sf;
+  const SparseMatrix N = SparseMatrix(w1 * SparseMatrix(F1.transpose()) * F1) + SparseMatrix(w2 * SparseMatrix(F2.transpose()) * F2);
+  const DenseMatrix rhs = w1 * (SparseMatrix(F1.transpose()) * (r1 - A1 * Sc * c)) +
+                          w2 * (SparseMatrix(F2.transpose()) * (r2 - A2 * Sc * c));
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(N);
+  REQUIRE(ldlt.info() == Eigen::Success);
+  const DenseMatrix xf = ldlt.solve(rhs);
+  double worst = 0;
+  for (int i = 0, j = 0; i < n; ++i)
+    if (!is_fixed[static_cast<size_t>(i)]) worst = std::max(worst, (x.row(i) - xf.row(j++)).norm());
+  CHECK(worst <= 1e-8 * (1 + xf.norm()));
+  for (size_t j = 0; j < fixed.size(); ++j) CHECK(x.row(fixed[j]) == c.row(static_cast<int>(j)));
+}
+
+TEST_CASE("solver: a block in the metric Dᵀ D solves like the block D A with right-hand side D r") {
+  std::mt19937 rng(5);
+  const int n = 1200, m = 1500;
+  const SparseMatrix A = random_sparse(m, n, 0.004, rng), L = random_sparse(900, n, 0.003, rng);
+  const SparseMatrix D = random_sparse(2000, m, 0.002, rng);
+  const SparseMatrix W = SparseMatrix(D.transpose()) * D;
+  std::vector<int> fixed;
+  for (int i = 7; i < n; i += 53) fixed.push_back(i);
+  LeastSquares with_metric(n), plain(n);
+  with_metric.add_block(L, 1.0, "L");
+  with_metric.add_block(A, 0.3, "pairs", W);
+  plain.add_block(L, 1.0, "L");
+  plain.add_block(SparseMatrix(D * A), 0.3, "pairs");
+  with_metric.set_fixed(fixed);
+  plain.set_fixed(fixed);
+  with_metric.precompute();
+  plain.precompute();
+  const DenseMatrix rl = DenseMatrix::Random(900, 3), r = DenseMatrix::Random(m, 3);
+  const DenseMatrix c = DenseMatrix::Random(static_cast<Eigen::Index>(fixed.size()), 3);
+  const DenseMatrix x = with_metric.solve({rl, r}, c), y = plain.solve({rl, DenseMatrix(D * r)}, c);
+  CHECK((x - y).norm() <= 1e-8 * (1 + y.norm()));
+  CHECK(with_metric.factor().stats().nnz_L == plain.factor().stats().nnz_L);
+  CHECK_THROWS_WITH_AS(with_metric.add_block(A, 1.0, "bad", SparseMatrix(m, m + 1)),
+                       doctest::Contains("metric is"), InvalidArgument);
 }
 
 TEST_CASE("solver: least squares rejects bad input naming the function") {

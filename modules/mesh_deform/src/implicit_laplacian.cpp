@@ -43,6 +43,7 @@ struct ImplicitLaplacianDeformer::Impl {
   // Kept for the large-rotation guide system, built on the first frame that needs it.
   detail::Stencil stencil;
   solver::SparseMatrix A_L, A_R, A_T;
+  solver::SparseMatrix metric_R;  // Dᵀ D ⊗ I₃ over A_R's rows (E_R's pairs)
   double weight_R = 0, weight_T = 0;
   std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
   std::vector<int> guided_for;               // handles the guide system was built for
@@ -106,8 +107,24 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     detail::add_laplacian_row(EL, s, i);
     for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) EL.add(G.vertex[k], -G.g[k].dot(deltaP.row(i)));
   }
-  // E_R (Eq. 2.7): M_i − M_j over pairs within 2 rings (footnote 1), three rows per pair.
+  // E_R (Eq. 2.7): Σ ‖M_i − M_j‖² over pairs within 2 rings (footnote 1). M_i's rows are
+  // linear in the positions (the gradient stencil g_i), so E_R = Σ_a xᵀ G_aᵀ (Dᵀ D) G_a x with
+  // D the pairs' incidence matrix: three rows g_i(a) per vertex in a pair, measured in the
+  // metric Dᵀ D ⊗ I₃ (the pair graph's Laplacian), rather than three rows g_i(a) − g_j(a) per
+  // pair — the same energy from a normal matrix that costs several times less to assemble.
   SparseRows ER(n);
+  std::vector<int> slot(static_cast<size_t>(n), -1);  // vertex → its three rows / 3
+  std::vector<Eigen::Triplet<double, int>> pair_metric;
+  auto slot_of = [&](int i) {
+    if (slot[i] < 0) {
+      slot[i] = ER.rows() / 3;
+      for (int a = 0; a < 3; ++a) {
+        ER.begin_row();
+        for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) ER.add(G.vertex[k], G.g[k](a));
+      }
+    }
+    return slot[i];
+  };
   std::vector<int> stamp(static_cast<size_t>(n), -1);
   for (int i = 0; i < n; ++i) {
     if (!w.active[i]) continue;
@@ -116,10 +133,12 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
       if (stamp[j] == i) return;
       stamp[j] = i;
       if (j < i || !w.active[j] || !(touches[i] || touches[j])) return;
+      const int si = slot_of(i), sj = slot_of(j);
       for (int a = 0; a < 3; ++a) {
-        ER.begin_row();
-        for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) ER.add(G.vertex[k], G.g[k](a));
-        for (int k = G.offsets[j]; k < G.offsets[j + 1]; ++k) ER.add(G.vertex[k], -G.g[k](a));
+        pair_metric.emplace_back(3 * si + a, 3 * si + a, 1.0);
+        pair_metric.emplace_back(3 * sj + a, 3 * sj + a, 1.0);
+        pair_metric.emplace_back(3 * si + a, 3 * sj + a, -1.0);
+        pair_metric.emplace_back(3 * sj + a, 3 * si + a, -1.0);
       }
     };
     for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
@@ -144,12 +163,14 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   m->first = solver::LeastSquares(n);
   m->A_L = EL.matrix();
   m->A_R = ER.matrix();
+  m->metric_R = solver::SparseMatrix(ER.rows(), ER.rows());
+  m->metric_R.setFromTriplets(pair_metric.begin(), pair_metric.end());
   m->A_T = T.matrix();
   const solver::SparseMatrix &A_L = m->A_L, &A_R = m->A_R, &A_T = m->A_T;
   m->weight_R = options_.coherence_weight * h * h;
   m->weight_T = options_.transform_weight * h * h;
   m->first.add_block(A_L, 1.0, "E_L (Eq. 2.6)");
-  if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)");
+  if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)", m->metric_R);
   if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
   m->first.set_fixed(m->constrained);
   m->first.precompute();
@@ -223,7 +244,7 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
   const solver::SparseMatrix A_G = Gr.matrix();
   m.guided = std::make_unique<solver::LeastSquares>(n);
   m.guided->add_block(m.A_L, 1.0, "E_L (Eq. 2.6)");
-  if (m.A_R.rows() > 0) m.guided->add_block(m.A_R, m.weight_R, "E_R (Eq. 2.7)");
+  if (m.A_R.rows() > 0) m.guided->add_block(m.A_R, m.weight_R, "E_R (Eq. 2.7)", m.metric_R);
   if (m.A_T.rows() > 0) m.guided->add_block(m.A_T, m.weight_T, "M_c = W_c (Eq. 2.8)");
   m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);

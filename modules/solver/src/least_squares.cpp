@@ -3,27 +3,17 @@
 #include <algorithm>
 
 #include "checks.h"
+#include "normal_equations.h"
 
 namespace lapis::solver {
-namespace {
-
-// n by cols.size() matrix selecting the given columns: A * S = A(:, cols).
-SparseMatrix column_selector(int n, const std::vector<int>& cols) {
-  std::vector<Eigen::Triplet<double, int>> t;
-  t.reserve(cols.size());
-  for (size_t j = 0; j < cols.size(); ++j) t.emplace_back(cols[j], static_cast<int>(j), 1.0);
-  SparseMatrix S(n, static_cast<int>(cols.size()));
-  S.setFromTriplets(t.begin(), t.end());
-  return S;
-}
-
-}  // namespace
 
 struct LeastSquares::Impl {
   struct Block {
     SparseMatrix A;
     double weight;
     std::string name;
+    SparseMatrix metric;  // empty: the identity
+    bool has_metric = false;
   };
   int n = 0;
   std::vector<Block> blocks;
@@ -55,9 +45,21 @@ int LeastSquares::add_block(const SparseMatrix& A, double weight, std::string na
   if (!(std::isfinite(weight) && weight > 0))
     throw InvalidArgument(std::string(fn) + ": weight " + std::to_string(weight) + " is not finite and > 0");
   detail::require_finite(A, fn);
-  impl_->blocks.push_back({A, weight, std::move(name)});
+  impl_->blocks.push_back({A, weight, std::move(name), SparseMatrix(), false});
   impl_->precomputed = false;
   return static_cast<int>(impl_->blocks.size()) - 1;
+}
+
+int LeastSquares::add_block(const SparseMatrix& A, double weight, std::string name, const SparseMatrix& metric) {
+  constexpr const char* fn = "solver::LeastSquares::add_block()";
+  if (metric.rows() != A.rows() || metric.cols() != A.rows())
+    throw InvalidArgument(std::string(fn) + ": metric is " + detail::dims(metric.rows(), metric.cols()) +
+                          ", expected " + detail::dims(A.rows(), A.rows()) + " (the block's rows)");
+  detail::require_finite(metric, fn);
+  const int id = add_block(A, weight, std::move(name));
+  impl_->blocks.back().metric = metric;
+  impl_->blocks.back().has_metric = true;
+  return id;
 }
 
 void LeastSquares::set_fixed(std::vector<int> indices) {
@@ -84,21 +86,12 @@ void LeastSquares::precompute() {
   Impl& m = *impl_;
   if (m.blocks.empty()) throw InvalidArgument(std::string(fn) + ": no blocks added");
   if (m.free.empty()) throw InvalidArgument(std::string(fn) + ": every unknown is fixed; nothing to solve");
-  const SparseMatrix S_free = column_selector(m.n, m.free);
-  const SparseMatrix S_fixed = column_selector(m.n, m.fixed);
-  const int nf = static_cast<int>(m.free.size());
-  SparseMatrix N(nf, nf);
-  m.free_fixed = SparseMatrix(nf, static_cast<int>(m.fixed.size()));
-  m.weighted_free_t.clear();
-  for (const auto& b : m.blocks) {
-    const SparseMatrix Af = b.A * S_free;
-    SparseMatrix AfT = b.weight * SparseMatrix(Af.transpose());
-    N += AfT * Af;
-    if (!m.fixed.empty()) m.free_fixed += AfT * (b.A * S_fixed);
-    AfT.makeCompressed();
-    m.weighted_free_t.push_back(std::move(AfT));
-  }
-  N.makeCompressed();
+  std::vector<detail::WeightedBlock> blocks;
+  for (const auto& b : m.blocks) blocks.push_back({&b.A, b.weight, b.has_metric ? &b.metric : nullptr});
+  detail::NormalMatrices normal = detail::normal_matrices(blocks, m.free, m.fixed, m.n);
+  const SparseMatrix& N = normal.free_free;
+  m.free_fixed = std::move(normal.free_fixed);
+  m.weighted_free_t = std::move(normal.weighted_free_t);
   try {
     m.chol.compute(N);
   } catch (const NotPositiveDefinite& e) {

@@ -1,5 +1,6 @@
 // Weighted sparse linear least squares with hard constraints:
-//   min_x  Σ_b w_b ‖A_b x − r_b‖²   subject to  x_i = c_i for fixed i,
+//   min_x  Σ_b w_b ‖A_b x − r_b‖²_{W_b}   subject to  x_i = c_i for fixed i,
+// where ‖y‖²_W = yᵀ W y (W = I unless a block gives its metric),
 // the shape of every Laplacian / Poisson editing system in Lapis (thesis Eq. 2.1, 2.8, 4.x).
 // Precompute once (assemble and factorize the normal matrix of the free unknowns), then
 // solve() per frame for new right-hand sides r_b and fixed values c, several columns at once.
@@ -24,6 +25,11 @@ class LeastSquares {
   // A  m_b by n block of rows, weight w_b > 0 (squared-norm weight). Returns the block's id,
   // the position of its right-hand side in solve(). Invalidates the precomputation.
   int add_block(const SparseMatrix& A, double weight, std::string name = {});
+  // A block whose residual is measured in the metric W (m_b by m_b, symmetric positive
+  // semi-definite): w_b (A x − r)ᵀ W (A x − r). Energies over pairs, Σ_(i,j) ‖a_i x − a_j x‖²,
+  // are Aᵀ (Dᵀ D) A with one row a_i per item instead of one per pair: the same normal matrix
+  // from far fewer, shorter products (the implicit Laplacian's E_R, thesis Eq. 2.7).
+  int add_block(const SparseMatrix& A, double weight, std::string name, const SparseMatrix& metric);
   // Unknowns held at given values (eliminated, not penalized). Invalidates the precomputation.
   void set_fixed(std::vector<int> indices);
 
