@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 
 #include "implicit_rest.h"
 #include "lapis/geometry/polar.h"
@@ -173,12 +174,14 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)", m->metric_R);
   if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
   m->first.set_fixed(m->constrained);
-  m->first.precompute();
   m->stencil = s;
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
   m->has_coherence = A_R.rows() > 0;
   m->transform_rest = A_T * solver::DenseMatrix(P);
 
+  // Eq. 2.10/2.11 is factorized on a second thread while Eq. 2.8's is: the first system's
+  // ordering (METIS on a dense graph) runs on one core and would leave the other idle.
+  std::future<void> second_done;
   if (options_.shearing != ShearingRemoval::None) {
     // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
     // Laplacian the details.
@@ -191,9 +194,16 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     m->second = solver::LeastSquares(n);
     m->second.add_block(A_D, 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
     m->second.set_fixed(m->constrained);
-    m->second.precompute();
     m->delta = A_D * solver::DenseMatrix(w.mesh.V);
+    second_done = std::async(std::launch::async, [&second = m->second] { second.precompute(); });
   }
+  try {
+    m->first.precompute();
+  } catch (...) {
+    if (second_done.valid()) second_done.wait();  // the first system's error is the one to report
+    throw;
+  }
+  if (second_done.valid()) second_done.get();  // rethrows the second system's error
 
   stats_ = {};
   stats_.free_vertices = static_cast<int>(m->free.size());
