@@ -275,6 +275,17 @@ TEST_CASE("mesh_merge: transition merging rejects bad widths with clear errors")
                        doctest::Contains("mesh_merge::merge(): the transition bands of pairs 0 and 1 overlap"), InvalidArgument);
 }
 
+TEST_CASE("mesh_merge: a transition band narrower than an edge is just the loop") {
+  const TriMesh src = test::dome(), tgt = test::body();
+  for (TransitionKeep keep : {TransitionKeep::Source, TransitionKeep::Target}) {
+    MergeOptions o = transition_options(keep);
+    o.transition.source_width = o.transition.target_width = 0.01;
+    const MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt), o);
+    CHECK(seam_quality(tgt, r).valid());
+    CHECK(geometry::validate(r.mesh).ok());
+  }
+}
+
 TEST_CASE("mesh_merge: transition merging of two loop pairs at once") {
   const TriMesh tube = test::tube(), column = test::split_column();
   MergeOptions o = transition_options();

@@ -65,6 +65,7 @@ DeformedLaplacian deformed_laplacian(const TriMesh& rest, const Connectivity& co
 // the kept mesh held where it is (`positions` in, band positions out).
 void reconstruct_band(const TriMesh& rest, const std::vector<int>& unknown, const Vertices& target_delta,
                       Vertices& positions) {
+  if (unknown.empty()) return;  // a band narrower than an edge: its loop only
   const int n = rest.num_vertices();
   std::vector<char> is_unknown(static_cast<size_t>(n), 0);
   for (int v : unknown) is_unknown[v] = 1;
