@@ -22,8 +22,11 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 bool same_options(const mesh_merge::MergeOptions& a, const mesh_merge::MergeOptions& b) {
   // What the Merger's precompute depends on (smoothing is set per merge).
+  // Transition mode sets up everything in merge(), from the options the Merger holds.
   return a.mode == b.mode && a.roi_width == b.roi_width && a.handles == b.handles && a.refine_ratio == b.refine_ratio &&
-         a.refine_levels == b.refine_levels;
+         a.refine_levels == b.refine_levels && a.transition.source_width == b.transition.source_width &&
+         a.transition.target_width == b.transition.target_width && a.transition.weight == b.transition.weight &&
+         a.transition.keep == b.transition.keep;
 }
 
 }  // namespace
