@@ -32,47 +32,51 @@ struct PairBands {
   std::vector<BandPoint> source_on_target, target_on_source;  // parallel to source.vertices / target.vertices
 };
 
-// The deformed Laplacian coordinates of one mesh, as curvature normals: K_i = R_i δ_i / (s_i A_i)
-// with s_i R_i the similarity that best maps the rest 1-ring (and v_i) onto the deformed one
-// (Eq. 2.11's R_i S_i) and A_i the rest Voronoi area. Carrying curvature normals rather than
-// raw δ between the meshes keeps the blend right when their sampling densities differ;
-// s_i² A_i K_i gives back s_i R_i δ_i on the mesh's own vertices.
-struct DeformedLaplacian {
-  Vertices K;             // #V by 3, set at the listed vertices
-  Eigen::VectorXd gauge;  // #V: s_i² A_i
-};
-
-DeformedLaplacian deformed_laplacian(const TriMesh& rest, const Connectivity& conn, const Vertices& deformed,
-                                     const std::vector<int>& vertices) {
+// The deformed Laplacian coordinates of one mesh as curvature normals, K_i = R_i δ_i / (s_i A_i):
+// s_i R_i the similarity that best maps the rest 1-ring (and v_i) onto the deformed one (Eq.
+// 2.11's R_i S_i), A_i the rest Voronoi area. Curvature normals rather than raw δ cross
+// between the meshes, so that the blend stays right when their sampling densities differ.
+// At border vertices δ is not a curvature normal: they take their inner neighbours' mean.
+Vertices deformed_curvature(const TriMesh& rest, const Connectivity& conn, const Vertices& deformed,
+                            const std::vector<int>& vertices) {
   const Eigen::MatrixX3d delta = geometry::laplacian_coordinates(rest);
   const Eigen::VectorXd area = geometry::vertex_areas(rest);
-  DeformedLaplacian d{Vertices::Zero(rest.num_vertices(), 3), Eigen::VectorXd::Zero(rest.num_vertices())};
+  Vertices K = Vertices::Zero(rest.num_vertices(), 3);
+  std::vector<char> done(static_cast<size_t>(rest.num_vertices()), 0);
   for (int v : vertices) {
+    if (conn.is_boundary_vertex(v) || done[v]) continue;
     const auto ring = conn.vertex_neighbors(v);
     Eigen::MatrixX3d from(static_cast<Eigen::Index>(ring.size()) + 1, 3), to(from.rows(), 3);
     from.row(0) = rest.V.row(v), to.row(0) = deformed.row(v);
     for (size_t k = 0; k < ring.size(); ++k)
       from.row(static_cast<Eigen::Index>(k) + 1) = rest.V.row(ring[k]), to.row(static_cast<Eigen::Index>(k) + 1) = deformed.row(ring[k]);
     const geometry::Similarity3 S = geometry::fit_similarity(from, to);
-    d.K.row(v) = (S.R * delta.row(v).transpose() / (S.s * area(v))).transpose();
-    d.gauge(v) = S.s * S.s * area(v);
+    K.row(v) = (S.R * delta.row(v).transpose() / (S.s * area(v))).transpose();
+    done[v] = 1;
   }
-  return d;
+  for (int v : vertices) {
+    if (!conn.is_boundary_vertex(v)) continue;
+    int n = 0;
+    for (int u : conn.vertex_neighbors(v))
+      if (done[u]) K.row(v) += K.row(u), ++n;
+    if (n) K.row(v) /= n;
+  }
+  return K;
 }
 
-// Poisson reconstruction of the kept band (§3.3.3, Fig. 3.7 (b)): its vertices except the loop
-// take the Laplacian coordinates τ_i (other mesh) + (1 − τ_i) (own), with everything else of
-// the kept mesh held where it is (`positions` in, band positions out).
-void reconstruct_band(const TriMesh& rest, const std::vector<int>& unknown, const Vertices& target_delta,
-                      Vertices& positions) {
-  if (unknown.empty()) return;  // a band narrower than an edge: its loop only
-  const int n = rest.num_vertices();
+// Poisson reconstruction of the kept band (§3.3.3, Fig. 3.7 (b)) on the zipped mesh: the band's
+// vertices take the wanted Laplacian coordinates, every other vertex stays, so both ends of the
+// band meet their surroundings with continuous tangents (the strip included).
+void reconstruct_band(TriMesh& mesh, const std::vector<int>& unknown, const Vertices& target_delta) {
+  if (unknown.empty()) return;  // a band narrower than an edge, gone with the zipped ring
+  const int n = mesh.num_vertices();
+  Vertices& positions = mesh.V;
   std::vector<char> is_unknown(static_cast<size_t>(n), 0);
   for (int v : unknown) is_unknown[v] = 1;
   std::vector<int> fixed;
   for (int v = 0; v < n; ++v)
     if (!is_unknown[v]) fixed.push_back(v);
-  const Eigen::SparseMatrix<double> L = geometry::cotan_laplacian(rest);
+  const Eigen::SparseMatrix<double> L = geometry::cotan_laplacian(mesh);
   std::vector<Eigen::Triplet<double, int>> t;
   for (size_t r = 0; r < unknown.size(); ++r)
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, unknown[r]); it; ++it)  // L is symmetric
@@ -236,73 +240,31 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   r.source_rest = src;
   r.source_deformed = X.topRows(ns);
 
-  // §3.3.3: "we first apply the implicitly defined local deformation gradients onto the LCs
-  // before interpolating them", then rebuild the kept band from the interpolated LCs.
+  // §3.3.3, Fig. 3.7 (b): the surface keeps one band's connectivity; the other band goes and
+  // the seam is zipped where the kept band meets the rest of the other mesh.
   t0 = std::chrono::steady_clock::now();
   const bool keep_source = o.transition.keep == TransitionKeep::Source;
-  std::vector<int> src_listed, tgt_listed;
-  for (const PairBands& b : bands) {
-    src_listed.insert(src_listed.end(), b.source.param_vertex.begin(), b.source.param_vertex.end());
-    tgt_listed.insert(tgt_listed.end(), b.target.param_vertex.begin(), b.target.param_vertex.end());
-  }
   const Vertices Xt = X.bottomRows(nt);
-  const DeformedLaplacian ks = deformed_laplacian(src, sconn, r.source_deformed, src_listed);
-  const DeformedLaplacian kt = deformed_laplacian(target, tconn, Xt, tgt_listed);
-  const TriMesh& kept_rest = keep_source ? src : target;
-  Vertices kept = keep_source ? r.source_deformed : Xt;
-  Vertices wanted = Vertices::Zero(kept_rest.num_vertices(), 3);
-  std::vector<int> unknown, kept_band;
-  std::vector<double> share;
-  for (const PairBands& b : bands) {
-    const TransitionBand& own = keep_source ? b.source : b.target;
-    const std::vector<BandPoint>& other = keep_source ? b.source_on_target : b.target_on_source;
-    const DeformedLaplacian& k_own = keep_source ? ks : kt;
-    const DeformedLaplacian& k_other = keep_source ? kt : ks;
-    std::vector<char> on_loop(static_cast<size_t>(kept_rest.num_vertices()), 0);
-    for (int v : own.loop) on_loop[v] = 1;
-    for (size_t k = 0; k < own.vertices.size(); ++k) {
-      const int v = own.vertices[k];
-      const double vv = own.at(v).y();
-      const double tau = keep_source ? 1 - vv : vv;  // the target's share: 1 next to the kept target
-      const double own_share = keep_source ? 1 - tau : tau;
-      kept_band.push_back(v);
-      share.push_back(tau);
-      if (on_loop[v]) {
-        // The target band's loop meets the rest of the source: there it is all source.
-        if (!keep_source) kept.row(v) = blend(other[k], r.source_deformed);
-        continue;
-      }
-      unknown.push_back(v);
-      wanted.row(v) = k_own.gauge(v) * (own_share * k_own.K.row(v) + (1 - own_share) * blend(other[k], k_other.K));
-    }
-  }
-  reconstruct_band(kept_rest, unknown, wanted, kept);
-
-  // Zip (§3.3.1) where the kept band meets the other mesh, which loses its band.
   std::vector<BoundaryCorrespondence> seams(bands.size());
-  std::vector<int> cut_map;
-  TriMesh rest_of_other;
-  {
-    std::vector<int> removed;
-    for (const PairBands& b : bands) {
-      const TransitionBand& gone = keep_source ? b.target : b.source;
-      removed.insert(removed.end(), gone.faces.begin(), gone.faces.end());
-    }
-    rest_of_other = keep_source ? geometry::remove_faces(target, removed, &cut_map)
-                                : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
-    for (size_t p = 0; p < bands.size(); ++p) {
-      const PairBands& b = bands[p];
-      if (keep_source) {
-        seams[p].source_loop = b.source.loop;
-        for (int v : b.target.rim) seams[p].target_loop.push_back(cut_map[v]);
-      } else {
-        for (int v : b.source.rim) seams[p].source_loop.push_back(cut_map[v]);
-        seams[p].target_loop = b.target.loop;
-      }
+  std::vector<int> cut_map, removed;
+  for (const PairBands& b : bands) {
+    const TransitionBand& gone = keep_source ? b.target : b.source;
+    removed.insert(removed.end(), gone.faces.begin(), gone.faces.end());
+  }
+  const TriMesh rest_of_other = keep_source ? geometry::remove_faces(target, removed, &cut_map)
+                                            : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
+  for (size_t p = 0; p < bands.size(); ++p) {
+    const PairBands& b = bands[p];
+    if (keep_source) {
+      seams[p].source_loop = b.source.loop;
+      for (int v : b.target.rim) seams[p].target_loop.push_back(cut_map[v]);
+    } else {
+      for (int v : b.source.rim) seams[p].source_loop.push_back(cut_map[v]);
+      seams[p].target_loop = b.target.loop;
     }
   }
-  ZipResult z = keep_source ? zip_seams(rest_of_other, TriMesh{kept, src.F}, seams)
-                            : zip_seams(TriMesh{kept, target.F}, rest_of_other, seams);
+  ZipResult z = keep_source ? zip_seams(rest_of_other, TriMesh{r.source_deformed, src.F}, seams)
+                            : zip_seams(TriMesh{Xt, target.F}, rest_of_other, seams);
   r.target_map.assign(static_cast<size_t>(nt), -1);
   r.source_map.assign(static_cast<size_t>(ns), -1);
   for (int v = 0; v < nt; ++v) {
@@ -313,16 +275,43 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     const int c = keep_source ? v : cut_map[v];
     if (c >= 0) r.source_map[v] = z.source_map[c];
   }
+  r.timings.zip_ms = ms_since(t0);
+
+  // "We first apply the implicitly defined local deformation gradients onto the LCs before
+  // interpolating them": each kept band vertex wants τ (target) + (1 − τ) (source) of the
+  // deformed curvature normals, τ the target's share (v on the target band, 1 − v on the
+  // source band's: 1 next to the kept target, 0 next to the rest of the source).
+  t0 = std::chrono::steady_clock::now();
+  std::vector<int> src_listed, tgt_listed;
+  for (const PairBands& b : bands) {
+    src_listed.insert(src_listed.end(), b.source.param_vertex.begin(), b.source.param_vertex.end());
+    tgt_listed.insert(tgt_listed.end(), b.target.param_vertex.begin(), b.target.param_vertex.end());
+  }
+  const Vertices Ks = deformed_curvature(src, sconn, r.source_deformed, src_listed);
+  const Vertices Kt = deformed_curvature(target, tconn, Xt, tgt_listed);
   const std::vector<int>& kept_map = keep_source ? r.source_map : r.target_map;
-  for (size_t k = 0; k < kept_band.size(); ++k)
-    if (kept_map[kept_band[k]] >= 0) {
-      r.transition_vertices.push_back(kept_map[kept_band[k]]);
-      r.transition_share.push_back(share[k]);
+  const Eigen::VectorXd area = geometry::vertex_areas(z.mesh);
+  Vertices wanted = Vertices::Zero(z.mesh.num_vertices(), 3);
+  for (const PairBands& b : bands) {
+    const TransitionBand& own = keep_source ? b.source : b.target;
+    const std::vector<BandPoint>& other = keep_source ? b.source_on_target : b.target_on_source;
+    const Vertices& k_own = keep_source ? Ks : Kt;
+    const Vertices& k_other = keep_source ? Kt : Ks;
+    for (size_t k = 0; k < own.vertices.size(); ++k) {
+      const int v = own.vertices[k], m = kept_map[v];
+      if (m < 0) continue;  // zipped away
+      const double tau = keep_source ? 1 - own.at(v).y() : own.at(v).y();
+      const double own_share = keep_source ? 1 - tau : tau;
+      r.transition_vertices.push_back(m);
+      r.transition_share.push_back(tau);
+      wanted.row(m) = area(m) * (own_share * k_own.row(v) + (1 - own_share) * blend(other[k], k_other));
     }
+  }
+  reconstruct_band(z.mesh, r.transition_vertices, wanted);
+  r.timings.smooth_ms = ms_since(t0);  // the band replaces the seam smoothing
   r.mesh = std::move(z.mesh);
   r.strip_faces = std::move(z.strip_faces);
   r.seam_vertices = std::move(z.seam_vertices);
-  r.timings.zip_ms = ms_since(t0);
   return r;
 }
 
