@@ -17,18 +17,6 @@ const char* kTransitionTooltip =
     "Overlapped transition regions (thesis 3.3.3): a band of each mesh next to the seam (edge-path distance below its "
     "width, in the target's units) overlaps the other's; both deform, their details are tied by E_T (w_T = 0.1) and "
     "interpolated across the band instead of smoothing the seam. Configuration-independent.";
-// The widths a first switch to transition mode starts from: module's suggestion for the paired
-// target loops, or a twentieth of the target's size before any pair has a key.
-double first_band_width(const MergeSetup& s) {
-  if (!s.target) return 0.1;
-  double w = 0;
-  try {
-    w = mesh_merge::suggested_transition_width(*s.target, mesh_merge::loop_pairs(s));
-  } catch (const Error&) {
-  }
-  return w > 0 ? w : 0.05 * std::max(1e-9, mesh_merge::bbox_diagonal(s.target->V));
-}
-
 const char* kOptimalTooltip = "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
 
 }  // namespace
@@ -83,7 +71,7 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     if (i % 2) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) tool_ = tools[i], scene_dirty_ = true;
   }
-  ImGui::TextDisabled("keys 1-5 tools, D mode, M merge, Tab result/inputs");
+  ImGui::TextDisabled("keys 1-5 tools, D mode, T transition, M merge, Tab result/inputs");
   if (tool_ == Tool::Paint) draw_paint_controls(v);
 
   MergeSetup next = setup();
@@ -114,7 +102,7 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   if (ImGui::RadioButton("transition regions (thesis 3.3.3)", mode == MergeMode::Transition)) {
     mode = MergeMode::Transition, edit = "mode";
     auto& t = next.options.transition;
-    if (!(t.source_width > 0) || !(t.target_width > 0)) t.source_width = t.target_width = first_band_width(next);
+    if (!(t.source_width > 0) || !(t.target_width > 0)) t.source_width = t.target_width = first_band_width(next);  // merge_app.h
   }
   tooltip(kTransitionTooltip);
   ImGui::BeginDisabled();
@@ -147,8 +135,11 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     if (ImGui::SmallButton("clear")) next.options.handles.clear(), edit = "clear handles";
   }
   int smooth = next.options.smooth_iterations;
+  // Transition regions replace the seam smoothing (§3.3.3), which the module skips there.
+  ImGui::BeginDisabled(mode == MergeMode::Transition);
   ImGui::SliderInt("smoothing iterations", &smooth, 0, 30);
   if (ImGui::IsItemDeactivatedAfterEdit()) next.options.smooth_iterations = smooth, edit = "smoothing";
+  ImGui::EndDisabled();
   if (ImGui::Button("place source at the first pair") && !next.pairs.empty()) {
     // The placed source has the rest source's connectivity, so its loops index the rest mesh too.
     next.placement = mesh_merge::suggest_placement(*next.source, source_.loops()[static_cast<size_t>(next.pairs[0].source_loop)],
