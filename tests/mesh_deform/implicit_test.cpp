@@ -42,13 +42,19 @@ Eigen::Matrix4d bend_and_twist(const TriMesh& m, double twist) {
   return Bend * Down * Tw;
 }
 
+// The whole bar as ROI, its bottom and top tenths the two region handles.
+Selection whole_bar_two_ends(const TriMesh& m) {
+  Selection s;
+  s.roi = t::all_vertices(m);
+  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("mesh_deform: implicit method moves every vertex by a similarity applied to all handles") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
-  Selection s;
-  s.roi = t::all_vertices(m);
-  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
+  const Selection s = whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
   SUBCASE("similarity, features scaled (Eq. 2.11)") {
     ImplicitOptions o;
@@ -208,9 +214,7 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
 
 TEST_CASE("mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked, vanish when consistent and pull when not") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
-  Selection s;
-  s.roi = t::all_vertices(m);
-  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
+  const Selection s = whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
   ImplicitOptions o;
   o.shearing = ShearingRemoval::None;  // E_T acts in the first system (Eq. 2.8)
