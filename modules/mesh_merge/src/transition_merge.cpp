@@ -105,12 +105,14 @@ int flip_loop_ears(TriMesh& m, const std::vector<BoundaryCorrespondence>& pairs)
     return Eigen::Vector3d((m.V.row(b) - m.V.row(a)).cross(m.V.row(c) - m.V.row(a)));
   };
   int flips = 0;
-  for (bool again = true; again;) {
-    again = false;
+  // Flips of one pass touch disjoint vertices, so the pass's connectivity stays right for them.
+  for (int pass_flips = -1; pass_flips != 0;) {
+    pass_flips = 0;
     const Connectivity conn(m);
-    for (int f = 0; f < m.num_faces() && !again; ++f) {
+    std::vector<char> touched(static_cast<size_t>(m.num_vertices()), 0);
+    for (int f = 0; f < m.num_faces(); ++f) {
       if (!on_loop[m.F(f, 0)] || !on_loop[m.F(f, 1)] || !on_loop[m.F(f, 2)]) continue;
-      for (int j = 0; j < 3 && !again; ++j) {
+      for (int j = 0; j < 3; ++j) {
         const int e = conn.face_edge(f, j);
         if (conn.is_boundary_edge(e) || conn.edge_face_count(e) != 2) continue;
         const int x = m.F(f, j), y = m.F(f, (j + 1) % 3), b = m.F(f, (j + 2) % 3);
@@ -120,21 +122,24 @@ int flip_loop_ears(TriMesh& m, const std::vector<BoundaryCorrespondence>& pairs)
         for (int k = 0; k < 3; ++k)
           if (m.F(g, k) != x && m.F(g, k) != y) d = m.F(g, k);
         if (d < 0 || on_loop[d] || conn.find_edge(b, d) >= 0) continue;
+        if (touched[x] || touched[y] || touched[b] || touched[d]) continue;
         const Eigen::Vector3d before = normal(x, y, b).normalized() + normal(y, x, d).normalized();
         if (!(normal(x, d, b).dot(before) > 0) || !(normal(d, y, b).dot(before) > 0)) continue;
         m.F.row(f) << x, d, b;
         m.F.row(g) << d, y, b;
-        ++flips;
-        again = true;
+        touched[x] = touched[y] = touched[b] = touched[d] = 1;
+        ++pass_flips;
+        break;
       }
     }
+    flips += pass_flips;
   }
   return flips;
 }
 
-Eigen::RowVector3d blend(const BandPoint& p, const Vertices& X, int offset = 0) {
+Eigen::RowVector3d blend(const BandPoint& p, const Vertices& X) {
   Eigen::RowVector3d r = Eigen::RowVector3d::Zero();
-  for (int j = 0; j < 3; ++j) r += p.weights[j] * X.row(p.vertices[j] + offset);
+  for (int j = 0; j < 3; ++j) r += p.weights[j] * X.row(p.vertices[j]);
   return r;
 }
 

@@ -77,7 +77,7 @@ struct MergeTimings {
   double setup_ms = 0;   // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
   double solve_ms = 0;   // both implicit Laplacian solves and the polar decompositions
   double zip_ms = 0;
-  double smooth_ms = 0;
+  double smooth_ms = 0;  // Transition mode: the band's reconstruction, which replaces the smoothing
   double total_ms = 0;
 };
 
