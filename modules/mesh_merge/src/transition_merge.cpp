@@ -137,6 +137,11 @@ int flip_loop_ears(TriMesh& m, const std::vector<BoundaryCorrespondence>& pairs)
   return flips;
 }
 
+[[noreturn]] void bands_overlap(int a, size_t b) {
+  throw InvalidArgument("mesh_merge::merge(): the transition bands of pairs " + std::to_string(a) + " and " +
+                        std::to_string(b) + " overlap; choose smaller widths");
+}
+
 Eigen::RowVector3d blend(const BandPoint& p, const Vertices& X) {
   Eigen::RowVector3d r = Eigen::RowVector3d::Zero();
   for (int j = 0; j < 3; ++j) r += p.weights[j] * X.row(p.vertices[j]);
@@ -180,9 +185,7 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     b.source = transition_band(src, sconn, c.source_loop, su, o.transition.source_width, false, "source");
     for (const auto& [list, offset] : {std::pair{&b.source.vertices, 0}, std::pair{&b.target.vertices, ns}})
       for (int v : *list) {
-        if (band_of[v + offset] >= 0)
-          throw InvalidArgument("mesh_merge::merge(): the transition bands of pairs " + std::to_string(band_of[v + offset]) +
-                                " and " + std::to_string(p) + " overlap; choose smaller widths");
+        if (band_of[v + offset] >= 0) bands_overlap(band_of[v + offset], p);
         band_of[v + offset] = static_cast<int>(p);
       }
     b.source_on_target = overlap_points(b.source, b.target);
@@ -204,6 +207,11 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     }
     bands.push_back(std::move(b));
   }
+  // A rim inside another pair's band would move under the loop that is constrained onto it.
+  for (size_t p = 0; p < bands.size(); ++p)
+    for (const auto& [list, offset] : {std::pair{&bands[p].source.rim, 0}, std::pair{&bands[p].target.rim, ns}})
+      for (int v : *list)
+        if (band_of[v + offset] >= 0 && band_of[v + offset] != static_cast<int>(p)) bands_overlap(band_of[v + offset], p);
   const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, on_rim, false);
 
   // One implicit Laplacian system over both meshes (source first, then the target): the whole
