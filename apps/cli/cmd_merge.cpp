@@ -15,12 +15,18 @@ namespace lapis::cli {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: lapis merge --source S --target T --pairs PAIRS.json --out OUT [--mode independent|dependent]\n"
-    "                   [--handles H.json] [--smooth N] [--roi-width W] [--report OUT.json]\n"
+    "usage: lapis merge --source S --target T --pairs PAIRS.json --out OUT\n"
+    "                   [--mode independent|dependent|transition] [--handles H.json] [--smooth N]\n"
+    "                   [--roi-width W] [--source-width W] [--target-width W] [--keep source|target]\n"
+    "                   [--report OUT.json]\n"
     "  Deforms the source part so its open boundary loops meet the target's and zips the seams.\n"
     "  independent (default, thesis 3.3.1): the result does not depend on where the source is;\n"
     "  dependent (3.3.2): the source stays where it is, only vertices within --roi-width of its\n"
     "  boundary move (0: the loop diameter) and the --handles vertices stay fixed.\n"
+    "  transition (3.3.3, configuration-independent): bands of --source-width and --target-width\n"
+    "  (edge-path distance to the loop, target units; default a fifth of the target loop diameter)\n"
+    "  overlap and blend the two meshes' details; the surface keeps the --keep mesh's band\n"
+    "  (default source) and the seam is not smoothed (--smooth is ignored).\n"
     "  PAIRS.json: one entry per source boundary loop, each with its key correspondences\n"
     "  (0-based vertex indices, source loop forward = target loop backward):\n"
     "    {\"pairs\": [{\"keys\": [{\"source\": 12, \"target\": 830}, {\"source\": 40, \"target\": 17}]}]}\n"
@@ -29,14 +35,23 @@ constexpr const char* kUsage =
 
 int run(const std::vector<std::string>& argv) {
   const Args args(argv);
-  args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width", "--report"});
+  args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
+                   "--source-width", "--target-width", "--keep", "--report"});
   mesh_merge::MergeOptions o;
   const std::string mode = args.get("--mode", "independent");
   if (mode == "dependent") {
     o.mode = mesh_merge::MergeMode::Dependent;
+  } else if (mode == "transition") {
+    o.mode = mesh_merge::MergeMode::Transition;
   } else if (mode != "independent") {
-    throw UsageError("--mode must be independent or dependent, got '" + mode + "'");
+    throw UsageError("--mode must be independent, dependent or transition, got '" + mode + "'");
   }
+  const bool transition = o.mode == mesh_merge::MergeMode::Transition;
+  for (const char* flag : {"--source-width", "--target-width", "--keep"})
+    if (args.has(flag) && !transition) throw UsageError(std::string(flag) + " needs --mode transition");
+  const std::string keep = args.get("--keep", "source");
+  if (keep == "target") o.transition.keep = mesh_merge::TransitionKeep::Target;
+  else if (keep != "source") throw UsageError("--keep must be source or target, got '" + keep + "'");
   if (args.has("--handles")) {
     if (o.mode != mesh_merge::MergeMode::Dependent) throw UsageError("--handles needs --mode dependent");
     o.handles = mesh_merge::read_handles_file(args.get("--handles"));
@@ -47,6 +62,12 @@ int run(const std::vector<std::string>& argv) {
   const geometry::TriMesh source = geometry::read_mesh(args.get("--source"));
   const geometry::TriMesh target = geometry::read_mesh(args.get("--target"));
   const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
+  if (transition) {
+    // Only values the module rejects with a clearer message (<= 0) pass the flag parser as well.
+    const double suggested = mesh_merge::suggested_transition_width(target, pairs);
+    o.transition.source_width = args.get_double("--source-width", suggested, -1e300, 1e300);
+    o.transition.target_width = args.get_double("--target-width", suggested, -1e300, 1e300);
+  }
 
   const mesh_merge::MergeResult r = mesh_merge::merge(source, target, pairs, o);
   const mesh_merge::SeamQuality q = mesh_merge::seam_quality(target, r);
@@ -62,6 +83,12 @@ int run(const std::vector<std::string>& argv) {
   j["roi_vertices"] = r.roi_vertices;
   j["boundary_refine_levels"] = r.refine_levels;
   j["degenerate_vertices"] = r.solver.degenerate_vertices;
+  if (transition)
+    j["transition"] = {{"source_width", o.transition.source_width},
+                       {"target_width", o.transition.target_width},
+                       {"weight", o.transition.weight},
+                       {"keep", keep},
+                       {"band_vertices", r.transition_vertices.size()}};
   j["timings_ms"] = {{"setup", r.timings.setup_ms}, {"solve", r.timings.solve_ms}, {"zip", r.timings.zip_ms},
                      {"smooth", r.timings.smooth_ms}, {"total", r.timings.total_ms}};
   j["seam"] = {{"valid", q.valid()},

@@ -22,11 +22,24 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 bool same_options(const mesh_merge::MergeOptions& a, const mesh_merge::MergeOptions& b) {
   // What the Merger's precompute depends on (smoothing is set per merge).
+  // Transition mode sets up everything in merge(), from the options the Merger holds.
   return a.mode == b.mode && a.roi_width == b.roi_width && a.handles == b.handles && a.refine_ratio == b.refine_ratio &&
-         a.refine_levels == b.refine_levels;
+         a.refine_levels == b.refine_levels && a.transition.source_width == b.transition.source_width &&
+         a.transition.target_width == b.transition.target_width && a.transition.weight == b.transition.weight &&
+         a.transition.keep == b.transition.keep;
 }
 
 }  // namespace
+
+double first_band_width(const mesh_merge::MergeSetup& s) {
+  if (!s.target) return 0.1;
+  double w = 0;
+  try {
+    w = mesh_merge::suggested_transition_width(*s.target, mesh_merge::loop_pairs(s));
+  } catch (const Error&) {
+  }
+  return w > 0 ? w : 0.05 * std::max(1e-9, mesh_merge::bbox_diagonal(s.target->V));
+}
 
 const char* tool_name(Tool t) {
   switch (t) {
@@ -200,6 +213,19 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
       MergeSetup next = setup();
       const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;
       next.options.mode = dependent ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+      commit(v, std::move(next), "mode");
+      break;
+    }
+    case GLFW_KEY_T: {  // transition regions (§3.3.3) on / off, as the panel's radio button does
+      MergeSetup next = setup();
+      auto& o = next.options;
+      if (o.mode == mesh_merge::MergeMode::Transition) {
+        o.mode = mesh_merge::MergeMode::Independent;
+      } else {
+        o.mode = mesh_merge::MergeMode::Transition;
+        if (!(o.transition.source_width > 0) || !(o.transition.target_width > 0))
+          o.transition.source_width = o.transition.target_width = first_band_width(next);
+      }
       commit(v, std::move(next), "mode");
       break;
     }

@@ -32,6 +32,11 @@ constexpr double kAutoMergeMs = 500.0;
 enum class Tool { PairLoops, Keys, Handles, Move, Paint };
 const char* tool_name(Tool t);
 
+// The band widths a first switch to transition mode (§3.3.3) starts from: the module's
+// suggestion for the paired target loops, or a twentieth of the target's size before any pair
+// has a key.
+double first_band_width(const mesh_merge::MergeSetup& s);
+
 // The undoable state: the setup and a revision number that stays with it through undo and
 // redo, so a merge result can be matched to the setup it was computed for.
 struct Snapshot {

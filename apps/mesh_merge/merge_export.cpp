@@ -40,6 +40,10 @@ void MergeApp::export_all(viewer::Viewer& v) {
     if (s.options.mode == mesh_merge::MergeMode::Dependent) {
       mesh_merge::write_handles_file(handles, s.options.handles);
       cmd += " --mode dependent --handles " + handles + " --roi-width " + shortest(s.options.roi_width);
+    } else if (s.options.mode == mesh_merge::MergeMode::Transition) {
+      const auto& t = s.options.transition;
+      cmd += " --mode transition --source-width " + shortest(t.source_width) + " --target-width " + shortest(t.target_width) +
+             " --keep " + (t.keep == mesh_merge::TransitionKeep::Source ? "source" : "target");
     }
     geometry::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
     v.flash("exported " + merged + " and " + pairs);

@@ -14,7 +14,9 @@ void tooltip(const char* text) {
 }
 
 const char* kTransitionTooltip =
-    "Not implemented yet: the mesh_merge module has no overlapped transition regions (thesis 3.3.3, E_T with w_T = 0.1).";
+    "Overlapped transition regions (thesis 3.3.3): a band of each mesh next to the seam (edge-path distance below its "
+    "width, in the target's units) overlaps the other's; both deform, their details are tied by E_T (w_T = 0.1) and "
+    "interpolated across the band instead of smoothing the seam. Configuration-independent.";
 const char* kOptimalTooltip = "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
 
 }  // namespace
@@ -69,7 +71,7 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     if (i % 2) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) tool_ = tools[i], scene_dirty_ = true;
   }
-  ImGui::TextDisabled("keys 1-5 tools, D mode, M merge, Tab result/inputs");
+  ImGui::TextDisabled("keys 1-5 tools, D mode, T transition, M merge, Tab result/inputs");
   if (tool_ == Tool::Paint) draw_paint_controls(v);
 
   MergeSetup next = setup();
@@ -91,20 +93,38 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   }
 
   ImGui::Separator();
-  int mode = next.options.mode == mesh_merge::MergeMode::Independent ? 0 : 1;
-  if (ImGui::RadioButton("configuration-independent (thesis 3.3.1)", mode == 0)) mode = 0, edit = "mode";
-  if (ImGui::RadioButton("configuration-dependent (thesis 3.3.2)", mode == 1)) mode = 1, edit = "mode";
-  next.options.mode = mode == 0 ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+  using mesh_merge::MergeMode;
+  MergeMode& mode = next.options.mode;
+  if (ImGui::RadioButton("configuration-independent (thesis 3.3.1)", mode == MergeMode::Independent))
+    mode = MergeMode::Independent, edit = "mode";
+  if (ImGui::RadioButton("configuration-dependent (thesis 3.3.2)", mode == MergeMode::Dependent))
+    mode = MergeMode::Dependent, edit = "mode";
+  if (ImGui::RadioButton("transition regions (thesis 3.3.3)", mode == MergeMode::Transition)) {
+    mode = MergeMode::Transition, edit = "mode";
+    auto& t = next.options.transition;
+    if (!(t.source_width > 0) || !(t.target_width > 0)) t.source_width = t.target_width = first_band_width(next);  // merge_app.h
+  }
+  tooltip(kTransitionTooltip);
   ImGui::BeginDisabled();
   bool off = false;
-  ImGui::RadioButton("transition regions (thesis 3.3.3)", off);
-  tooltip(kTransitionTooltip);
   ImGui::RadioButton("optimal boundary (thesis 3.4)", off);
   tooltip(kOptimalTooltip);
-  float band[2] = {0.1f, 0.1f};
-  ImGui::SliderFloat2("band widths", band, 0.0f, 1.0f);
-  tooltip(kTransitionTooltip);
   ImGui::EndDisabled();
+  if (mode == MergeMode::Transition) {
+    auto& t = next.options.transition;
+    float band[2] = {static_cast<float>(t.source_width), static_cast<float>(t.target_width)};
+    const float most = static_cast<float>(std::max(1e-3, 0.5 * mesh_merge::bbox_diagonal(target_.mesh.V)));
+    ImGui::SliderFloat2("band widths (source, target)", band, 1e-3f * most, most);
+    tooltip(kTransitionTooltip);
+    if (ImGui::IsItemDeactivatedAfterEdit()) t.source_width = band[0], t.target_width = band[1], edit = "band widths";
+    int keep = t.keep == mesh_merge::TransitionKeep::Source ? 0 : 1;
+    ImGui::TextUnformatted("band connectivity:");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("source's", keep == 0)) keep = 0, edit = "band connectivity";
+    ImGui::SameLine();
+    if (ImGui::RadioButton("target's", keep == 1)) keep = 1, edit = "band connectivity";
+    t.keep = keep == 0 ? mesh_merge::TransitionKeep::Source : mesh_merge::TransitionKeep::Target;
+  }
 
   if (next.options.mode == mesh_merge::MergeMode::Dependent) {
     float width = static_cast<float>(next.options.roi_width);
@@ -115,8 +135,11 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     if (ImGui::SmallButton("clear")) next.options.handles.clear(), edit = "clear handles";
   }
   int smooth = next.options.smooth_iterations;
+  // Transition regions replace the seam smoothing (§3.3.3), which the module skips there.
+  ImGui::BeginDisabled(mode == MergeMode::Transition);
   ImGui::SliderInt("smoothing iterations", &smooth, 0, 30);
   if (ImGui::IsItemDeactivatedAfterEdit()) next.options.smooth_iterations = smooth, edit = "smoothing";
+  ImGui::EndDisabled();
   if (ImGui::Button("place source at the first pair") && !next.pairs.empty()) {
     // The placed source has the rest source's connectivity, so its loops index the rest mesh too.
     next.placement = mesh_merge::suggest_placement(*next.source, source_.loops()[static_cast<size_t>(next.pairs[0].source_loop)],

@@ -74,6 +74,11 @@ void MergeApp::update_scene(viewer::Viewer& v) {
     merged.colors = kTargetColor.transpose().replicate(r.mesh.num_vertices(), 1);
     for (int m : r.source_map)
       if (m >= 0) merged.colors.row(m) = kSourceColor.transpose();
+    // The transition band (§3.3.3) shaded by how much of each mesh its details come from.
+    for (size_t k = 0; k < r.transition_vertices.size(); ++k) {
+      const float tau = static_cast<float>(r.transition_share[k]);
+      merged.colors.row(r.transition_vertices[k]) = (tau * kTargetColor + (1 - tau) * kSourceColor).transpose();
+    }
   }
   ++merged.version;
 

@@ -351,6 +351,28 @@ TEST_CASE("apps: merge app — undo takes the key back (the module's error names
   check_equals_cli(e, dir / "redone_cli.obj");
 }
 
+TEST_CASE("apps: merge app — transition regions (T) merge watertight and export the widths lapis merge needs") {
+  const fs::path dir = scratch_dir(), events = dir / "transition.json", prefix = dir / "transition";
+  // The recorded session, then T (transition regions on, suggested widths) and M.
+  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
+  long frame = j["events"].back()["frame"].get<long>();
+  for (int k : {84 /* T */, 77 /* M */}) {
+    frame += 20;
+    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", k}, {"action", 1}, {"mods", 0}});
+    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", k}, {"action", 0}, {"mods", 0}});
+  }
+  {
+    std::ofstream out(events);
+    out << j.dump();
+  }
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string()) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
+  CHECK(e.command.find("--keep source") != std::string::npos);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "transition_cli.obj");
+}
+
 TEST_CASE("apps: merge app — a non-manifold source is refused with the module's message, not a crash") {
   const fs::path dir = scratch_dir(), bad = dir / "fin.obj", events = dir / "merge_now.json", log = dir / "fin.log";
   {

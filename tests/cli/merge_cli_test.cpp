@@ -50,6 +50,33 @@ TEST_CASE("cli: lapis merge writes a watertight merge and its report") {
   fs::remove_all(d);
 }
 
+TEST_CASE("cli: lapis merge --mode transition blends a band and reports it") {
+  const fs::path d = scratch_dir();
+  const std::string common = "--source " + asset("dome.obj").string() + " --target " + asset("neck.obj").string() +
+                             " --pairs " + asset("dome_on_neck.json").string() + " --mode transition";
+  for (const std::string keep : {"source", "target"}) {
+    CAPTURE(keep);
+    const Run r = lapis_merge(common + " --keep " + keep + " --out " + (d / "t.obj").string() + " --report " +
+                              (d / "t.json").string());
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    std::ifstream in(d / "t.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    CHECK(j["mode"] == "transition");
+    CHECK(j["seam"]["valid"] == true);
+    CHECK(j["seam"]["boundary_edges"] == 0);
+    CHECK(j["seam"]["max_target_displacement"] == 0.0);
+    CHECK(j["transition"]["keep"] == keep);
+    CHECK(j["transition"]["weight"] == 0.1);
+    CHECK(j["transition"]["source_width"].get<double>() > 0);
+    CHECK(j["transition"]["band_vertices"].get<int>() > 0);
+    CHECK(fs::file_size(d / "t.obj") > 1000);
+  }
+  const Run w = lapis_merge(common + " --source-width 0.05 --target-width 0.05 --out " + (d / "w.obj").string());
+  CHECK_MESSAGE(w.status == 0, w.output);
+  CHECK(w.output.find("\"source_width\": 0.05") != std::string::npos);
+  fs::remove_all(d);
+}
+
 TEST_CASE("cli: lapis merge fails with one line naming the cause") {
   const fs::path d = scratch_dir();
   {
@@ -63,6 +90,14 @@ TEST_CASE("cli: lapis merge fails with one line naming the cause") {
         std::string::npos);
   const Run mode = lapis_merge("--source a --target b --pairs c --out d --mode sideways");
   CHECK(mode.status == 2);
-  CHECK(mode.output.find("--mode must be independent or dependent") != std::string::npos);
+  CHECK(mode.output.find("--mode must be independent, dependent or transition") != std::string::npos);
+  const Run width = lapis_merge("--source " + asset("dome.obj").string() + " --target " + asset("neck.obj").string() +
+                                " --pairs " + asset("dome_on_neck.json").string() + " --out " + (d / "x.obj").string() +
+                                " --mode transition --source-width 0");
+  CHECK(width.status == 1);
+  CHECK(width.output.find("transition source_width and target_width must be finite and > 0") != std::string::npos);
+  const Run stray = lapis_merge("--source a --target b --pairs c --out d --target-width 0.1");
+  CHECK(stray.status == 2);
+  CHECK(stray.output.find("--target-width needs --mode transition") != std::string::npos);
   fs::remove_all(d);
 }

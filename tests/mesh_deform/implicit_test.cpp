@@ -42,13 +42,19 @@ Eigen::Matrix4d bend_and_twist(const TriMesh& m, double twist) {
   return Bend * Down * Tw;
 }
 
+// The whole bar as ROI, its bottom and top tenths the two region handles.
+Selection whole_bar_two_ends(const TriMesh& m) {
+  Selection s;
+  s.roi = t::all_vertices(m);
+  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("mesh_deform: implicit method moves every vertex by a similarity applied to all handles") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
-  Selection s;
-  s.roi = t::all_vertices(m);
-  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
+  const Selection s = whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
   SUBCASE("similarity, features scaled (Eq. 2.11)") {
     ImplicitOptions o;
@@ -204,4 +210,38 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
     Xg = guided.deform(HandleTransforms{{t::rotation_about(Eigen::Vector3d::UnitZ(), deg, Eigen::Vector3d(0.5, 0.5, 0))}, {}});
   CHECK_FALSE(guided.stats().guided);
   CHECK((Xg - m.V).norm() <= 1e-9 * m.V.norm());
+}
+
+TEST_CASE("mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked, vanish when consistent and pull when not") {
+  const TriMesh m = t::box_bar(4, 1.0, 4.0);
+  const Selection s = whole_bar_two_ends(m);
+  const double diag = t::bbox_diagonal(m.V);
+  ImplicitOptions o;
+  o.shearing = ShearingRemoval::None;  // E_T acts in the first system (Eq. 2.8)
+  const Eigen::Matrix4d T = similarity(60, Eigen::Vector3d(1, 1, 0), 1.3, Eigen::Vector3d(0, 2, 0));
+  const HandleTransforms h{{T, T}, {}};
+  ImplicitLaplacianDeformer plain(m, o);
+  plain.set_selection(s);
+  const Vertices X0 = plain.deform(h);
+  auto nearest = [&](const Eigen::Vector3d& p) {
+    int best = 0;
+    for (int v = 1; v < m.num_vertices(); ++v)
+      if ((m.V.row(v).transpose() - p).norm() < (m.V.row(best).transpose() - p).norm()) best = v;
+    return best;
+  };
+  const int side = nearest({0.5, 0.0, 2.0}), edge = nearest({0.0, 0.0, 2.0});  // flat face, bar edge: δ differ
+  // A vertex tied to itself: E_T vanishes at the similarity, the result is the plain one.
+  ImplicitLaplacianDeformer self(m, o);
+  self.set_selection(s);
+  self.set_laplacian_blends({{side, {side, edge, edge}, {1, 0, 0}}}, 0.1);
+  CHECK((self.deform(h) - X0).rowwise().norm().maxCoeff() <= 1e-9 * diag);
+  // Tied to a vertex with another δ: the term pulls the solution away from the similarity.
+  ImplicitLaplacianDeformer pull(m, o);
+  pull.set_selection(s);
+  pull.set_laplacian_blends({{side, {edge, edge, edge}, {0.5, 0.5, 0}}}, 10.0);
+  CHECK((pull.deform(h) - X0).rowwise().norm().maxCoeff() > 1e-4 * diag);
+  CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({}, 0.0), doctest::Contains("set_laplacian_blends(): weight must be finite and > 0"),
+                       lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({{side, {edge, m.num_vertices(), edge}, {1, 0, 0}}}, 0.1),
+                       doctest::Contains("has a vertex out of range or a weight that is not finite"), lapis::InvalidArgument);
 }

@@ -7,12 +7,15 @@
 #include <filesystem>
 #include <random>
 
+#include <doctest/doctest.h>
+
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/mesh_edit.h"
 #include "lapis/geometry/procedural.h"
 #include "lapis/mesh_merge/cut.h"
 #include "lapis/mesh_merge/merge.h"
+#include "lapis/mesh_merge/metrics.h"
 
 namespace lapis::mesh_merge::test {
 
@@ -82,6 +85,18 @@ inline TriMesh split_column() {
 inline std::vector<LoopPair> tube_in_column(const TriMesh& src, const TriMesh& tgt) {
   return {LoopPair{{KeyCorrespondence{loop_vertex_max_x(src, 0.0), loop_vertex_max_x(tgt, 1.0)}}},
           LoopPair{{KeyCorrespondence{loop_vertex_max_x(src, 1.0), loop_vertex_max_x(tgt, 2.0)}}}};
+}
+
+// Seam watertight, the whole merged mesh manifold with no degenerate face, strips not slivers.
+inline void require_watertight(const TriMesh& target, const MergeResult& r) {
+  const SeamQuality q = seam_quality(target, r);
+  CHECK(q.seam_boundary_edges == 0);
+  CHECK(q.non_manifold_edges == 0);
+  CHECK(q.non_manifold_vertices == 0);
+  CHECK(q.degenerate_faces == 0);
+  CHECK(q.valid());
+  CHECK(q.min_strip_angle_deg > 5.0);
+  CHECK(geometry::validate(r.mesh).ok());
 }
 
 inline std::filesystem::path external(const std::string& name) {

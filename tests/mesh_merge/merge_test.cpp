@@ -10,23 +10,12 @@ namespace {
 
 int boundary_loop_count(const TriMesh& m) { return static_cast<int>(geometry::Connectivity(m).boundary_loops().size()); }
 
-void require_watertight(const TriMesh& target, const MergeResult& r) {
-  const SeamQuality q = seam_quality(target, r);
-  CHECK(q.seam_boundary_edges == 0);
-  CHECK(q.non_manifold_edges == 0);
-  CHECK(q.non_manifold_vertices == 0);
-  CHECK(q.degenerate_faces == 0);
-  CHECK(q.valid());
-  CHECK(q.min_strip_angle_deg > 5.0);
-  CHECK(geometry::validate(r.mesh).ok());
-}
-
 }  // namespace
 
 TEST_CASE("mesh_merge: one loop pair gives a watertight manifold seam") {
   const TriMesh src = test::dome(), tgt = test::body();
   const MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt));
-  require_watertight(tgt, r);
+  test::require_watertight(tgt, r);
   // The body's bottom loop stays open; the top one is closed by the dome.
   CHECK(boundary_loop_count(r.mesh) == 1);
   CHECK(geometry::genus(r.mesh) == 0);
@@ -37,7 +26,7 @@ TEST_CASE("mesh_merge: one loop pair gives a watertight manifold seam") {
 TEST_CASE("mesh_merge: several loop pairs at once (a tube between two column halves)") {
   const TriMesh src = test::tube(), tgt = test::split_column();
   const MergeResult r = merge(src, tgt, test::tube_in_column(src, tgt));
-  require_watertight(tgt, r);
+  test::require_watertight(tgt, r);
   CHECK(boundary_loop_count(r.mesh) == 2);              // the column's two outer ends
   CHECK(geometry::connected_components(r.mesh).count == 1);
   // The tube widened from radius 0.5 to the column's 1 at both ends.
@@ -78,7 +67,7 @@ TEST_CASE("mesh_merge: merging a part back onto the rest of its mesh returns the
   MergeOptions o;
   o.refine_levels = 0;  // the shared loop must stay vertex for vertex
   const MergeResult r = merge(cut.above, cut.below, pairs, o);
-  require_watertight(cut.below, r);
+  test::require_watertight(cut.below, r);
   // Source vertices off the smoothed band: back where they were on the sphere, up to the
   // one-sided boundary normals (frames differ slightly across the cut).
   std::vector<char> band(static_cast<size_t>(r.mesh.num_vertices()), 0);
@@ -112,7 +101,7 @@ TEST_CASE("mesh_merge: configuration-dependent merging keeps the handles and the
   o.handles = handles;
   o.roi_width = 0.5;
   const MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt), o);
-  require_watertight(tgt, r);
+  test::require_watertight(tgt, r);
   CHECK(r.refine_levels == 0);
   CHECK(r.roi_vertices < src.num_vertices());
   for (int h : handles) CHECK(r.mesh.V.row(r.source_map[h]) == src.V.row(h));
@@ -129,7 +118,7 @@ TEST_CASE("mesh_merge: a short boundary is refined first (§2.5) and still merge
   CHECK(r.source_rest.num_vertices() > src.num_vertices());
   CHECK(r.source_boundary.size() > 3 * geometry::Connectivity(src).boundary_loops()[0].size());
   CHECK(r.source_map.size() == static_cast<size_t>(src.num_vertices()));
-  require_watertight(tgt, r);
+  test::require_watertight(tgt, r);
 }
 
 TEST_CASE("mesh_merge: a source of genus one (a torus with a hole) merges onto the body") {
@@ -147,7 +136,7 @@ TEST_CASE("mesh_merge: a source of genus one (a torus with a hole) merges onto t
   const auto& loop = cs.boundary_loops()[0];
   const int key = *std::max_element(loop.begin(), loop.end(), [&](int a, int b) { return src.V(a, 2) < src.V(b, 2); });
   const MergeResult r = merge(src, tgt, {LoopPair{{{key, test::loop_vertex_max_x(tgt, 2.0)}}}});
-  require_watertight(tgt, r);
+  test::require_watertight(tgt, r);
   CHECK(geometry::genus(r.mesh) == 1);
 }
 

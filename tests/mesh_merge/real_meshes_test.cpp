@@ -59,3 +59,23 @@ TEST_CASE("mesh_merge: real meshes: the mannequin's head onto the man's body") {
   // Left for the README figure (scripts/render_mesh.py).
   geometry::write_obj(std::filesystem::temp_directory_path() / "lapis_merge_devil_head_on_man.obj", r.mesh);
 }
+
+TEST_CASE("mesh_merge: real meshes: transition regions merge the mannequin's head onto the man's body") {
+  const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -14.0}, {0, 0, 1});
+  const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.36}, {0, 0, 1});
+  const std::vector<LoopPair> pairs{LoopPair{{{extreme_loop_vertex(devil.above, 0), extreme_loop_vertex(man.below, 0)}}}};
+  MergeOptions o;
+  o.mode = MergeMode::Transition;
+  o.transition.source_width = o.transition.target_width = suggested_transition_width(man.below, pairs);
+  for (TransitionKeep keep : {TransitionKeep::Source, TransitionKeep::Target}) {
+    o.transition.keep = keep;
+    const MergeResult r = merge(devil.above, man.below, pairs, o);
+    const SeamQuality q = seam_quality(man.below, r);
+    MESSAGE("keep " << (keep == TransitionKeep::Source ? "source" : "target") << ": " << r.timings.total_ms << " ms, "
+                    << r.transition_vertices.size() << " band vertices, seam dihedral mean " << q.seam_dihedral_mean_deg);
+    CHECK(q.valid());
+    CHECK(q.max_target_displacement == 0.0);
+    CHECK(geometry::validate(r.mesh).ok());
+    CHECK(!r.transition_vertices.empty());
+  }
+}

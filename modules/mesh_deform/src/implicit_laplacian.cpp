@@ -43,7 +43,7 @@ struct ImplicitLaplacianDeformer::Impl {
   bool has_coherence = false;
   // Kept for the large-rotation guide system, built on the first frame that needs it.
   detail::Stencil stencil;
-  solver::SparseMatrix A_L, A_R, A_T;
+  solver::SparseMatrix A_L, A_R, A_T, A_B;
   solver::SparseMatrix metric_R;  // Dᵀ D ⊗ I₃ over A_R's rows (E_R's pairs)
   double weight_R = 0, weight_T = 0;
   std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
@@ -53,6 +53,7 @@ struct ImplicitLaplacianDeformer::Impl {
   solver::DenseMatrix guide_weights;               // φ_k at each guide vertex (rows) per handle
   solver::DenseMatrix guide_rest;                  // M_c(v') of the guide rows
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
+  solver::DenseMatrix blend_rest;               // E_T rows (§3.3.3) at the rest state
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
 };
 
@@ -67,6 +68,22 @@ void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
   if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0))
     throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight and transform_weight must be > 0");
   options_ = options;
+  mark_dirty();
+}
+
+void ImplicitLaplacianDeformer::set_laplacian_blends(std::vector<LaplacianBlend> blends, double weight) {
+  constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_laplacian_blends()";
+  if (!(weight > 0) || !std::isfinite(weight)) throw InvalidArgument(std::string(fn) + ": weight must be finite and > 0");
+  const int n = mesh_.num_vertices();
+  auto in_range = [n](int v) { return v >= 0 && v < n; };
+  for (const LaplacianBlend& b : blends) {
+    bool ok = in_range(b.vertex);
+    for (int k = 0; k < 3; ++k) ok = ok && in_range(b.others[k]) && std::isfinite(b.weights[k]);
+    if (!ok) throw InvalidArgument(std::string(fn) + ": term at vertex " + std::to_string(b.vertex) +
+                                   " has a vertex out of range or a weight that is not finite");
+  }
+  blends_ = std::move(blends);
+  blend_weight_ = weight;
   mark_dirty();
 }
 
@@ -161,23 +178,41 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     }
   }
 
+  // E_T (§3.3.3): row M_i δ_i − Σ_j b_j M_j δ_j, linear in the unknowns like E_L's M_i δ_i.
+  SparseRows EB(n);
+  auto add_transformed = [&](int i, double b) {
+    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) EB.add(G.vertex[k], b * G.g[k].dot(deltaP.row(i)));
+  };
+  for (const LaplacianBlend& t : blends_) {
+    bool defined = G.offsets[t.vertex] < G.offsets[t.vertex + 1], free = touches[t.vertex];
+    for (int j : t.others) defined = defined && G.offsets[j] < G.offsets[j + 1], free = free || touches[j];
+    if (!defined || !free) continue;
+    EB.begin_row();
+    add_transformed(t.vertex, 1.0);
+    for (int k = 0; k < 3; ++k)
+      if (t.weights[k] != 0) add_transformed(t.others[k], -t.weights[k]);
+  }
+
   m->first = solver::LeastSquares(n);
   m->A_L = EL.matrix();
   m->A_R = ER.matrix();
   m->metric_R = solver::SparseMatrix(ER.rows(), ER.rows());
   m->metric_R.setFromTriplets(pair_metric.begin(), pair_metric.end());
   m->A_T = T.matrix();
-  const solver::SparseMatrix &A_L = m->A_L, &A_R = m->A_R, &A_T = m->A_T;
+  m->A_B = EB.matrix();
+  const solver::SparseMatrix &A_L = m->A_L, &A_R = m->A_R, &A_T = m->A_T, &A_B = m->A_B;
   m->weight_R = options_.coherence_weight * h * h;
   m->weight_T = options_.transform_weight * h * h;
   m->first.add_block(A_L, 1.0, "E_L (Eq. 2.6)");
   if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)", m->metric_R);
   if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
+  if (A_B.rows() > 0) m->first.add_block(A_B, blend_weight_, "E_T (§3.3.3)");
   m->first.set_fixed(m->constrained);
   m->stencil = s;
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
   m->has_coherence = A_R.rows() > 0;
   m->transform_rest = A_T * solver::DenseMatrix(P);
+  m->blend_rest = A_B * solver::DenseMatrix(P);
 
   // Eq. 2.10/2.11 is factorized on a second thread while Eq. 2.8's is: the first system's
   // ordering (METIS on a dense graph) runs on one core and would leave the other idle.
@@ -256,6 +291,7 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
   m.guided->add_block(m.A_L, 1.0, "E_L (Eq. 2.6)");
   if (m.A_R.rows() > 0) m.guided->add_block(m.A_R, m.weight_R, "E_R (Eq. 2.7)", m.metric_R);
   if (m.A_T.rows() > 0) m.guided->add_block(m.A_T, m.weight_T, "M_c = W_c (Eq. 2.8)");
+  if (m.A_B.rows() > 0) m.guided->add_block(m.A_B, blend_weight_, "E_T (§3.3.3)");
   m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);
   m.guided->precompute();
@@ -298,6 +334,8 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     }
     rhs.push_back(std::move(r));
   }
+  // E_T is homogeneous in the positions: in displacements its right-hand side is −A_B v'.
+  if (m.blend_rest.rows() > 0) rhs.push_back(-m.blend_rest);
   // Large rotations: continue each handle's angle from the previous frame (§2.5's limit).
   std::vector<int> big;
   for (size_t h = 0; h < m.accumulated.size(); ++h) {

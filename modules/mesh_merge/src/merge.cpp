@@ -1,5 +1,6 @@
 #include "lapis/mesh_merge/merge.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -9,6 +10,7 @@
 #include "lapis/mesh_merge/constraints.h"
 #include "lapis/mesh_merge/refine.h"
 #include "lapis/mesh_merge/zip.h"
+#include "transition_merge.h"
 
 namespace lapis::mesh_merge {
 
@@ -28,6 +30,14 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
   if (!(o.roi_width >= 0) || !std::isfinite(o.roi_width)) fail("roi_width must be finite and >= 0");
   for (int h : o.handles)
     if (h < 0 || h >= source.num_vertices()) fail("handle vertex " + std::to_string(h) + " out of range");
+  if (o.mode == MergeMode::Transition) {
+    const TransitionOptions& t = o.transition;
+    // §3.3.3: the user specifies the widths; there is no width that suits every mesh.
+    if (!(t.source_width > 0) || !(t.target_width > 0) || !std::isfinite(t.source_width) || !std::isfinite(t.target_width))
+      fail("transition source_width and target_width must be finite and > 0 (thesis §3.3.3: one width per mesh), got " +
+           std::to_string(t.source_width) + " and " + std::to_string(t.target_width));
+    if (!(t.weight > 0) || !std::isfinite(t.weight)) fail("transition weight w_T must be finite and > 0");
+  }
 }
 
 // §3.3.2: the vertices near the boundary deform, the rest of the source and the handles stay.
@@ -74,6 +84,12 @@ Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)
   const auto t0 = std::chrono::steady_clock::now();
   check_options(source_, options_);
   check_merge_source(source_, Connectivity(source_));
+  if (options_.mode == MergeMode::Transition) {
+    // Nothing to prefactorize: the system couples the source with the target's band.
+    impl_ = std::make_unique<Impl>(source_, source_, 0);
+    precompute_ms_ = ms_since(t0);
+    return;
+  }
   TriMesh refined = source_;
   int levels = 0;
   if (options_.mode == MergeMode::Independent)
@@ -111,6 +127,11 @@ void Merger::set_smoothing(int iterations, int rings, double lambda) {
 
 MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pairs) {
   const auto t_total = std::chrono::steady_clock::now();
+  if (options_.mode == MergeMode::Transition) {
+    MergeResult r = detail::merge_with_transition(source_, target, pairs, options_);
+    r.timings.total_ms = ms_since(t_total);
+    return r;
+  }
   auto t0 = t_total;
   Impl& m = *impl_;
   MergeResult r;
@@ -156,6 +177,26 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
   r.timings.smooth_ms = ms_since(t0);
   r.timings.total_ms = ms_since(t_total);
   return r;
+}
+
+double suggested_transition_width(const TriMesh& target, const std::vector<LoopPair>& pairs) {
+  const Connectivity conn(target);
+  double diameters = 0;
+  int loops = 0;
+  for (const LoopPair& p : pairs) {
+    if (p.keys.empty()) continue;
+    const int t = p.keys[0].target;
+    if (t < 0 || t >= target.num_vertices())
+      throw InvalidArgument("mesh_merge::suggested_transition_width(): target key vertex " + std::to_string(t) + " out of range");
+    for (const auto& loop : conn.boundary_loops())
+      if (std::find(loop.begin(), loop.end(), t) != loop.end()) {
+        double perimeter = 0;
+        for (size_t i = 0; i < loop.size(); ++i) perimeter += (target.V.row(loop[(i + 1) % loop.size()]) - target.V.row(loop[i])).norm();
+        diameters += perimeter / std::numbers::pi;
+        ++loops;
+      }
+  }
+  return loops ? 0.2 * diameters / loops : 0.0;
 }
 
 MergeResult merge(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,

@@ -69,6 +69,7 @@ SeamQuality seam_quality(const TriMesh& target, const MergeResult& r) {
 
   std::vector<char> smoothed(static_cast<size_t>(r.mesh.num_vertices()), 0);
   for (int v : r.smoothed) smoothed[v] = 1;
+  for (int v : r.transition_vertices) smoothed[v] = 1;  // a kept target band deforms by design (§3.3.3)
   double moved = 0;
   for (int v = 0; v < target.num_vertices(); ++v) {
     const int m = r.target_map[v];
@@ -99,11 +100,20 @@ DetailPreservation detail_preservation(const TriMesh& source, const MergeResult&
   DetailPreservation d;
   const int n = source.num_vertices();
   const Connectivity conn(source);
-  Vertices merged(n, 3);
-  for (int v = 0; v < n; ++v) merged.row(v) = r.mesh.V.row(r.source_map[v]);
+  Vertices merged = source.V;
+  for (int v = 0; v < n; ++v)
+    if (r.source_map[v] >= 0) merged.row(v) = r.mesh.V.row(r.source_map[v]);
+  // Interior vertices still in the merged mesh with their whole 1-ring (a transition merge that
+  // keeps the target's band removes the source's).
+  auto kept = [&](int v) {
+    if (r.source_map[v] < 0) return false;
+    for (int u : conn.vertex_neighbors(v))
+      if (r.source_map[u] < 0) return false;
+    return true;
+  };
   std::vector<int> interior;
   for (int v = 0; v < n; ++v)
-    if (!conn.is_boundary_vertex(v) && !conn.is_isolated_vertex(v)) interior.push_back(v);
+    if (!conn.is_boundary_vertex(v) && !conn.is_isolated_vertex(v) && kept(v)) interior.push_back(v);
   if (interior.empty()) return d;
 
   const Eigen::SparseMatrix<double> L = geometry::cotan_laplacian(source);

@@ -5,7 +5,9 @@
 // Laplacian solve (§2.4.4, Eq. 2.10/2.11). Both systems are prefactorized (§2.5).
 #pragma once
 
+#include <array>
 #include <memory>
+#include <vector>
 
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
@@ -36,6 +38,15 @@ struct ImplicitOptions {
   // thesis' plain method (which takes the smaller angle).
   bool large_rotations = true;
   double guide_angle = 0.5 * 3.141592653589793;  // below it both systems agree closely
+};
+
+// One extra least-squares row of the first system: vertex's transformed Laplacian coordinate
+// M_i δ_i minus a barycentric blend Σ_j b_j M_j δ_j of three others (thesis §3.3.3, the
+// transition term E_T of Poisson merging, which couples the ROIs of two meshes held in one).
+struct LaplacianBlend {
+  int vertex = -1;
+  std::array<int, 3> others{-1, -1, -1};
+  std::array<double, 3> weights{0, 0, 0};
 };
 
 // What the last deform() did and cost.
@@ -73,6 +84,13 @@ class ImplicitLaplacianDeformer final : public Deformer {
   void set_preview(bool on) { preview_ = on; }
   bool preview() const { return preview_; }
 
+  // Adds w Σ ‖M_i δ_i − Σ_j b_j M_j δ_j‖² to Eq. 2.8 (thesis §3.3.3; w = 0.1 there). E_T is in
+  // the units of E_L, so w is not scaled by the edge length. Terms at vertices whose M_i is
+  // not used (no free vertex within 2 rings) are constants and left out. Marks the deformer
+  // dirty. Throws InvalidArgument "mesh_deform::ImplicitLaplacianDeformer::set_laplacian_blends(): ..."
+  // for w <= 0 or NaN, a vertex out of range, or a weight that is not finite.
+  void set_laplacian_blends(std::vector<LaplacianBlend> blends, double weight);
+
   // Original vertices the last setup found degenerate or displaced (§2.4.3), ascending.
   std::vector<int> degenerate_vertices() const;
 
@@ -86,6 +104,8 @@ class ImplicitLaplacianDeformer final : public Deformer {
   ImplicitOptions options_;
   ImplicitStats stats_;
   bool preview_ = false;
+  std::vector<LaplacianBlend> blends_;
+  double blend_weight_ = 0;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -4,6 +4,9 @@
 // boundary carries position + rotation/scale constraints, so the result does not depend on
 // where the source was placed. Configuration-dependent (§3.3.2): the user's placement counts;
 // only a band near the boundary deforms, user handles stay fixed, frames are kept.
+// Overlapped transition regions (§3.3.3): a band of each mesh next to the seam overlaps the
+// other's; both deform, their transformed Laplacian coordinates are tied by E_T and then
+// interpolated across the band, instead of smoothing the seam (which filters details).
 #pragma once
 
 #include <memory>
@@ -17,6 +20,25 @@ namespace lapis::mesh_merge {
 enum class MergeMode {
   Independent,  // §3.3.1
   Dependent,    // §3.3.2
+  Transition,   // §3.3.3, configuration-independent (§3.3.1 boundary conditions)
+};
+
+// Whose transition band the merged surface keeps (§3.3.3 "the connectivity information of one
+// transition region"); the other band is removed.
+enum class TransitionKeep { Source, Target };
+
+// §3.3.3: "We let the user specify a width for each mesh". No default width fits every mesh,
+// so 0 means unset and Transition mode throws until both are given (suggested_transition_width()
+// proposes one).
+struct TransitionOptions {
+  // Band = vertices whose shortest edge path to the merging loop is shorter than the width.
+  // Both widths are in the target's units: the source is first scaled so that its merging loops'
+  // perimeter equals the target's (what the boundary constraints' s_i do anyway), which keeps the
+  // source band independent of how large the source was placed (§3.3.1).
+  double source_width = 0;
+  double target_width = 0;
+  double weight = 0.1;  // w_T of E_T, §3.3.3 ("w_T = 0.1 in our experiments")
+  TransitionKeep keep = TransitionKeep::Source;
 };
 
 // Eq. 2.11: the merged part's features scale with the boundary (§2.4.4 calls it necessary for
@@ -46,26 +68,36 @@ struct MergeOptions {
   // source boundary; 0 picks the mean boundary loop diameter (perimeter / π).
   double roi_width = 0;
   std::vector<int> handles;  // source vertices kept exactly where they are (Dependent mode)
+  // Transition mode (§3.3.3). Seam smoothing and boundary refinement are not applied in that
+  // mode: the transition band replaces the smoothing, which "filters out geometry details".
+  TransitionOptions transition;
 };
 
 struct MergeTimings {
   double setup_ms = 0;   // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
   double solve_ms = 0;   // both implicit Laplacian solves and the polar decompositions
   double zip_ms = 0;
-  double smooth_ms = 0;
+  double smooth_ms = 0;  // Transition mode: the band's reconstruction, which replaces the smoothing
   double total_ms = 0;
 };
 
 struct MergeResult {
   TriMesh mesh;                   // the merged mesh: target part first, then the source
   std::vector<int> target_map;    // #V_target: merged index, -1 for vertices removed with the band
-  std::vector<int> source_map;    // #V_source (as given): merged index
-  TriMesh source_rest;            // the source the solve ran on (refined; as given + appended vertices)
+  std::vector<int> source_map;    // #V_source (as given): merged index (-1: removed with the source band, Transition mode)
+  // The source the solve ran on (refined; as given + appended vertices). Transition mode: as
+  // given, centred and scaled to the target's loop perimeter.
+  TriMesh source_rest;
   Vertices source_deformed;       // its positions after the solve, before zipping and smoothing
   std::vector<int> source_boundary;  // source_rest vertices constrained to the target boundary
   std::vector<int> strip_faces;   // merged faces of the re-triangulated gaps
   std::vector<int> seam_vertices; // merged vertices on the strips
   std::vector<int> smoothed;      // merged vertices the umbrella operator moved (the seam band)
+  // Transition mode: the merged vertices of the kept band, and for each the target's share τ of
+  // its interpolated Laplacian coordinate (1 where the band meets the kept target, 0 where it
+  // meets the rest of the source).
+  std::vector<int> transition_vertices;
+  std::vector<double> transition_share;
   int refine_levels = 0;
   int roi_vertices = 0;
   mesh_deform::ImplicitStats solver;
@@ -78,17 +110,21 @@ struct MergeResult {
 // boundary vertex as a one-vertex handle; each merge() then costs correspondence, two
 // back-substitutions, the polar decompositions, zipping and smoothing — what an interactive
 // tool pays when the user moves a key correspondence or picks another target.
+// Transition mode (§3.3.3) couples the source with the target's band in one system, so there
+// the whole setup runs in merge() and precompute_ms() is 0.
 class Merger {
  public:
   // Throws InvalidArgument "mesh_merge::merge(): ..." for options out of range or a handle out
-  // of range / on the boundary, and check_merge_input()'s errors about the source alone (closed,
-  // non-manifold).
+  // of range / on the boundary, transition widths unset (Transition mode), and
+  // check_merge_input()'s errors about the source alone (closed, non-manifold).
   explicit Merger(TriMesh source, MergeOptions options = {});
   ~Merger();
   Merger(const Merger&) = delete;
   Merger& operator=(const Merger&) = delete;
 
-  // Throws check_merge_input()'s errors for bad pairs and zip_seams()'s errors.
+  // Throws check_merge_input()'s errors for bad pairs and zip_seams()'s errors; in Transition
+  // mode also transition_band()'s errors (a band covering the mesh, not an annulus) and
+  // InvalidArgument "mesh_merge::merge(): ..." for bands of two pairs that overlap.
   MergeResult merge(const TriMesh& target, const std::vector<LoopPair>& pairs);
 
   // Seam smoothing runs after the solve, so changing it needs no new precompute (an app's
@@ -107,6 +143,11 @@ class Merger {
   std::unique_ptr<Impl> impl_;
   double precompute_ms_ = 0;
 };
+
+// A transition width for Transition mode when the user gave none: a fifth of the mean diameter
+// (perimeter / π) of the target loops the pairs name. Throws check_merge_input()'s errors about
+// the pairs' target keys only when they are out of range.
+double suggested_transition_width(const TriMesh& target, const std::vector<LoopPair>& pairs);
 
 // One-off convenience: Merger(source, options).merge(target, pairs), with the precompute time
 // counted in timings.setup_ms. Throws what Merger and Merger::merge() throw.

@@ -15,7 +15,7 @@ struct SeamQuality {
   int non_manifold_vertices = 0;
   int degenerate_faces = 0;
   double min_strip_angle_deg = 0;    // smallest corner angle of the zipped strips
-  double max_target_displacement = 0;  // over target vertices outside the smoothed band, / bbox diagonal
+  double max_target_displacement = 0;  // over target vertices outside the smoothed and transition bands, / bbox diagonal
   double seam_dihedral_mean_deg = 0;   // normal deviation across strip edges
   double seam_dihedral_max_deg = 0;
   double target_dihedral_mean_deg = 0; // the target's own interior edges, for comparison

@@ -1,0 +1,275 @@
+#include "lapis/mesh_merge/transition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "lapis/geometry/dijkstra.h"
+#include "lapis/geometry/laplacian.h"
+#include "lapis/solver/least_squares.h"
+
+namespace lapis::mesh_merge {
+
+namespace {
+
+constexpr const char* kBand = "mesh_merge::transition_band()";
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+[[noreturn]] void fail(const char* which, const std::string& what) {
+  throw InvalidArgument(std::string(kBand) + ": the " + which + " " + what);
+}
+
+int find_root(std::vector<int>& parent, int a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+// Which faces around cut vertex c lie on the side that gets the u = 1 copy. The cut edges
+// split c's fan into two groups (faces joined across non-cut edges); the group holding a face
+// that runs along the cut in its winding order (directed edge prev -> c or c -> next) lies on
+// the path's left. Seen along the loop's direction, the path's left is u = 1 when the loop
+// follows the faces' orientation, u = 0 when it runs against it (reversed).
+std::vector<char> upper_side(const Connectivity& sc, const geometry::Faces& F, const std::vector<int>& cut, size_t k,
+                             bool reversed, const char* which) {
+  const int c = cut[k];
+  const int prev = k > 0 ? cut[k - 1] : -1, next = k + 1 < cut.size() ? cut[k + 1] : -1;
+  const auto fan = sc.vertex_faces(c);
+  std::vector<int> parent(fan.size());
+  for (size_t i = 0; i < fan.size(); ++i) parent[i] = static_cast<int>(i);
+  auto slot = [&](int f) { return static_cast<int>(std::find(fan.begin(), fan.end(), f) - fan.begin()); };
+  for (int w : sc.vertex_neighbors(c)) {
+    if (w == prev || w == next) continue;
+    const auto ef = sc.edge_faces(sc.find_edge(c, w));
+    if (ef[0] >= 0 && ef[1] >= 0) parent[find_root(parent, slot(ef[0]))] = find_root(parent, slot(ef[1]));
+  }
+  int left = -1, groups = 0;
+  for (size_t i = 0; i < fan.size(); ++i) {
+    if (find_root(parent, static_cast<int>(i)) == static_cast<int>(i)) ++groups;
+    for (int j = 0; j < 3; ++j) {
+      const int a = F(fan[i], j), b = F(fan[i], (j + 1) % 3);
+      if ((a == prev && b == c) || (a == c && b == next)) left = find_root(parent, static_cast<int>(i));
+    }
+  }
+  if (groups != 2 || left < 0)
+    fail(which, "transition band cannot be cut open at vertex " + std::to_string(c) + " (its faces do not form one fan)");
+  std::vector<char> upper(fan.size());
+  for (size_t i = 0; i < fan.size(); ++i) upper[i] = (find_root(parent, static_cast<int>(i)) == left) != reversed;
+  return upper;
+}
+
+}  // namespace
+
+std::vector<double> arc_length_params(const Vertices& V, const std::vector<int>& loop) {
+  const size_t n = loop.size();
+  std::vector<double> u(n, 0.0);
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    u[i] = total;
+    total += (V.row(loop[(i + 1) % n]) - V.row(loop[i])).norm();
+  }
+  if (total > 0)
+    for (double& x : u) x /= total;
+  return u;
+}
+
+std::pair<int, double> locate_on_loop(const std::vector<double>& params, double u) {
+  const int n = static_cast<int>(params.size());
+  int k = static_cast<int>(std::upper_bound(params.begin(), params.end(), u) - params.begin()) - 1;
+  k = std::clamp(k, 0, n - 1);
+  const double next = k + 1 < n ? params[k + 1] : 1.0;
+  const double span = next - params[k];
+  return {k, span > 0 ? std::clamp((u - params[k]) / span, 0.0, 1.0) : 0.0};
+}
+
+TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
+                               const std::vector<double>& loop_u, double width, bool reversed, const char* which) {
+  if (!(width > 0) || !std::isfinite(width))
+    fail(which, "transition width must be finite and > 0, got " + num(width));
+  if (loop.size() < 3 || loop_u.size() != loop.size())
+    fail(which, "merging loop needs at least 3 vertices and one parameter per vertex");
+  const int nv = mesh.num_vertices();
+  const std::string w = "of width " + num(width);
+
+  // §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
+  // shorter than the width; its faces are those touching such a vertex.
+  geometry::DijkstraOptions d;
+  d.max_distance = width;
+  const geometry::ShortestPaths sp = geometry::dijkstra(conn, loop, geometry::edge_length_cost(mesh), d);
+  std::vector<char> near(static_cast<size_t>(nv), 0);
+  TransitionBand b;
+  b.loop = loop;
+  int beyond = 0;
+  for (int v = 0; v < nv; ++v) {
+    near[v] = sp.distance[v] < width;
+    beyond += !near[v] && !conn.is_isolated_vertex(v);
+  }
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    if (near[mesh.F(f, 0)] || near[mesh.F(f, 1)] || near[mesh.F(f, 2)]) b.faces.push_back(f);
+  if (beyond == 0 || static_cast<int>(b.faces.size()) == mesh.num_faces())
+    fail(which, "transition band " + w + " covers the whole mesh (no face is that far from the merging loop)");
+
+  // The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
+  TriMesh sub;
+  sub.V = mesh.V;
+  sub.F.resize(static_cast<Eigen::Index>(b.faces.size()), 3);
+  for (size_t i = 0; i < b.faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(b.faces[i]);
+  const Connectivity sc(sub);
+  const auto& borders = sc.boundary_loops();
+  const std::string not_annulus = "transition band " + w +
+                                  " is not an annulus between the merging loop and one inner rim (it reaches another "
+                                  "boundary, wraps around a handle or pinches); choose a smaller width";
+  int li = -1;
+  for (size_t l = 0; l < borders.size(); ++l)
+    if (std::find(borders[l].begin(), borders[l].end(), loop[0]) != borders[l].end()) li = static_cast<int>(l);
+  if (borders.size() != 2 || li < 0 || borders[li].size() != loop.size() || geometry::euler_characteristic(sc) != 0)
+    fail(which, not_annulus);
+  std::vector<int> rim = borders[1 - li];
+  std::vector<char> on_rim(static_cast<size_t>(nv), 0), on_loop(static_cast<size_t>(nv), 0);
+  for (int v : rim) {
+    // A rim on the mesh's border would leave the other side of the seam without a surface.
+    if (on_rim[v] || conn.is_boundary_vertex(v)) fail(which, not_annulus);
+    on_rim[v] = 1;
+  }
+  for (int v : loop) on_loop[v] = 1;
+  // Boundary loops keep the band on their left, so the rim runs against the loop's own
+  // direction: flip it to the seam's direction.
+  if (!reversed) std::reverse(rim.begin(), rim.end());
+  for (int v = 0; v < nv; ++v)
+    if (!sc.is_isolated_vertex(v) && !on_rim[v]) b.vertices.push_back(v);
+
+  // The cut: a shortest path from the key vertex to the rim that leaves the loop at once.
+  auto cost = [&](int, int from, int to) {
+    return from != loop[0] && on_loop[from] ? kInf : (mesh.V.row(from) - mesh.V.row(to)).norm();
+  };
+  const geometry::ShortestPaths cp = geometry::dijkstra(sc, {loop[0]}, cost);
+  int end = -1;
+  for (int v : rim)
+    if (std::isfinite(cp.distance[v]) && (end < 0 || cp.distance[v] < cp.distance[end])) end = v;
+  if (end < 0) fail(which, "transition band " + w + " cannot be cut from key vertex " + std::to_string(loop[0]) + " to its rim");
+  b.cut = geometry::extract_path(cp, end);
+  std::rotate(rim.begin(), std::find(rim.begin(), rim.end(), end), rim.end());
+  b.rim = rim;
+  const std::vector<double> rim_u = arc_length_params(mesh.V, rim);
+
+  // Parameter-domain vertices: one per band and rim vertex, a second (u = 1) per cut vertex.
+  b.param_of.assign(static_cast<size_t>(nv), -1);
+  for (int v = 0; v < nv; ++v)
+    if (!sc.is_isolated_vertex(v)) {
+      b.param_of[v] = static_cast<int>(b.param_vertex.size());
+      b.param_vertex.push_back(v);
+    }
+  std::vector<int> upper_copy(b.cut.size());
+  for (size_t k = 0; k < b.cut.size(); ++k) {
+    upper_copy[k] = static_cast<int>(b.param_vertex.size());
+    b.param_vertex.push_back(b.cut[k]);
+  }
+  b.param_faces = sub.F;
+  for (Eigen::Index f = 0; f < sub.F.rows(); ++f)
+    for (int j = 0; j < 3; ++j) b.param_faces(f, j) = b.param_of[sub.F(f, j)];
+  for (size_t k = 0; k < b.cut.size(); ++k) {
+    const auto fan = sc.vertex_faces(b.cut[k]);
+    const std::vector<char> upper = upper_side(sc, sub.F, b.cut, k, reversed, which);
+    for (size_t i = 0; i < fan.size(); ++i)
+      if (upper[i])
+        for (int j = 0; j < 3; ++j)
+          if (sub.F(fan[i], j) == b.cut[k]) b.param_faces(fan[i], j) = upper_copy[k];
+  }
+
+  // Boundary values on the square, then Tutte's embedding inside.
+  const int np = static_cast<int>(b.param_vertex.size());
+  b.uv = Eigen::MatrixX2d::Zero(np, 2);
+  std::vector<char> fixed(static_cast<size_t>(np), 0);
+  auto set = [&](int p, double u, double v) { b.uv(p, 0) = u, b.uv(p, 1) = v, fixed[p] = 1; };
+  for (size_t i = 0; i < loop.size(); ++i) set(b.param_of[loop[i]], loop_u[i], 0.0);
+  for (size_t i = 0; i < rim.size(); ++i) set(b.param_of[rim[i]], rim_u[i], 1.0);
+  double cut_length = 0;
+  std::vector<double> along(b.cut.size(), 0.0);
+  for (size_t k = 1; k < b.cut.size(); ++k)
+    along[k] = cut_length += (mesh.V.row(b.cut[k]) - mesh.V.row(b.cut[k - 1])).norm();
+  for (size_t k = 0; k < b.cut.size(); ++k) {
+    const double v = k + 1 == b.cut.size() ? 1.0 : along[k] / cut_length;
+    set(b.param_of[b.cut[k]], 0.0, v);
+    set(upper_copy[k], 1.0, v);
+  }
+  std::vector<int> inner, boundary;
+  for (int p = 0; p < np; ++p) (fixed[p] ? boundary : inner).push_back(p);
+  if (!inner.empty()) {
+    TriMesh domain;
+    domain.V = Vertices::Zero(np, 3);
+    domain.F = b.param_faces;
+    const Eigen::SparseMatrix<double> L = geometry::uniform_laplacian(domain);
+    solver::SparseMatrix rows(static_cast<Eigen::Index>(inner.size()), np);
+    std::vector<Eigen::Triplet<double, int>> t;
+    for (size_t r = 0; r < inner.size(); ++r)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(L, inner[r]); it; ++it)
+        t.emplace_back(static_cast<int>(r), static_cast<int>(it.row()), it.value());  // L is symmetric
+    rows.setFromTriplets(t.begin(), t.end());
+    solver::LeastSquares tutte(np);
+    tutte.add_block(rows, 1.0, "Tutte embedding");
+    tutte.set_fixed(boundary);
+    tutte.precompute();
+    solver::DenseMatrix values(static_cast<Eigen::Index>(boundary.size()), 2);
+    for (size_t k = 0; k < boundary.size(); ++k) values.row(static_cast<Eigen::Index>(k)) = b.uv.row(boundary[k]);
+    const solver::DenseMatrix x = tutte.solve({solver::DenseMatrix()}, values);
+    for (int p : inner) b.uv.row(p) = x.row(p);
+  }
+  return b;
+}
+
+std::vector<BandPoint> overlap_points(const TransitionBand& from, const TransitionBand& to) {
+  const geometry::Faces& F = to.param_faces;
+  const int nf = static_cast<int>(F.rows());
+  const int g = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(nf)))));
+  auto cell = [g](double x) { return std::clamp(static_cast<int>(std::floor(x * g)), 0, g - 1); };
+  std::vector<std::vector<int>> cells(static_cast<size_t>(g * g));
+  for (int f = 0; f < nf; ++f) {
+    Eigen::Vector2d lo = to.uv.row(F(f, 0)), hi = lo;
+    for (int j = 1; j < 3; ++j) lo = lo.cwiseMin(to.uv.row(F(f, j)).transpose()), hi = hi.cwiseMax(to.uv.row(F(f, j)).transpose());
+    for (int y = cell(lo.y()); y <= cell(hi.y()); ++y)
+      for (int x = cell(lo.x()); x <= cell(hi.x()); ++x) cells[static_cast<size_t>(y * g + x)].push_back(f);
+  }
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+  // Barycentric coordinates of q in face f; false for a degenerate face.
+  auto bary = [&](int f, const Eigen::Vector2d& q, Eigen::Vector3d& w) {
+    const Eigen::Vector2d a = to.uv.row(F(f, 0)), b = to.uv.row(F(f, 1)), c = to.uv.row(F(f, 2));
+    const double det = cross(b - a, c - a);
+    if (!(std::abs(det) > 1e-14)) return false;
+    w(1) = cross(q - a, c - a) / det;
+    w(2) = cross(b - a, q - a) / det;
+    w(0) = 1 - w(1) - w(2);
+    return true;
+  };
+  std::vector<BandPoint> out;
+  out.reserve(from.vertices.size());
+  for (int v : from.vertices) {
+    const Eigen::Vector2d p = from.at(v);
+    const Eigen::Vector2d q(p.x(), 1 - p.y());  // the overlap: the loop of one band is the rim of the other
+    int best = -1;
+    double best_min = -kInf;
+    Eigen::Vector3d w, best_w;
+    auto consider = [&](int f) {
+      if (bary(f, q, w) && w.minCoeff() > best_min) best_min = w.minCoeff(), best = f, best_w = w;
+    };
+    for (int f : cells[static_cast<size_t>(cell(q.y()) * g + cell(q.x()))]) consider(f);
+    if (best_min < -1e-9)
+      for (int f = 0; f < nf; ++f) consider(f);
+    if (best < 0)
+      throw InvalidArgument("mesh_merge::overlap_points(): the band's parameterization has no triangle of positive area");
+    BandPoint bp;
+    best_w = best_w.cwiseMax(0.0);
+    best_w /= best_w.sum();
+    for (int j = 0; j < 3; ++j) bp.vertices[j] = to.param_vertex[F(best, j)], bp.weights[j] = best_w(j);
+    out.push_back(bp);
+  }
+  return out;
+}
+
+}  // namespace lapis::mesh_merge
