@@ -63,15 +63,17 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::Begin("Merge", nullptr, ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_AlwaysAutoResize);
   draw_menu(v);
   ImGui::PushItemWidth(150);
-  ImGui::Text("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(), source_.loops().size());
-  ImGui::Text("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(), target_.loops().size());
+  ImGui::TextWrapped("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(), source_.loops().size());
+  ImGui::TextWrapped("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(), target_.loops().size());
   ImGui::Separator();
   const Tool tools[] = {Tool::PairLoops, Tool::Keys, Tool::Handles, Tool::Move, Tool::Paint};
   for (int i = 0; i < 5; ++i) {
     if (i % 2) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) tool_ = tools[i], scene_dirty_ = true;
   }
-  ImGui::TextDisabled("keys 1-5 tools, D mode, T transition, M merge, Tab result/inputs");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("keys 1-5 tools, D dependent, T transition, M merge, Tab result/inputs");
+  ImGui::PopStyleColor();
   if (tool_ == Tool::Paint) draw_paint_controls(v);
 
   MergeSetup next = setup();
@@ -114,7 +116,7 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     auto& t = next.options.transition;
     float band[2] = {static_cast<float>(t.source_width), static_cast<float>(t.target_width)};
     const float most = static_cast<float>(std::max(1e-3, 0.5 * mesh_merge::bbox_diagonal(target_.mesh.V)));
-    ImGui::SliderFloat2("band widths (source, target)", band, 1e-3f * most, most);
+    ImGui::SliderFloat2("widths", band, 1e-3f * most, most);
     tooltip(kTransitionTooltip);
     if (ImGui::IsItemDeactivatedAfterEdit()) t.source_width = band[0], t.target_width = band[1], edit = "band widths";
     int keep = t.keep == mesh_merge::TransitionKeep::Source ? 0 : 1;
@@ -200,7 +202,7 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
   const auto& q = shown_->quality;
   const auto& t = r.timings;
   if (shown_->revision != revision()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "setup changed since this merge");
-  ImGui::Text("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(), r.strip_faces.size());
+  ImGui::TextWrapped("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(), r.strip_faces.size());
   ImGui::TextColored(q.valid() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.4f, 0.3f, 1), "seam %s",
                      q.valid() ? "watertight and manifold" : "NOT valid");
   ImGui::Text("seam boundary edges %d, degenerate faces %d", q.seam_boundary_edges, q.degenerate_faces);
