@@ -98,6 +98,21 @@ struct DefaultScene {
   }
 };
 
+constexpr int kM = 77, kT = 84;  // GLFW key codes: merge, transition regions
+
+// tests/apps/data/merge_events.json (pair two loops, set a key, merge) followed by presses of
+// the given (key, modifiers), 20 frames apart, written to `path`.
+void write_recorded_session_then_keys(const fs::path& path, const std::vector<std::pair<int, int>>& keys) {
+  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
+  long frame = j["events"].back()["frame"].get<long>();
+  for (const auto& [key, mods] : keys) {
+    frame += 20;
+    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", key}, {"action", 1}, {"mods", mods}});
+    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", key}, {"action", 0}, {"mods", mods}});
+  }
+  std::ofstream(path) << j.dump();
+}
+
 // An event log with one key press: M (merge) at frame 5.
 void write_merge_key_events(const fs::path& path) {
   std::ofstream out(path);
@@ -321,22 +336,8 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
 TEST_CASE("apps: merge app — undo takes the key back (the module's error names it), redo restores the merge") {
   const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log", prefix = dir / "redone";
   // The recorded session, then Ctrl+Z, M, Ctrl+Shift+Z, M.
-  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
-  long frame = j["events"].back()["frame"].get<long>();
-  auto key = [&](int k, int mods) {
-    frame += 20;
-    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", k}, {"action", 1}, {"mods", mods}});
-    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", k}, {"action", 0}, {"mods", mods}});
-  };
-  constexpr int kZ = 90, kM = 77, kCtrl = 2, kShift = 1;
-  key(kZ, kCtrl);
-  key(kM, 0);
-  key(kZ, kCtrl | kShift);
-  key(kM, 0);
-  {
-    std::ofstream out(events);
-    out << j.dump();
-  }
+  constexpr int kZ = 90, kCtrl = 2, kShift = 1;
+  write_recorded_session_then_keys(events, {{kZ, kCtrl}, {kM, 0}, {kZ, kCtrl | kShift}, {kM, 0}});
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string() +
                          " 2> " + log.string()) == 0);
   const std::string text = text_of(log);
@@ -354,17 +355,7 @@ TEST_CASE("apps: merge app — undo takes the key back (the module's error names
 TEST_CASE("apps: merge app — transition regions (T) merge watertight and export the widths lapis merge needs") {
   const fs::path dir = scratch_dir(), events = dir / "transition.json", prefix = dir / "transition";
   // The recorded session, then T (transition regions on, suggested widths) and M.
-  nlohmann::json j = nlohmann::json::parse(text_of(kSource / "tests/apps/data/merge_events.json"));
-  long frame = j["events"].back()["frame"].get<long>();
-  for (int k : {84 /* T */, 77 /* M */}) {
-    frame += 20;
-    j["events"].push_back({{"type", "key"}, {"frame", frame}, {"key", k}, {"action", 1}, {"mods", 0}});
-    j["events"].push_back({{"type", "key"}, {"frame", frame + 1}, {"key", k}, {"action", 0}, {"mods", 0}});
-  }
-  {
-    std::ofstream out(events);
-    out << j.dump();
-  }
+  write_recorded_session_then_keys(events, {{kT, 0}, {kM, 0}});
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string()) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
