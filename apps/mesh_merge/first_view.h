@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "lapis/geometry/tri_mesh.h"
 #include "lapis/viewer/orbit_camera.h"
 
 namespace lapis::merge_app {
@@ -20,6 +21,18 @@ inline void fit_beside_panels(viewer::OrbitCamera& camera, int width, int height
   camera.distance *= std::max(1.0, static_cast<double>(width) / free);
   camera.far_plane = std::max(camera.far_plane, 4 * camera.distance);
   camera.pan(-0.5 * kPanelWidth, 0, height);
+}
+
+// MergeApp::on_start()'s camera computed off screen, for the tests and the demo generator that
+// click where things land: the first view framed on the two meshes as placed.
+inline viewer::OrbitCamera first_view_camera(const geometry::TriMesh& source, const geometry::TriMesh& target,
+                                             int width, int height) {
+  viewer::OrbitCamera camera;
+  camera.yaw = kViewYaw, camera.pitch = kViewPitch;
+  camera.frame(source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose()),
+               source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose()));
+  fit_beside_panels(camera, width, height);
+  return camera;
 }
 
 }  // namespace lapis::merge_app

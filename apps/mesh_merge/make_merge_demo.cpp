@@ -66,12 +66,7 @@ int main(int argc, char** argv) {
     setup.placement = mesh_merge::suggest_placement(*meshes.source, *meshes.target);
     const geometry::TriMesh source = mesh_merge::placed_source(setup);
     const geometry::TriMesh& target = *meshes.target;
-    // MergeApp::on_start()'s camera.
-    viewer::OrbitCamera camera;
-    camera.yaw = merge_app::kViewYaw, camera.pitch = merge_app::kViewPitch;
-    camera.frame(source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose()),
-                 source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose()));
-    merge_app::fit_beside_panels(camera, kWidth, kHeight);
+    viewer::OrbitCamera camera = merge_app::first_view_camera(source, target, kWidth, kHeight);
     const Eigen::Vector3d s = source.V.row(max_x_vertex(source)).transpose();
     const Eigen::Vector3d t = target.V.row(max_x_vertex(target)).transpose();
     auto pixel = [](const viewer::OrbitCamera& c, const Eigen::Vector3d& p) -> Eigen::Vector2d {

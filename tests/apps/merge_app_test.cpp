@@ -35,13 +35,7 @@ geometry::TriMesh asset(const std::string& name) { return geometry::read_mesh(kS
 // The app's first view of the default preset (dome onto neck, the dome placed beside the neck's
 // rim): the camera of MergeApp::on_start() framed on both meshes.
 geometry::CameraMatrices first_view(const geometry::TriMesh& source, const geometry::TriMesh& target) {
-  viewer::OrbitCamera cam;
-  cam.yaw = merge_app::kViewYaw, cam.pitch = merge_app::kViewPitch;
-  const Eigen::Vector3d lo = source.V.colwise().minCoeff().transpose().cwiseMin(target.V.colwise().minCoeff().transpose());
-  const Eigen::Vector3d hi = source.V.colwise().maxCoeff().transpose().cwiseMax(target.V.colwise().maxCoeff().transpose());
-  cam.frame(lo, hi);
-  merge_app::fit_beside_panels(cam, kWidth, kHeight);
-  return cam.matrices(kWidth, kHeight);
+  return merge_app::first_view_camera(source, target, kWidth, kHeight).matrices(kWidth, kHeight);
 }
 
 std::string pixel(const Eigen::Vector3d& s) {
