@@ -190,7 +190,7 @@ TEST_CASE("solver: the parallel simplicial solve equals cholmod's supernodal sol
   // Large enough for nested dissection to give subtrees worth splitting over threads.
   const int N = 14, n = N * N * N;
   const SparseMatrix A = hair_normal_matrix(N, spread_nodes(n, n / 40));
-  Cholesky reference;
+  Cholesky reference({Backend::Cholmod, FactorKind::Supernodal, 1, /*cholmod_solve=*/true});
   reference.compute(A);
   std::mt19937 rng(7);
   for (int threads : {1, 2, 3, 5}) {

@@ -66,7 +66,7 @@ DenseMatrix Cholesky::solve(const DenseMatrix& B) const {
   if (!factorized()) throw InvalidArgument(std::string(fn) + ": no factorization (call factorize() first)");
   detail::require_rows(B, impl_->n, fn);
   const auto t0 = std::chrono::steady_clock::now();
-  DenseMatrix X = impl_->options.backend == Backend::Cholmod ? impl_->cholmod.solve(B, fn)
+  DenseMatrix X = impl_->options.backend == Backend::Cholmod ? impl_->cholmod.solve(B, fn, impl_->options.threads, impl_->options.cholmod_solve)
                                                               : impl_->eigen.solve(B);
   impl_->stats.solve_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -52,6 +52,8 @@ void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats&
   const int* perm = static_cast<const int*>(symbolic_->Perm);
   inverse_perm_.resize(static_cast<size_t>(n_));
   for (int k = 0; k < n_; ++k) inverse_perm_[static_cast<size_t>(perm[k])] = k;
+  // Built here, not on first solve, so that solve() stays read-only (callable concurrently).
+  if (symbolic_->is_super) supernodal_schedule_ = schedule_supernodes(*symbolic_, 0);
 }
 
 bool CholmodFactor::analyzed_for(const SparseMatrix& A) const {
@@ -87,8 +89,13 @@ void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const c
   factorized_ = true;
 }
 
-DenseMatrix CholmodFactor::solve(const DenseMatrix& B, const char* function, int threads) const {
-  if (!L_->is_super && !L_->is_ll && L_->xtype == CHOLMOD_REAL) {
+DenseMatrix CholmodFactor::solve(const DenseMatrix& B, const char* function, int threads, bool use_cholmod) const {
+  if (!use_cholmod && L_->is_super && L_->xtype == CHOLMOD_REAL) {
+    if (threads <= 0 || threads == supernodal_schedule_.threads)
+      return solve_supernodal_llt(*L_, supernodal_schedule_, B);
+    return solve_supernodal_llt(*L_, schedule_supernodes(*L_, threads), B);
+  }
+  if (!use_cholmod && !L_->is_super && !L_->is_ll && L_->xtype == CHOLMOD_REAL) {
     if (threads <= 0) threads = omp_get_max_threads();
     if (schedule_threads_ != threads || !schedule_matches(schedule_, *L_)) {
       schedule_ = schedule_subtrees(*L_, threads);
@@ -177,6 +184,7 @@ std::unique_ptr<CholmodFactor> CholmodFactor::clone_symbolic(const char* functio
   out->pattern_outer_ = pattern_outer_;
   out->pattern_inner_ = pattern_inner_;
   out->inverse_perm_ = inverse_perm_;
+  out->supernodal_schedule_ = supernodal_schedule_;
   out->context_.get()->supernodal = context_.get()->supernodal;
   out->context_.get()->final_ll = context_.get()->final_ll;
   return out;

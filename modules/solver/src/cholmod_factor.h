@@ -8,6 +8,7 @@
 
 #include "cholmod_context.h"
 #include "simplicial_solve.h"
+#include "supernodal_solve.h"
 
 namespace lapis::solver::detail {
 
@@ -27,9 +28,10 @@ class CholmodFactor {
   void factorize(const SparseMatrix& A, FactorStats& stats, const char* function);
   bool factorized() const { return factorized_; }
 
-  // A X = B. A simplicial LDL' factor is solved by Lapis' own kernel, in parallel over
-  // subtrees on `threads` threads (0: OpenMP's default); a supernodal one by cholmod_solve.
-  DenseMatrix solve(const DenseMatrix& B, const char* function, int threads = 0) const;
+  // A X = B by Lapis' own kernels (simplicial LDL' or supernodal LL'), in parallel over
+  // subtrees on `threads` threads (0: OpenMP's default); by cholmod_solve when
+  // `use_cholmod` (a cross-check) or the factor is of another kind.
+  DenseMatrix solve(const DenseMatrix& B, const char* function, int threads = 0, bool use_cholmod = false) const;
 
   // Converts the numeric factor to simplicial LDL' (what cholmod_updown modifies).
   void to_simplicial_ldl(const char* function);
@@ -64,6 +66,7 @@ class CholmodFactor {
   std::vector<int> inverse_perm_;
   mutable SubtreeSchedule schedule_;  // for the simplicial solve; rebuilt when L's pattern changes
   mutable int schedule_threads_ = 0;
+  SupernodalSchedule supernodal_schedule_;  // for the supernodal solve; built by analyze()
 };
 
 }  // namespace lapis::solver::detail

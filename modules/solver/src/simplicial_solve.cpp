@@ -3,8 +3,9 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <numeric>
-#include <queue>
+
+#include "permuted_rows.h"
+#include "tree_split.h"
 
 namespace lapis::solver::detail {
 namespace {
@@ -36,25 +37,6 @@ long long pattern_entries(const FactorView& f) {
   return total;
 }
 
-// Longest-processing-time assignment of subtrees (by weight) to `bins`; returns the heaviest
-// bin's load and, in `bin_of`, each subtree's bin.
-double assign_bins(const std::vector<int>& roots, const std::vector<double>& weight, int bins,
-                   std::vector<int>& bin_of) {
-  std::vector<int> order(roots.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return weight[static_cast<size_t>(roots[static_cast<size_t>(a)])] >
-                                       weight[static_cast<size_t>(roots[static_cast<size_t>(b)])]; });
-  std::vector<double> load(static_cast<size_t>(bins), 0.0);
-  bin_of.assign(roots.size(), 0);
-  for (int k : order) {
-    const auto lightest = std::min_element(load.begin(), load.end()) - load.begin();
-    bin_of[static_cast<size_t>(k)] = static_cast<int>(lightest);
-    load[static_cast<size_t>(lightest)] += weight[static_cast<size_t>(roots[static_cast<size_t>(k)])];
-  }
-  return *std::max_element(load.begin(), load.end());
-}
-
 // Column j + 1 continues a run ending at column j when it is j's parent and j's pattern is
 // exactly {j} ∪ pattern(j + 1) (checked entry by entry: it is what the kernels rely on).
 bool continues_run(const FactorView& f, int j) {
@@ -77,105 +59,26 @@ void append_runs(const FactorView& f, int first, int last, int limit, std::vecto
 SubtreeSchedule schedule_subtrees(const cholmod_factor& L, int threads) {
   const FactorView f(L);
   const int n = f.n;
-  threads = std::max(1, threads);
   SubtreeSchedule s;
   s.n = n;
   s.pattern_entries = pattern_entries(f);
-  if (threads == 1 || n == 0) {  // one thread: every column in order, every row its own
-    s.runs.assign(1, {});
-    append_runs(f, 0, n - 1, n, s.runs[0]);
-    s.top_slot.assign(static_cast<size_t>(n), -1);
-    return s;
-  }
-
-  // Subtree weights (entries of L below each node) and children lists; children have smaller
-  // indices than their parent, so one ascending sweep accumulates the weights.
-  std::vector<double> weight(static_cast<size_t>(n));
-  std::vector<int> child_start(static_cast<size_t>(n) + 1, 0), children(static_cast<size_t>(n));
-  std::vector<int> roots;
-  for (int j = 0; j < n; ++j) weight[static_cast<size_t>(j)] = f.nz[j];
+  std::vector<int> parent(static_cast<size_t>(n));
+  std::vector<double> work(static_cast<size_t>(n));
   for (int j = 0; j < n; ++j) {
-    const int parent = f.parent(j);
-    if (parent < 0) {
-      roots.push_back(j);
-    } else {
-      weight[static_cast<size_t>(parent)] += weight[static_cast<size_t>(j)];
-      ++child_start[static_cast<size_t>(parent) + 1];
-    }
+    parent[static_cast<size_t>(j)] = f.parent(j);
+    work[static_cast<size_t>(j)] = f.nz[j];
   }
-  std::partial_sum(child_start.begin(), child_start.end(), child_start.begin());
-  {
-    std::vector<int> fill(child_start.begin(), child_start.end() - 1);
-    for (int j = 0; j < n; ++j)
-      if (const int parent = f.parent(j); parent >= 0) children[static_cast<size_t>(fill[static_cast<size_t>(parent)]++)] = j;
-  }
-  // Postorder check: a subtree is the range [first_descendant, root] when its size matches.
-  std::vector<double> subtree_size(static_cast<size_t>(n), 1.0);
-  std::vector<int> first_descendant(static_cast<size_t>(n));
-  std::iota(first_descendant.begin(), first_descendant.end(), 0);
-  for (int j = 0; j < n; ++j)
-    if (const int parent = f.parent(j); parent >= 0) {
-      subtree_size[static_cast<size_t>(parent)] += subtree_size[static_cast<size_t>(j)];
-      first_descendant[static_cast<size_t>(parent)] =
-          std::min(first_descendant[static_cast<size_t>(parent)], first_descendant[static_cast<size_t>(j)]);
-    }
-  const double total = std::accumulate(roots.begin(), roots.end(), 0.0,
-                                       [&](double a, int r) { return a + weight[static_cast<size_t>(r)]; });
-
-  // Split the heaviest subtree at its first branching node until the subtrees balance over
-  // the threads; the nodes split off (the separators' chains) are solved serially. Stop when
-  // that serial part grows past a third of L: more splitting would only move work there.
-  std::vector<int> frontier = roots, bin_of;
-  double top_weight = 0;
-  for (int splits = 0; splits < 256; ++splits) {
-    const double max_load = assign_bins(frontier, weight, threads, bin_of);
-    const double ideal = (total - top_weight) / threads;
-    if (max_load <= 1.05 * ideal || top_weight > total / 3) break;
-    const auto heaviest = std::max_element(frontier.begin(), frontier.end(), [&](int a, int b) {
-      return weight[static_cast<size_t>(a)] < weight[static_cast<size_t>(b)];
-    });
-    int node = *heaviest;
-    frontier.erase(heaviest);
-    for (;;) {
-      top_weight += f.nz[node];
-      const int c0 = child_start[static_cast<size_t>(node)], c1 = child_start[static_cast<size_t>(node) + 1];
-      if (c1 - c0 != 1) {
-        frontier.insert(frontier.end(), children.begin() + c0, children.begin() + c1);
-        break;
-      }
-      node = children[static_cast<size_t>(c0)];
-    }
-  }
-  assign_bins(frontier, weight, threads, bin_of);
-
-  // Each thread's subtrees, as column ranges; a subtree that is not contiguous (not
-  // postordered) makes the row test `row <= limit` wrong: solve on one thread then.
-  std::vector<std::vector<std::pair<int, int>>> ranges(static_cast<size_t>(threads));  // (first, root)
-  for (size_t k = 0; k < frontier.size(); ++k) {
-    const int root = frontier[k];
-    const double size = subtree_size[static_cast<size_t>(root)];
-    const int first = root - static_cast<int>(size) + 1;
-    if (first < 0 || first_descendant[static_cast<size_t>(root)] != first)
-      return schedule_subtrees(L, 1);
-    ranges[static_cast<size_t>(bin_of[k])].emplace_back(first, root);
-  }
-  std::vector<char> in_subtree(static_cast<size_t>(n), 0);
-  s.runs.assign(static_cast<size_t>(threads), {});
-  for (size_t t = 0; t < ranges.size(); ++t) {
-    std::sort(ranges[t].begin(), ranges[t].end());
-    for (const auto& [first, root] : ranges[t]) {
-      append_runs(f, first, root, root, s.runs[t]);
-      std::fill(in_subtree.begin() + first, in_subtree.begin() + root + 1, 1);
-    }
-  }
+  const TreeSplit split = split_tree(parent, work, threads);
+  s.runs.assign(split.subtrees.size(), {});
+  for (size_t t = 0; t < split.subtrees.size(); ++t)
+    for (const auto& [first, root] : split.subtrees[t]) append_runs(f, first, root, root, s.runs[t]);
   s.top_slot.assign(static_cast<size_t>(n), -1);
   for (int j = 0; j < n; ++j) {
-    if (in_subtree[static_cast<size_t>(j)]) continue;
-    s.top_slot[static_cast<size_t>(j)] = s.top_columns++;
+    if (split.in_subtree[static_cast<size_t>(j)]) continue;
     // Ancestors are solved serially after the subtrees: every row is "local" to them.
     int last = j;
-    while (last + 1 < n && !in_subtree[static_cast<size_t>(last) + 1]) ++last;
-    for (int k = j + 1; k <= last; ++k) s.top_slot[static_cast<size_t>(k)] = s.top_columns++;
+    while (last + 1 < n && !split.in_subtree[static_cast<size_t>(last) + 1]) ++last;
+    for (int k = j; k <= last; ++k) s.top_slot[static_cast<size_t>(k)] = s.top_columns++;
     append_runs(f, j, last, n, s.top);
     j = last;
   }
@@ -334,25 +237,9 @@ DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule
     }
     return X;
   }
-  std::vector<double> Y(static_cast<size_t>(n) * static_cast<size_t>(m));
-  for (int j = 0; j < n; ++j) {
-    const int row = f.perm ? f.perm[j] : j;
-    for (int c = 0; c < m; ++c) Y[static_cast<size_t>(j) * static_cast<size_t>(m) + static_cast<size_t>(c)] = B(row, c);
-  }
-  // The common widths get kernels with the width fixed at compile time.
-  switch (m) {
-    case 1: solve_blocks<1>(f, schedule, Y.data(), m); break;
-    case 2: solve_blocks<2>(f, schedule, Y.data(), m); break;
-    case 3: solve_blocks<3>(f, schedule, Y.data(), m); break;
-    case 4: solve_blocks<4>(f, schedule, Y.data(), m); break;
-    default: solve_blocks<0>(f, schedule, Y.data(), m); break;
-  }
-  DenseMatrix X(n, m);
-  for (int j = 0; j < n; ++j) {
-    const int row = f.perm ? f.perm[j] : j;
-    for (int c = 0; c < m; ++c) X(row, c) = Y[static_cast<size_t>(j) * static_cast<size_t>(m) + static_cast<size_t>(c)];
-  }
-  return X;
+  return solve_permuted_rows(f.perm, B, [&](double* Y, auto width) {
+    solve_blocks<decltype(width)::value>(f, schedule, Y, m);
+  });
 }
 
 }  // namespace lapis::solver::detail

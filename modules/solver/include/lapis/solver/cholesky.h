@@ -13,6 +13,10 @@ struct CholeskyOptions {
   Backend backend = Backend::Cholmod;
   // Supernodal LL' is several times faster to factorize than simplicial on 3D problems.
   FactorKind kind = FactorKind::Supernodal;
+  // Threads of the solve (0: OpenMP's default).
+  int threads = 0;
+  // Solve with cholmod_solve instead of Lapis' parallel kernels: for cross-checks.
+  bool cholmod_solve = false;
 };
 
 class Cholesky {
