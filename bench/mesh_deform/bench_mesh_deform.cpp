@@ -98,7 +98,14 @@ json run_one(const Size& size, const std::string& method) {
     ImplicitLaplacianDeformer* imp = nullptr;
     ArapDeformer* arap = nullptr;
     if (method == "naive") d = std::make_unique<NaiveLaplacianDeformer>(m);
-    if (method == "implicit") d = std::make_unique<ImplicitLaplacianDeformer>(m), imp = static_cast<ImplicitLaplacianDeformer*>(d.get());
+    if (method == "implicit" || method == "implicit_backsub") {
+      // implicit_backsub: Eq. 2.8 back-substituted every frame instead of combined from the
+      // precomputed handle basis, to show both.
+      ImplicitOptions o;
+      if (method == "implicit_backsub") o.max_basis_columns = 0;
+      d = std::make_unique<ImplicitLaplacianDeformer>(m, o);
+      imp = static_cast<ImplicitLaplacianDeformer*>(d.get());
+    }
     if (method == "arap") {
       ArapOptions o;
       o.max_iterations = kArapIterationsPerFrame;
@@ -128,6 +135,7 @@ json run_one(const Size& size, const std::string& method) {
       r["polar_ms"] = bench::median(polar);
       r["second_solve_ms"] = bench::median(second);
       r["degenerate_vertices"] = imp->stats().degenerate_vertices;
+      r["basis_columns"] = imp->stats().basis_columns;
       r["first_factor_nnz"] = imp->stats().first_factor_nnz;
       r["second_factor_nnz"] = imp->stats().second_factor_nnz;
     }
@@ -163,8 +171,8 @@ int main(int argc, char** argv) {
   bench::Table table({"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
   for (const Size& s : kSizes) {
     if (sizes.find(s.name) == std::string::npos) continue;
-    for (const char* method : {"naive", "implicit", "arap", "cgal_arap"}) {
-      if (std::string(method) == "implicit" && (s.name == "416k" || s.name == "1m") && !implicit_large) continue;
+    for (const char* method : {"naive", "implicit", "implicit_backsub", "arap", "cgal_arap"}) {
+      if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large) continue;
       const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
       FILE* p = popen(cmd.c_str(), "r");
       std::string out;

@@ -245,3 +245,33 @@ TEST_CASE("mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked,
   CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({{side, {edge, m.num_vertices(), edge}, {1, 0, 0}}}, 0.1),
                        doctest::Contains("has a vertex out of range or a weight that is not finite"), lapis::InvalidArgument);
 }
+
+TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution for any handle transforms") {
+  // Two region handles (one with a non-rigid transform) and two point handles, with and
+  // without the second system: the combination X_I + Φ C must be Eq. 2.8's solution.
+  const TriMesh m = t::box_bar(4, 1.0, 4.0);
+  Selection s;
+  s.roi = t::slab(m, 2, 0.1 + 1e-9, 1.0);  // the bottom tenth stays fixed
+  s.region_handles = {t::slab(m, 2, 0.9, 1.0), t::slab(m, 2, 0.45, 0.5)};
+  const std::vector<int> lower = t::slab(m, 2, 0.2, 0.4);
+  s.point_handles = {lower.front(), lower.back()};
+  for (ShearingRemoval shearing : {ShearingRemoval::None, ShearingRemoval::ScaleFeatures}) {
+    ImplicitOptions with_basis, without_basis;
+    with_basis.shearing = without_basis.shearing = shearing;
+    without_basis.max_basis_columns = 0;
+    ImplicitLaplacianDeformer a(m, with_basis), b(m, without_basis);
+    a.set_selection(s);
+    b.set_selection(s);
+    for (int frame = 0; frame < 4; ++frame) {
+      CAPTURE(frame);
+      Eigen::Matrix4d shear = similarity(20.0 * frame, Eigen::Vector3d(1, 1, 0), 1.0 + 0.1 * frame, Eigen::Vector3d(0.3, 0, -0.2 * frame));
+      shear(0, 1) += 0.15 * frame;  // not a similarity: every entry of the 3×4 block matters
+      HandleTransforms h{{similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
+                         {Eigen::Vector3d(0.05 * frame, -0.1, 0.02), Eigen::Vector3d(0, 0.2 * frame, 0)}};
+      const Vertices Xa = a.deform(h), Xb = b.deform(h);
+      CHECK(a.stats().basis_columns == 4 * 2 + 2);
+      CHECK(b.stats().basis_columns == 0);
+      CHECK((Xa - Xb).norm() <= 1e-9 * Xb.norm());
+    }
+  }
+}

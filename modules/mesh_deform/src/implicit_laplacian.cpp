@@ -27,6 +27,12 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Eq. 2.8's right-hand sides (one per block, empty for zero) and fixed displacements.
+struct FirstSystemInput {
+  std::vector<solver::DenseMatrix> rhs;
+  solver::DenseMatrix fixed;
+};
+
 }  // namespace
 
 // Both systems are solved for the displacement from the rest state rather than for the
@@ -55,7 +61,95 @@ struct ImplicitLaplacianDeformer::Impl {
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
   solver::DenseMatrix blend_rest;               // E_T rows (§3.3.3) at the rest state
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
+  // Eq. 2.8 as X = X_I + Φ C (options.max_basis_columns): X_I the solution for identity
+  // transforms, Φ one column per handle parameter, C the parameters' change from identity.
+  solver::DenseMatrix at_identity, basis;
+  int region_handles = 0, point_handles = 0;
+
+  // Where constrained work vertex v goes, from a rest-side position p.
+  Eigen::Vector3d place(const HandleTransforms& transforms, int v, const Eigen::Vector3d& p) const {
+    if (w.role[v] == VertexRole::RegionHandle) return apply(transforms.regions[w.handle_of[v]], p);
+    if (w.role[v] == VertexRole::PointHandle) return p + transforms.points[w.handle_of[v]];
+    return p;
+  }
+
+  // Eq. 2.8 in displacements d = ṽ' − v' for these transforms.
+  FirstSystemInput first_input(const HandleTransforms& transforms) const {
+    const Vertices& P = w.displaced;
+    FirstSystemInput in;
+    in.fixed.resize(static_cast<Eigen::Index>(constrained.size()), 3);
+    for (size_t k = 0; k < constrained.size(); ++k) {
+      const int v = constrained[k];
+      in.fixed.row(static_cast<Eigen::Index>(k)) = (place(transforms, v, P.row(v).transpose()) - P.row(v).transpose()).transpose();
+    }
+    // E_L and E_R vanish at the rest state (M_i = I), so their right-hand sides are zero
+    // (empty: the solver skips them); only the transformation constraints carry W_c − M_c(v').
+    in.rhs.resize(1);
+    if (has_coherence) in.rhs.emplace_back();
+    if (transform_rest.rows() > 0) {
+      solver::DenseMatrix r = -transform_rest;
+      for (size_t t = 0; t < transform_vertex.size(); ++t) {
+        const int h = transform_handle[t];
+        const Eigen::Matrix3d W = h < 0 ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(transforms.regions[h].topLeftCorner<3, 3>());
+        // Row a of M_c against coordinate a: block rows 3t + b hold M_c(a, b) in column a.
+        r.middleRows(static_cast<Eigen::Index>(3 * t), 3) += W.transpose();
+      }
+      in.rhs.push_back(std::move(r));
+    }
+    // E_T is homogeneous in the positions: in displacements its right-hand side is −A_B v'.
+    if (blend_rest.rows() > 0) in.rhs.push_back(-blend_rest);
+    return in;
+  }
+
+  // X_I and Φ. Parameter column 4h + b of region handle h enters coordinate a with weight
+  // T_h(a, b): through the fixed values (p_b, or 1 for the translation b = 3) of the handle's
+  // vertices and the transformation rows 3t + b of its constrained vertices (b < 3); column
+  // 4·#regions + p is point handle p's translation, through its fixed value.
+  void build_basis() {
+    const Vertices& P = w.displaced;
+    const int q = 4 * region_handles + point_handles;
+    HandleTransforms identity;
+    identity.regions.assign(static_cast<size_t>(region_handles), Eigen::Matrix4d::Identity());
+    identity.points.assign(static_cast<size_t>(point_handles), Eigen::Vector3d::Zero());
+    const FirstSystemInput at_rest = first_input(identity);
+    at_identity = first.solve(at_rest.rhs, at_rest.fixed);
+
+    FirstSystemInput unit;
+    unit.fixed = solver::DenseMatrix::Zero(static_cast<Eigen::Index>(constrained.size()), q);
+    for (size_t k = 0; k < constrained.size(); ++k) {
+      const int v = constrained[k], h = w.handle_of[v];
+      const auto row = static_cast<Eigen::Index>(k);
+      if (w.role[v] == VertexRole::RegionHandle) {
+        for (int b = 0; b < 3; ++b) unit.fixed(row, 4 * h + b) = P(v, b);
+        unit.fixed(row, 4 * h + 3) = 1;
+      } else if (w.role[v] == VertexRole::PointHandle) {
+        unit.fixed(row, 4 * region_handles + h) = 1;
+      }
+    }
+    unit.rhs.resize(at_rest.rhs.size());  // zero everywhere but the transformation rows
+    if (transform_rest.rows() > 0) {
+      solver::DenseMatrix r = solver::DenseMatrix::Zero(transform_rest.rows(), q);
+      for (size_t t = 0; t < transform_vertex.size(); ++t)
+        if (const int h = transform_handle[t]; h >= 0)
+          for (int b = 0; b < 3; ++b) r(static_cast<Eigen::Index>(3 * t + b), 4 * h + b) = 1;
+      unit.rhs[has_coherence ? 2 : 1] = std::move(r);
+    }
+    basis = first.solve(unit.rhs, unit.fixed);
+  }
+
+  // C with X = X_I + Φ C: the parameters' change from the identity transforms.
+  solver::DenseMatrix basis_coefficients(const HandleTransforms& transforms) const {
+    solver::DenseMatrix C(4 * region_handles + point_handles, 3);
+    for (int h = 0; h < region_handles; ++h) {
+      Eigen::Matrix<double, 3, 4> change = transforms.regions[static_cast<size_t>(h)].topRows<3>();
+      change.leftCols<3>() -= Eigen::Matrix3d::Identity();
+      C.middleRows(4 * h, 4) = change.transpose();
+    }
+    for (int p = 0; p < point_handles; ++p) C.row(4 * region_handles + p) = transforms.points[static_cast<size_t>(p)].transpose();
+    return C;
+  }
 };
+
 
 ImplicitLaplacianDeformer::ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options)
     : Deformer(std::move(mesh)), options_(options) {}
@@ -239,12 +333,17 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     throw;
   }
   if (second_done.valid()) second_done.get();  // rethrows the second system's error
+  m->region_handles = layout.num_region_handles;
+  m->point_handles = layout.num_point_handles;
+  const int parameters = 4 * m->region_handles + m->point_handles;
+  if (parameters <= options_.max_basis_columns) m->build_basis();
 
   stats_ = {};
   stats_.free_vertices = static_cast<int>(m->free.size());
   stats_.degenerate_vertices = w.degenerate;
   stats_.inserted_vertices = static_cast<int>(w.inserted.size());
   stats_.first_factor_nnz = m->first.factor().stats().nnz_L;
+  stats_.basis_columns = static_cast<int>(m->basis.cols());
   if (options_.shearing != ShearingRemoval::None) stats_.second_factor_nnz = m->second.factor().stats().nnz_L;
   impl_ = std::move(m);
   stats_.setup_ms = ms_since(t0);
@@ -306,36 +405,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   const int n0 = mesh_.num_vertices();
   const Vertices& P = w.displaced;
 
-  // Where a constrained work vertex goes, from a rest-side position p.
-  auto place = [&](int v, const Eigen::Vector3d& p) -> Eigen::Vector3d {
-    if (w.role[v] == VertexRole::RegionHandle) return apply(transforms.regions[w.handle_of[v]], p);
-    if (w.role[v] == VertexRole::PointHandle) return p + transforms.points[w.handle_of[v]];
-    return p;
-  };
-
-  // First system (Eq. 2.8) in displacements d = ṽ' − v'.
   auto t0 = std::chrono::steady_clock::now();
-  solver::DenseMatrix fixed(m.constrained.size(), 3);
-  for (size_t k = 0; k < m.constrained.size(); ++k) {
-    const int v = m.constrained[k];
-    fixed.row(k) = (place(v, P.row(v).transpose()) - P.row(v).transpose()).transpose();
-  }
-  // E_L and E_R vanish at the rest state (M_i = I), so their right-hand sides are zero
-  // (empty: the solver skips them); only the transformation constraints carry W_c − M_c(v').
-  std::vector<solver::DenseMatrix> rhs(1);
-  if (m.has_coherence) rhs.emplace_back();
-  if (m.transform_rest.rows() > 0) {
-    solver::DenseMatrix r = -m.transform_rest;
-    for (size_t t = 0; t < m.transform_vertex.size(); ++t) {
-      const int h = m.transform_handle[t];
-      const Eigen::Matrix3d W = h < 0 ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(transforms.regions[h].topLeftCorner<3, 3>());
-      // Row a of M_c against coordinate a: block rows 3t + b hold M_c(a, b) in column a.
-      r.middleRows(static_cast<Eigen::Index>(3 * t), 3) += W.transpose();
-    }
-    rhs.push_back(std::move(r));
-  }
-  // E_T is homogeneous in the positions: in displacements its right-hand side is −A_B v'.
-  if (m.blend_rest.rows() > 0) rhs.push_back(-m.blend_rest);
   // Large rotations: continue each handle's angle from the previous frame (§2.5's limit).
   std::vector<int> big;
   for (size_t h = 0; h < m.accumulated.size(); ++h) {
@@ -345,9 +415,14 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   }
   stats_.guided = !big.empty();
   solver::DenseMatrix X;
-  if (big.empty()) {
-    X = solver::DenseMatrix(P) + m.first.solve(rhs, fixed);
+  if (big.empty() && m.basis.cols() > 0) {
+    X = solver::DenseMatrix(P) + m.at_identity;
+    X.noalias() += m.basis * m.basis_coefficients(transforms);
+  } else if (big.empty()) {
+    const FirstSystemInput in = m.first_input(transforms);
+    X = solver::DenseMatrix(P) + m.first.solve(in.rhs, in.fixed);
   } else {
+    FirstSystemInput in = m.first_input(transforms);
     if (big != m.guided_for) build_guide(big);
     solver::DenseMatrix g = -m.guide_rest;
     // Each guide vertex takes the φ-blend of the handles' accumulated rotation vectors and
@@ -365,8 +440,8 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
       }
       g.middleRows(static_cast<Eigen::Index>(3 * t), 3) += (std::exp(ls) * detail::rotation_of(r)).transpose();
     }
-    rhs.push_back(std::move(g));
-    X = solver::DenseMatrix(P) + m.guided->solve(rhs, fixed);
+    in.rhs.push_back(std::move(g));
+    X = solver::DenseMatrix(P) + m.guided->solve(in.rhs, in.fixed);
   }
   stats_.first_solve_ms = ms_since(t0);
 
@@ -411,7 +486,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   for (size_t k = 0; k < m.constrained.size(); ++k) {
     const int v = m.constrained[k];
     const Eigen::Vector3d r = w.mesh.V.row(v).transpose();
-    fixed2.row(k) = (place(v, r) - r).transpose();
+    fixed2.row(k) = (m.place(transforms, v, r) - r).transpose();
   }
   const solver::DenseMatrix Y = m.second.solve({rhs2}, fixed2);
   for (int v : m.free)

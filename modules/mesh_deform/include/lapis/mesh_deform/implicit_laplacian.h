@@ -38,6 +38,13 @@ struct ImplicitOptions {
   // thesis' plain method (which takes the smaller angle).
   bool large_rotations = true;
   double guide_angle = 0.5 * 3.141592653589793;  // below it both systems agree closely
+  // Eq. 2.8's solution is affine in the handle transforms (its right-hand side and fixed
+  // values are linear in them). With at most this many handle parameters (4 per region
+  // handle: the columns of its 3×4 transform act alike on x, y and z; 1 per point handle),
+  // setup solves once for one column per parameter and each frame combines them: a
+  // #V × parameters product instead of the first back-substitution, equal to it up to
+  // rounding. 0: back-substitute every frame.
+  int max_basis_columns = 64;
 };
 
 // One extra least-squares row of the first system: vertex's transformed Laplacian coordinate
@@ -59,7 +66,8 @@ struct ImplicitStats {
   long long first_factor_nnz = 0;   // non-zeros of the Cholesky factors of Eq. 2.8's and
   long long second_factor_nnz = 0;  // Eq. 2.10's normal matrices
   double setup_ms = 0;           // assembly + both factorizations
-  double first_solve_ms = 0;     // Eq. 2.8 back-substitution (x, y, z together)
+  int basis_columns = 0;         // > 0: Eq. 2.8 combined from that many precomputed solutions
+  double first_solve_ms = 0;     // Eq. 2.8 back-substitution (x, y, z together) or combination
   double polar_ms = 0;           // all gradients M_i and their polar decompositions
   double second_solve_ms = 0;    // Eq. 2.10/2.11 back-substitution
   double frame_ms = 0;           // the whole deform() call
