@@ -55,7 +55,7 @@ struct Width {
   int get() const { return M > 0 ? M : m; }
 };
 
-// x_c[r] −= Σ_{j < j0 + Q} L(r, j) x_c[j] for rows r in [r0, r1), every right-hand side c.
+// x_c[r] −= Σ_{j0 <= j < j0 + Q} L(r, j) x_c[j] for rows r in [r0, r1), every right-hand side c.
 template <int Q, int M>
 void subtract_columns_q(const double* Lb, int ld, int j0, int r0, int r1, double* x, int ldx, Width<M> width) {
   const double* l[Q];
@@ -143,8 +143,9 @@ void for_chunks(int begin, int end, bool parallel, F f) {
       begin + static_cast<int>(static_cast<long long>(end - begin) * (t + 1) / chunks));
 }
 
-// L_k y_k = b_k for supernode k, then the rows below it −= L_below y_k. `scratch` holds
-// max_rows by w. parallel: split the rectangular updates over threads (top supernodes).
+// L_k y_k = b_k for supernode k, then the rows below it −= L_below y_k. x: the scratch block
+// (ldx rows per right-hand side). parallel: split the rectangular updates over the threads
+// (top supernodes).
 template <int M>
 void forward_supernode(const SupernodeView& v, int k, Width<M> width, const ForwardTarget& target,
                        double* x, int ldx, bool parallel) {
