@@ -11,15 +11,17 @@ using namespace std::chrono_literals;
 
 TEST_CASE("viewer: the latest worker drops stale jobs and delivers the newest result") {
   LatestWorker<int> worker;
-  std::atomic<bool> release{false};
+  std::atomic<bool> release{false}, started{false};
   std::atomic<int> ran{0};
   worker.submit([&] {
+    started = true;
     while (!release) std::this_thread::sleep_for(1ms);
     ++ran;
     return 1;
   });
-  while (!worker.busy()) std::this_thread::sleep_for(1ms);
-  std::this_thread::sleep_for(20ms);  // job 1 is running now
+  // Wait until job 1 runs (not only until it is queued: on a loaded machine the worker
+  // thread may start it much later, and the jobs below would then replace it).
+  while (!started) std::this_thread::sleep_for(1ms);
   for (int k = 2; k <= 10; ++k)
     worker.submit([&ran, k] {
       ++ran;
