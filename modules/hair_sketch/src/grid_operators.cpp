@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "grid_stencil.h"
+
 namespace lapis::hair_sketch {
 namespace {
 
@@ -54,35 +56,9 @@ SparseMatrix normal_matrix(const Grid& grid, const Eigen::VectorXd& weights) {
 
 void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const Field& X,
                            Field& Y) {
-  const int n = static_cast<int>(g.num_nodes());
-  Field L(n, 3);
-  Y.resize(n, 3);
-  // L = D X: mean of the neighbours minus the node.
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int k = 0; k < g.dims[2]; ++k)
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i) {
-        const int row = g.index(i, j, k);
-        Eigen::RowVector3d s = Eigen::RowVector3d::Zero();
-        const int c = for_neighbours(g, i, j, k, [&](int col) { s += X.row(col); });
-        L.row(row) = s / c - X.row(row);
-      }
-  // Y = Dᵀ L + diag(w) X: column j of D holds 1/|N(i)| at each neighbour i of j.
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int k = 0; k < g.dims[2]; ++k)
-    for (int j = 0; j < g.dims[1]; ++j)
-      for (int i = 0; i < g.dims[0]; ++i) {
-        const int row = g.index(i, j, k);
-        Eigen::RowVector3d s = -L.row(row) + weights[row] * X.row(row);
-        const int sx = 1, sy = g.dims[0], sz = g.dims[0] * g.dims[1];
-        if (i > 0) s += L.row(row - sx) / neighbour_count(g, i - 1, j, k);
-        if (i + 1 < g.dims[0]) s += L.row(row + sx) / neighbour_count(g, i + 1, j, k);
-        if (j > 0) s += L.row(row - sy) / neighbour_count(g, i, j - 1, k);
-        if (j + 1 < g.dims[1]) s += L.row(row + sy) / neighbour_count(g, i, j + 1, k);
-        if (k > 0) s += L.row(row - sz) / neighbour_count(g, i, j, k - 1);
-        if (k + 1 < g.dims[2]) s += L.row(row + sz) / neighbour_count(g, i, j, k + 1);
-        Y.row(row) = s;
-      }
+  Field scratch(X.rows(), 3);
+  Y.resize(X.rows(), 3);
+  detail::normal_operator(g.dims, weights.data(), X.data(), scratch.data(), Y.data(), false);
 }
 
 }  // namespace lapis::hair_sketch

@@ -1,5 +1,6 @@
 #include "lapis/hair_sketch/growth.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lapis::hair_sketch {
@@ -32,35 +33,61 @@ Eigen::Vector3f SampledField::operator()(const Eigen::Vector3f& p) const {
   return r;
 }
 
+namespace {
+
+// Strands grown by one task: their points back to back and each strand's point count.
+struct StrandBlock {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<int> counts;
+};
+
+// Strands [first, last) grown into one block. One growing buffer per block instead of one
+// per strand: a strand's push_backs reallocate a dozen times, a block's a few.
+void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
+                int last, float l, int max_steps, float vmin, StrandBlock& out) {
+  out.points.reserve(static_cast<size_t>(last - first) * 64);
+  out.counts.reserve(last - first);
+  for (int s = first; s < last; ++s) {
+    const size_t start = out.points.size();
+    Eigen::Vector3f p = roots[s].cast<float>();
+    out.points.push_back(p);
+    for (int it = 0; it < max_steps; ++it) {
+      const Eigen::Vector3f v = field(p);
+      // Outside the grid the lookup is zero, so this also stops at the box.
+      if (v.norm() < vmin) break;
+      p += l * v;
+      out.points.push_back(p);
+    }
+    out.counts.push_back(static_cast<int>(out.points.size() - start));
+  }
+}
+
+}  // namespace
+
 Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
                      const GrowthOptions& options) {
   const int n = static_cast<int>(roots.size());
   const float l = static_cast<float>(options.step * field.grid().spacing);
   const int max_steps = std::max(1, static_cast<int>(options.max_length / options.step));
   const float vmin = static_cast<float>(options.min_magnitude);
-  std::vector<std::vector<Eigen::Vector3f>> per(n);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (int s = 0; s < n; ++s) {
-    auto& pts = per[s];
-    Eigen::Vector3f p = roots[s].cast<float>();
-    pts.push_back(p);
-    for (int it = 0; it < max_steps; ++it) {
-      const Eigen::Vector3f v = field(p);
-      // Outside the grid the lookup is zero, so this also stops at the box.
-      if (v.norm() < vmin) break;
-      p += l * v;
-      pts.push_back(p);
-    }
-  }
+  constexpr int kBlock = 64;
+  const int blocks = (n + kBlock - 1) / kBlock;
+  std::vector<StrandBlock> grown(blocks);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int b = 0; b < blocks; ++b)
+    grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin,
+               grown[b]);
+  // Blocks in strand order, so the result does not depend on which thread grew what.
+  std::vector<size_t> block_start(blocks + 1, 0);
+  for (int b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + grown[b].points.size();
   Strands out;
-  size_t total = 0;
-  for (const auto& s : per) total += s.size();
-  out.points.reserve(total);
+  out.points.resize(block_start[blocks]);
   out.offsets.reserve(n + 1);
-  for (const auto& s : per) {
-    out.points.insert(out.points.end(), s.begin(), s.end());
-    out.offsets.push_back(static_cast<int>(out.points.size()));
-  }
+  for (const StrandBlock& g : grown)
+    for (int c : g.counts) out.offsets.push_back(out.offsets.back() + c);
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < blocks; ++b)
+    std::copy(grown[b].points.begin(), grown[b].points.end(), out.points.begin() + block_start[b]);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "lapis/core/error.h"
+#include "grid_stencil.h"
 #include "lapis/hair_sketch/grid_operators.h"
 
 namespace lapis::hair_sketch::detail {
@@ -66,8 +67,10 @@ inline std::ptrdiff_t value_index(const RowSparseD& A, int i, int j) {
   return (it != end && *it == j) ? it - A.innerIndexPtr() : -1;
 }
 
-// y = A x (op = 0) or r -= A x (op = 1), 3 columns at once.
-void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, bool subtract) {
+enum class Mode { Assign, Add, Subtract };
+
+// y = A x, y += A x or y -= A x, 3 columns at once.
+void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   const int n = static_cast<int>(A.rows());
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
@@ -85,22 +88,30 @@ void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, bool subtract) {
       s2 += v * xc[2];
     }
     Real* yi = yp + 3 * static_cast<std::ptrdiff_t>(i);
-    if (subtract) {
+    if (mode == Mode::Subtract) {
       yi[0] -= s0, yi[1] -= s1, yi[2] -= s2;
+    } else if (mode == Mode::Add) {
+      yi[0] += s0, yi[1] += s1, yi[2] += s2;
     } else {
       yi[0] = s0, yi[1] = s1, yi[2] = s2;
     }
   }
 }
 
-// y += A x
-void spmv_add(const RowSparseF& A, const FieldF& x, FieldF& y) {
-  const int n = static_cast<int>(A.rows());
+// One Chebyshev step after r was updated: d = a d + c D⁻¹ r, x += d, one fused pass.
+void chebyshev_update(FieldF& x, FieldF& d, const FieldF& r, const VectorR& inv_diag, Real a,
+                      Real c) {
+  const int n = static_cast<int>(x.rows());
+  Real* xp = x.data();
+  Real* dp = d.data();
+  const Real* rp = r.data();
 #pragma omp parallel for schedule(static) if (n > 20000)
   for (int i = 0; i < n; ++i) {
-    Eigen::Matrix<Real, 1, 3> s = Eigen::Matrix<Real, 1, 3>::Zero();
-    for (RowSparseF::InnerIterator it(A, i); it; ++it) s += it.value() * x.row(it.col());
-    y.row(i) += s;
+    const Real s = c * inv_diag[i];
+    for (int k = 3 * i; k < 3 * i + 3; ++k) {
+      dp[k] = a * dp[k] + s * rp[k];
+      xp[k] += dp[k];
+    }
   }
 }
 
@@ -109,9 +120,11 @@ void spmv_add(const RowSparseF& A, const FieldF& x, FieldF& y) {
 MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& weights,
                                        MultigridOptions options)
     : opt_(options) {
+  // The hierarchy of the unconstrained operator DᵀD first; the weights then arrive as an
+  // edit, exactly as later constraint changes do.
   Level fine;
   fine.dims = grid.dims;
-  fine.A = RowSparseD(normal_matrix(grid, weights));
+  fine.A = RowSparseD(normal_matrix(grid, Eigen::VectorXd::Zero(grid.num_nodes())));
   levels_.push_back(std::move(fine));
   while (levels_.back().A.rows() > opt_.coarsest_nodes) {
     Level& f = levels_.back();
@@ -127,9 +140,15 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     f.R = RowSparseF(f.P.transpose());
     levels_.push_back(std::move(c));
   }
+  Level& f0 = levels_[0];
+  f0.matrix_free = true;
+  f0.weights.setZero(f0.A.rows());
+  f0.scratch.setZero(f0.A.rows(), 3);
+  fine_weights_.setZero(f0.A.rows());
+  pinned_.assign(f0.A.rows(), 0);
   for (Level& L : levels_) {
     const int n = static_cast<int>(L.A.rows());
-    L.Af = L.A.cast<Real>();
+    if (!L.matrix_free) L.Af = L.A.cast<Real>();
     L.inv_diag.resize(n);
     L.gershgorin.resize(n);
     for (int i = 0; i < n; ++i) refresh_row(L, i);
@@ -141,13 +160,17 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
+  std::vector<std::pair<int, double>> initial;
+  for (int i = 0; i < weights.size(); ++i)
+    if (weights[i] != 0) initial.emplace_back(i, weights[i]);
+  if (!initial.empty()) add_to_diagonal(initial);
 }
 
 void MultigridHierarchy::refresh_row(Level& L, int row) {
   double diag = 0, sum = 0;
   for (std::ptrdiff_t p = L.A.outerIndexPtr()[row]; p < L.A.outerIndexPtr()[row + 1]; ++p) {
     const double v = L.A.valuePtr()[p];
-    L.Af.valuePtr()[p] = static_cast<Real>(v);
+    if (!L.matrix_free) L.Af.valuePtr()[p] = static_cast<Real>(v);
     if (L.A.innerIndexPtr()[p] == row) diag = v;
     sum += std::abs(v);
   }
@@ -162,45 +185,103 @@ void MultigridHierarchy::factor_coarsest() {
 }
 
 void MultigridHierarchy::add_to_diagonal(const std::vector<std::pair<int, double>>& changes) {
-  struct Entry {
-    int i, j;
-    double v;
-  };
+  // The fine level takes the weights on its diagonal; the nodes whose pinned state flips
+  // change level 1 through the prolongation (free_set_change); what level 1 gains or loses
+  // spreads to the coarser levels entry by entry.
+  Level& F = levels_[0];
   std::vector<Entry> T;
   T.reserve(changes.size());
-  for (const auto& [node, delta] : changes) T.push_back({node, node, delta});
-  for (size_t l = 0; l < levels_.size(); ++l) {
-    Level& L = levels_[l];
-    std::vector<int> rows;
-    rows.reserve(T.size());
-    for (const Entry& e : T) {
-      const std::ptrdiff_t p = value_index(L.A, e.i, e.j);
-      if (p < 0)
-        throw SolverFailure("hair_sketch::MultigridHierarchy::add_to_diagonal(): entry (" +
-                            std::to_string(e.i) + ", " + std::to_string(e.j) +
-                            ") outside the Galerkin pattern of level " + std::to_string(l));
-      L.A.valuePtr()[p] += e.v;
-      rows.push_back(e.i);
+  for (const auto& [node, delta] : changes) {
+    T.push_back({node, node, delta});
+    fine_weights_[node] += delta;
+    F.weights[node] = static_cast<Real>(fine_weights_[node]);
+  }
+  update_level(0, T);
+  std::unordered_map<long long, double> acc;
+  for (const auto& [node, delta] : changes) {
+    const bool pinned = fine_weights_[node] > 0;
+    if (pinned == static_cast<bool>(pinned_[node])) continue;
+    free_set_change(node, pinned ? -1.0 : 1.0, acc);
+    set_prolongation_row(node, !pinned);
+    pinned_[node] = pinned;
+  }
+  for (size_t l = 1; l < levels_.size(); ++l) {
+    T.clear();
+    for (const auto& [key, v] : acc) {
+      const long long nc = levels_[l].A.rows();
+      T.push_back({static_cast<int>(key / nc), static_cast<int>(key % nc), v});
     }
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    for (int r : rows) refresh_row(L, r);
-    L.lambda_max = L.gershgorin.maxCoeff();
-    refresh_band(L);
+    update_level(static_cast<int>(l), T);
     if (l + 1 == levels_.size()) break;
     // Pᵀ ΔA P, entry by entry: (i, j, v) spreads to (I, J, P(i,I) v P(j,J)).
+    const Level& L = levels_[l];
     const long long nc = levels_[l + 1].A.rows();
-    std::unordered_map<long long, double> acc;
-    acc.reserve(T.size() * 16);
+    acc.clear();
     for (const Entry& e : T)
       for (RowSparseD::InnerIterator a(L.Pd, e.i); a; ++a)
         for (RowSparseD::InnerIterator b(L.Pd, e.j); b; ++b)
           acc[a.col() * nc + b.col()] += a.value() * e.v * b.value();
-    T.clear();
-    for (const auto& [key, v] : acc)
-      T.push_back({static_cast<int>(key / nc), static_cast<int>(key % nc), v});
   }
   factor_coarsest();
+}
+
+void MultigridHierarchy::update_level(int l, const std::vector<Entry>& T) {
+  Level& L = levels_[l];
+  std::vector<int> rows;
+  rows.reserve(T.size());
+  for (const Entry& e : T) {
+    const std::ptrdiff_t p = value_index(L.A, e.i, e.j);
+    if (p < 0)
+      throw SolverFailure("hair_sketch::MultigridHierarchy::add_to_diagonal(): entry (" +
+                          std::to_string(e.i) + ", " + std::to_string(e.j) +
+                          ") outside the Galerkin pattern of level " + std::to_string(l));
+    L.A.valuePtr()[p] += e.v;
+    rows.push_back(e.i);
+  }
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  for (int r : rows) refresh_row(L, r);
+  L.lambda_max = L.gershgorin.maxCoeff();
+}
+
+void MultigridHierarchy::free_set_change(int s, double sign,
+                                         std::unordered_map<long long, double>& acc) const {
+  // Level 1 is Σ_{i,j free} P_iᵀ A_ij P_j over the unweighted DᵀD (a pinned row of P is
+  // zero). Node s joining (+) or leaving (−) the free set adds or removes the terms with
+  // i = s or j = s, counted while s is free.
+  const Level& F = levels_[0];
+  const long long nc = levels_[1].A.rows();
+  for (RowSparseD::InnerIterator a(F.A, s); a; ++a) {
+    const int j = static_cast<int>(a.col());
+    if (j != s && pinned_[j]) continue;
+    const double v = j == s ? F.base_diag[s] : a.value();
+    for (RowSparseD::InnerIterator ps(F.Pd, s); ps; ++ps)
+      for (RowSparseD::InnerIterator pj(F.Pd, j); pj; ++pj) {
+        const double t = sign * v * ps.value() * pj.value();
+        acc[ps.col() * nc + pj.col()] += t;
+        if (j != s) acc[pj.col() * nc + ps.col()] += t;
+      }
+  }
+}
+
+void MultigridHierarchy::set_prolongation_row(int s, bool free) {
+  Level& F = levels_[0];
+  for (std::ptrdiff_t p = F.P.outerIndexPtr()[s]; p < F.P.outerIndexPtr()[s + 1]; ++p) {
+    const Real v = free ? static_cast<Real>(F.Pd.valuePtr()[p]) : Real(0);
+    F.P.valuePtr()[p] = v;
+    // The same entry of R = Pᵀ: row P.col, column s.
+    const int c = F.P.innerIndexPtr()[p];
+    const int* begin = F.R.innerIndexPtr() + F.R.outerIndexPtr()[c];
+    const int* end = F.R.innerIndexPtr() + F.R.outerIndexPtr()[c + 1];
+    F.R.valuePtr()[std::lower_bound(begin, end, s) - F.R.innerIndexPtr()] = v;
+  }
+}
+
+void MultigridHierarchy::multiply(Level& L, const FieldF& x, FieldF& y, bool subtract) {
+  if (L.matrix_free)
+    normal_operator(L.dims, L.weights.data(), x.data(), L.scratch.data(), y.data(), subtract);
+  else
+    spmv(L.Af, x, y, subtract ? Mode::Subtract : Mode::Assign);
 }
 
 void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
@@ -209,20 +290,17 @@ void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
   const Real theta = Real(0.5) * (lmax + lmin), delta = Real(0.5) * (lmax - lmin);
   const Real sigma = theta / delta;
   Real rho = Real(1) / sigma;
-  if (zero_initial) {
+  L.r = L.b;
+  if (zero_initial)
     L.x.setZero();
-    L.r = L.b;
-  } else {
-    L.r = L.b;
-    spmv(L.Af, L.x, L.r, true);
-  }
-  L.d = (L.inv_diag.asDiagonal() * L.r) / theta;
-  for (int it = 0; it < opt_.smoothing_degree; ++it) {
-    L.x += L.d;
-    if (it + 1 == opt_.smoothing_degree) break;
-    spmv(L.Af, L.d, L.r, true);
+  else
+    multiply(L, L.x, L.r, true);
+  L.d.setZero();
+  chebyshev_update(L.x, L.d, L.r, L.inv_diag, 0, 1 / theta);
+  for (int it = 1; it < opt_.smoothing_degree; ++it) {
+    multiply(L, L.d, L.r, true);
     const Real rho_new = Real(1) / (Real(2) * sigma - rho);
-    L.d = (rho_new * rho) * L.d + (Real(2) * rho_new / delta) * (L.inv_diag.asDiagonal() * L.r);
+    chebyshev_update(L.x, L.d, L.r, L.inv_diag, rho_new * rho, Real(2) * rho_new / delta);
     rho = rho_new;
   }
 }
@@ -235,44 +313,14 @@ void MultigridHierarchy::cycle(int l) {
   }
   Level& C = levels_[l + 1];
   smooth(L, true);
-  band_gauss_seidel(L);
   for (int g = 0; g < opt_.cycle_index; ++g) {
     L.r = L.b;
-    spmv(L.Af, L.x, L.r, true);
-    spmv(L.R, L.r, C.b, false);
+    multiply(L, L.x, L.r, true);
+    spmv(L.R, L.r, C.b, Mode::Assign);
     cycle(l + 1);
-    spmv_add(L.P, C.x, L.x);
+    spmv(L.P, C.x, L.x, Mode::Add);
   }
-  band_gauss_seidel(L);
   smooth(L, false);
-}
-
-void MultigridHierarchy::refresh_band(Level& L) {
-  const int n = static_cast<int>(L.A.rows());
-  std::vector<char> in(n, 0);
-  const Eigen::VectorXd diag = L.A.diagonal();
-  for (int i = 0; i < n; ++i)
-    if (diag[i] > L.base_diag[i] * (1 + 1e-6) + 1e-12)
-      for (RowSparseD::InnerIterator it(L.A, i); it; ++it) in[it.col()] = 1;
-  L.band.clear();
-  for (int i = 0; i < n; ++i)
-    if (in[i]) L.band.push_back(i);
-}
-
-void MultigridHierarchy::band_gauss_seidel(Level& L) {
-  auto relax = [&](int i) {
-    Eigen::Matrix<Real, 1, 3> s = L.b.row(i);
-    Real diag = 0;
-    for (RowSparseF::InnerIterator it(L.Af, i); it; ++it) {
-      s -= it.value() * L.x.row(it.col());
-      if (it.col() == i) diag = it.value();
-    }
-    if (diag > 0) L.x.row(i) += s / diag;
-  };
-  for (int sweep = 0; sweep < opt_.band_sweeps; ++sweep) {
-    for (int i : L.band) relax(i);
-    for (auto it = L.band.rbegin(); it != L.band.rend(); ++it) relax(*it);
-  }
 }
 
 void MultigridHierarchy::apply(const FieldF& r, FieldF& z) {

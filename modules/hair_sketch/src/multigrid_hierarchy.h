@@ -1,13 +1,21 @@
 // Galerkin geometric multigrid for the field's normal matrix A = DᵀD + ω²·diag(w) on the
-// uniform grid: trilinear prolongation, coarse operators Pᵀ A P (so the soft constraints'
-// huge diagonal reaches every level correctly), Chebyshev–Jacobi smoothing (a polynomial in
-// diag(A)⁻¹A: parallel, and the ω² = 10⁴ rows are simply scaled away) plus Gauss–Seidel on
-// the rows next to constraints, dense LDLᵀ on the coarsest level. A changed fine weight is
-// a rank-1 change p pᵀ of each coarse operator, so edits update the hierarchy in place
-// instead of rebuilding it.
+// uniform grid: trilinear prolongation, coarse operators Pᵀ A P, Chebyshev–Jacobi smoothing
+// (a polynomial in diag(A)⁻¹A: parallel, and the ω² = 10⁴ rows are simply scaled away),
+// dense LDLᵀ on the coarsest level.
+//
+// Constrained ("pinned") fine nodes get a zero row in the first prolongation. Their error
+// is removed by the smoother alone (Jacobi is nearly exact on a row whose diagonal is 10⁴
+// times its off-diagonal sum), and the coarse space then models the bi-Laplacian of the
+// free nodes around them. Interpolating through pinned nodes instead made every coarse
+// node near a constraint stiff, so smooth error next to constraints had no coarse
+// representation: 25 CG iterations at 50K after a stroke, 15 with the zero rows (the
+// remaining smoothing near constraints, Gauss–Seidel sweeps, no longer helps).
+// Pinning or freeing a node changes level 1 only by the terms of its own row of P, so edits
+// update the hierarchy in place instead of rebuilding it.
 #pragma once
 
 #include <array>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -32,7 +40,6 @@ struct MultigridOptions {
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
-  int band_sweeps = 2;           // symmetric Gauss–Seidel sweeps near constraints
 };
 
 class MultigridHierarchy {
@@ -55,7 +62,7 @@ class MultigridHierarchy {
   struct Level {
     std::array<int, 3> dims{};
     RowSparseD A;       // double master, accumulates edits exactly
-    RowSparseF Af;      // float copy used by the cycle (same pattern as A)
+    RowSparseF Af;      // float copy used by the cycle (same pattern as A; empty if matrix_free)
     RowSparseF P;       // prolongation from the next coarser level (n × n_coarse)
     RowSparseF R;       // Pᵀ, row-major for a gather-style restriction
     RowSparseD Pd;      // P in double, to push edits down
@@ -63,19 +70,31 @@ class MultigridHierarchy {
     VectorR gershgorin;  // per row Σ|a_ij| / a_ii: bounds λ(D⁻¹A)
     Real lambda_max = 0;
     FieldF x, b, r, d;  // work vectors
+    // The finest level applies A matrix-free (grid_stencil.h) with these weights (ω² at
+    // constrained nodes).
+    bool matrix_free = false;
+    VectorR weights;
+    FieldF scratch;
     Eigen::VectorXd base_diag;  // diagonal without constraints
-    std::vector<int> band;      // rows touched by constraints and their neighbours
   };
+  struct Entry {
+    int i, j;
+    double v;
+  };
+  void update_level(int l, const std::vector<Entry>& T);
+  void free_set_change(int s, double sign, std::unordered_map<long long, double>& acc) const;
+  void set_prolongation_row(int s, bool free);
   void cycle(int l);
+  void multiply(Level& L, const FieldF& x, FieldF& y, bool subtract);
   void smooth(Level& L, bool zero_initial);
-  void band_gauss_seidel(Level& L);
-  void refresh_band(Level& L);
   void refresh_row(Level& L, int row);
   void factor_coarsest();
 
   MultigridOptions opt_;
   std::vector<Level> levels_;
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
+  Eigen::VectorXd fine_weights_;  // the weights on the fine diagonal, exact
+  std::vector<char> pinned_;      // fine nodes with a weight: their prolongation row is zero
 };
 
 }  // namespace lapis::hair_sketch::detail
