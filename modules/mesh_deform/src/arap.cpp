@@ -27,6 +27,7 @@ struct ArapDeformer::Impl {
   std::vector<Eigen::Vector3d> we;   // per stencil entry: w_ij (v_i − v_j), contiguous
   std::vector<double> rest_sq;       // per vertex: Σ_j w_ij ‖v_i − v_j‖²
   std::vector<Eigen::Matrix3d> R;    // #V rotations
+  std::vector<Eigen::Quaterniond> q; // the same rotations, each fit's start in the next iteration
   Vertices previous;                 // last frame's result
   bool have_previous = false;
 };
@@ -83,6 +84,7 @@ void ArapDeformer::setup(const Layout& layout) {
                               e.column() >= 0 ? m->free[static_cast<size_t>(e.column())] : -1);
   }
   m->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
+  m->q.assign(static_cast<size_t>(n), Eigen::Quaterniond::Identity());
   m->we.resize(m->s.nbr.size());
   m->rest_sq.assign(static_cast<size_t>(n), 0.0);
   for (int i = 0; i < n; ++i)
@@ -142,7 +144,7 @@ void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Verti
         sq += s.w[k] * et.squaredNorm();
       }
       bool fell_back = false;
-      m.R[i] = detail::nearest_rotation(A, &fell_back);
+      m.R[i] = detail::nearest_rotation(A, m.q[i], &fell_back);
       fallbacks += fell_back;
       energy += sq - 2 * (m.R[i].transpose() * A).trace();
     }
