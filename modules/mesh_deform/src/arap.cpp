@@ -79,7 +79,7 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
   const int nr = static_cast<int>(fitted.size());
   double energy = 0;
   int fell = 0;
-#pragma omp parallel for schedule(static) reduction(+ : energy, fell)
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : energy, fell)
   for (int r = 0; r < nr; ++r) {
     const int i = fitted[r];
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
@@ -103,7 +103,7 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
 //                              = R_i (L V)_i / 2 + Σ_j R_j w_ij e_ij / 2, plus the frame part.
 void ArapDeformer::Impl::assemble_rhs() {
   const int nf = static_cast<int>(free.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk)
   for (int k = 0; k < nf; ++k) {
     const int i = free[k];
     Eigen::Vector3d acc = R[i] * lap.row(k).transpose();

@@ -394,7 +394,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   solver::DenseMatrix rhs2(nf, 3);
   const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : fallbacks)
   for (int k = 0; k < nf; ++k) {
     const int v = m.free[k];
     const Eigen::Matrix3d M = m.G.gradient(v, Xv);

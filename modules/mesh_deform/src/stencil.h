@@ -38,6 +38,12 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
 // δ_i for every vertex (#V by 3).
 Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);
 
+// OpenMP chunk of the per-frame and per-iteration vertex loops, as schedule(dynamic,
+// kVertexChunk): the work per vertex varies (Newton steps in the rotation fits, valence), and on
+// a shared machine one thread may lose its core for a while; whole chunks keep a thread's
+// neighbour gathers local in a spatially ordered loop, at ~100 chunks per 100K vertices.
+constexpr int kVertexChunk = 1024;
+
 // Vertex order along a Morton (Z-order) curve through P's bounding box, as new index -> old:
 // surface neighbours then lie close in memory, so a per-vertex loop's gathers of neighbour
 // data hit the cache. Loop subdivision, for one, appends the edge midpoints, putting half of
