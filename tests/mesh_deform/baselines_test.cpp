@@ -2,7 +2,10 @@
 // under ARAP's local step.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
+
+#include <Eigen/SVD>
 
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/metrics.h"
@@ -14,23 +17,74 @@
 using namespace lapis::mesh_deform;
 namespace t = lapis::mesh_deform::test;
 
-TEST_CASE("mesh_deform: nearest rotation matches the SVD polar factor, also for rank-2 and reflected input") {
+namespace {
+
+// A random 3x3 of one of the kinds the local steps meet: generic, a large rotation of a near
+// identity (a deformed one-ring), reflected (det < 0), exactly rank 2 (a flat one-ring), nearly
+// rank 2, or nearly rank 1 in one direction only (σ3 ≪ σ2 ≪ σ1).
+Eigen::Matrix3d random_local_matrix(int kind, std::mt19937& rng) {
+  std::normal_distribution<double> g;
+  Eigen::Matrix3d A;
+  for (int i = 0; i < 9; ++i) A(i) = g(rng);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(3.1 * g(rng), Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+  switch (kind % 6) {
+    case 1: return R * (Eigen::Matrix3d::Identity() + 0.1 * A);
+    case 2: return R * (Eigen::Matrix3d::Identity() + 0.1 * A) * Eigen::Vector3d(1, 1, -0.5).asDiagonal();
+    case 3: A.col(2) = 0.3 * A.col(0) - 2 * A.col(1); return A;
+    case 4: A.col(2) = 1e-9 * A.col(0) + A.col(1); return A;
+    case 5: return R * Eigen::Vector3d(1, 1e-3, 1e-6).asDiagonal() * Eigen::AngleAxisd(g(rng), Eigen::Vector3d::UnitX());
+    default: return A;
+  }
+}
+
+// σ1 / (σ2 + σ3) for signed singular values: the condition of the nearest-rotation problem
+// (its answer moves by about κ ε under a relative perturbation ε of A).
+double rotation_condition(const Eigen::Matrix3d& A) {
+  const Eigen::Vector3d s = Eigen::JacobiSVD<Eigen::Matrix3d>(A).singularValues();
+  return s[0] / (s[1] + (A.determinant() < 0 ? -s[2] : s[2]));
+}
+
+}  // namespace
+
+TEST_CASE("mesh_deform: nearest rotation equals the SVD polar factor to rounding, from any start") {
   std::mt19937 rng(7);
   std::normal_distribution<double> g;
   int fallbacks = 0;
-  for (int k = 0; k < 2000; ++k) {
-    Eigen::Matrix3d A;
-    for (int i = 0; i < 9; ++i) A(i) = g(rng);
-    if (k % 3 == 0) A = Eigen::AngleAxisd(3.1, Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized()) * (Eigen::Matrix3d::Identity() + 0.1 * A);
-    if (k % 3 == 1) A.col(2) = 1e-9 * A.col(0) + A.col(1);  // rank 2, like a flat one-ring
-    bool fell_back = false;
-    const Eigen::Matrix3d R = detail::nearest_rotation(A, &fell_back);
-    fallbacks += fell_back;
+  for (int k = 0; k < 6000; ++k) {
+    const Eigen::Matrix3d A = random_local_matrix(k, rng);
     const Eigen::Matrix3d Rs = lapis::geometry::polar_rotation(A);
-    CHECK((R - Rs).norm() < 1e-7);
-    CHECK(R.determinant() == doctest::Approx(1.0));
+    const double kappa = rotation_condition(A);
+    // Cold start, a start near the answer (the local steps' case), a random start.
+    Eigen::Quaterniond near(Rs * Eigen::AngleAxisd(0.01 * g(rng), Eigen::Vector3d::UnitZ()));
+    Eigen::Quaterniond far = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng))).normalized();
+    bool fell_back = false;
+    for (const Eigen::Matrix3d& R : {detail::nearest_rotation(A, &fell_back), detail::nearest_rotation(A, near, &fell_back),
+                                     detail::nearest_rotation(A, far, &fell_back)}) {
+      CHECK((R - Rs).norm() <= 1e-15 * std::max(kappa, 100.0));
+      CHECK(std::abs(R.determinant() - 1) < 1e-14);
+      CHECK((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-14);
+      // Optimality: Rᵀ A is symmetric at the maximum of tr(Rᵀ A), to rounding.
+      const Eigen::Matrix3d B = R.transpose() * A;
+      CHECK((B - B.transpose()).norm() < 1e-14 * A.norm());
+    }
+    CHECK(near.toRotationMatrix().isApprox(Rs, 1e-15 * std::max(kappa, 1e3)));  // the start is updated
+    fallbacks += fell_back;
   }
-  CHECK(fallbacks == 0);
+  CHECK(fallbacks == 0);  // rank ≥ 2 never needs the SVD
+}
+
+TEST_CASE("mesh_deform: nearest rotation of rank-1, zero and non-finite matrices") {
+  bool fell_back = false;
+  CHECK(detail::nearest_rotation(Eigen::Matrix3d::Zero(), &fell_back) == Eigen::Matrix3d::Identity());
+  CHECK_FALSE(fell_back);
+  const Eigen::Matrix3d nan = Eigen::Matrix3d::Constant(std::nan(""));
+  CHECK(detail::nearest_rotation(nan) == Eigen::Matrix3d::Identity());
+  // Rank 1: every rotation taking (1,0,0) to (0,1,0) is optimal; the SVD picks one.
+  const Eigen::Matrix3d A = Eigen::Vector3d::UnitY() * Eigen::RowVector3d::UnitX();
+  const Eigen::Matrix3d R = detail::nearest_rotation(A, &fell_back);
+  CHECK(fell_back);
+  CHECK((R * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+  CHECK(R.determinant() == doctest::Approx(1.0));
 }
 
 TEST_CASE("mesh_deform: naive hard handles reach their targets, soft ones only approach them") {

@@ -1,5 +1,6 @@
 #include "lapis/mesh_deform/arap.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -18,18 +19,98 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 // The global step solves L_ff d_f = b_f − (L V)_f − L_fc d_c for displacements d from the
 // rest mesh, so that identity rotations give an exactly zero right-hand side.
+// Everything per vertex is stored in spatial order (detail::spatial_order): the local step's
+// loops gather neighbours' positions and rotations, and in the mesh's own order (a
+// Loop-subdivided one's above all) those gathers miss the cache and cost as much as the fits.
 struct ArapDeformer::Impl {
+  std::vector<int> order;            // internal index -> mesh vertex
+  Vertices rest;                     // rest positions, internal order
   detail::Stencil s;                 // cotangent weights, neighbour lists in contiguous arrays
-  std::vector<int> free;             // ascending
+  std::vector<int> free;             // ascending internal indices
   std::vector<int> local;            // vertex -> index among free, -1 for constrained
   std::vector<int> fitted;           // vertices whose rotation a free vertex's row reads
   solver::Cholesky chol;
   std::vector<Eigen::Vector3d> we;   // per stencil entry: w_ij (v_i − v_j), contiguous
   std::vector<double> rest_sq;       // per vertex: Σ_j w_ij ‖v_i − v_j‖²
   std::vector<Eigen::Matrix3d> R;    // #V rotations
-  Vertices previous;                 // last frame's result
-  bool have_previous = false;
+  std::vector<Eigen::Quaterniond> q; // the same rotations, each fit's start in the next iteration
+  Vertices X, targets;               // this frame's iterate and handle targets, internal order
+  bool have_previous = false;        // X holds the last frame's result
+  // Per frame, over the free vertices: (L V)_i = Σ_j w_ij e_ij, and the right-hand side's part
+  // that stays fixed over the frame, Σ_j w_ij d_j over constrained j minus (L V)_i.
+  Vertices lap, frame_rhs;
+  solver::DenseMatrix b;
+
+  void start_frame(const Vertices& mesh_targets, bool warm);
+  double fit_rotations(int& fallbacks);
+  void assemble_rhs();
 };
+
+// Targets into internal order; the iterate starts from them, or, warm, from the last frame's
+// result at the free vertices.
+void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets, bool warm) {
+  const int n = static_cast<int>(order.size()), nf = static_cast<int>(free.size());
+  targets.resize(n, 3);
+  for (int k = 0; k < n; ++k) targets.row(k) = mesh_targets.row(order[k]);
+  if (!(warm && have_previous)) X = targets;
+  for (int i = 0; i < n; ++i)
+    if (local[i] < 0) X.row(i) = targets.row(i);
+  lap.resize(nf, 3);
+  frame_rhs.resize(nf, 3);
+  b.resize(nf, 3);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nf; ++k) {
+    const int i = free[k];
+    Eigen::RowVector3d l = Eigen::RowVector3d::Zero(), c = Eigen::RowVector3d::Zero();
+    for (int e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
+      l += we[e].transpose();
+      const int j = s.nbr[e];
+      if (local[j] < 0) c += s.w[e] * (targets.row(j) - rest.row(j));
+    }
+    lap.row(k) = l;
+    frame_rhs.row(k) = c - l;
+  }
+}
+
+// Local step (Sorkine & Alexa Eq. 5–6): R_i maximizes tr(R_iᵀ A_i), A_i = Σ_j w_ij ẽ_ij e_ijᵀ,
+// each fit started from the vertex's last rotation. Returns the ARAP energy of the iterate
+// under the new rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
+double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
+  const int nr = static_cast<int>(fitted.size());
+  double energy = 0;
+  int fell = 0;
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : energy, fell)
+  for (int r = 0; r < nr; ++r) {
+    const int i = fitted[r];
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    double sq = rest_sq[i];
+    const Eigen::Vector3d xi = X.row(i).transpose();
+    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
+      const Eigen::Vector3d et = xi - X.row(s.nbr[k]).transpose();
+      A.noalias() += et * we[k].transpose();
+      sq += s.w[k] * et.squaredNorm();
+    }
+    bool fell_back = false;
+    R[i] = detail::nearest_rotation(A, q[i], &fell_back);
+    fell += fell_back;
+    energy += sq - 2 * (R[i].transpose() * A).trace();
+  }
+  fallbacks += fell;
+  return energy;
+}
+
+// Right-hand side (Eq. 8): b_i = Σ_j w_ij/2 (R_i + R_j)(v_i − v_j)
+//                              = R_i (L V)_i / 2 + Σ_j R_j w_ij e_ij / 2, plus the frame part.
+void ArapDeformer::Impl::assemble_rhs() {
+  const int nf = static_cast<int>(free.size());
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk)
+  for (int k = 0; k < nf; ++k) {
+    const int i = free[k];
+    Eigen::Vector3d acc = R[i] * lap.row(k).transpose();
+    for (int l = s.offsets[i]; l < s.offsets[i + 1]; ++l) acc.noalias() += R[s.nbr[l]] * we[l];
+    b.row(k) = 0.5 * acc.transpose() + frame_rhs.row(k);
+  }
+}
 
 ArapDeformer::ArapDeformer(TriMesh mesh, ArapOptions options) : Deformer(std::move(mesh)) { set_options(options); }
 ArapDeformer::~ArapDeformer() = default;
@@ -48,8 +129,17 @@ void ArapDeformer::setup(const Layout& layout) {
   const auto t0 = std::chrono::steady_clock::now();
   auto m = std::make_unique<Impl>();
   const int n = mesh_.num_vertices();
-  m->s = detail::make_stencil(mesh_.V, mesh_.F, LaplacianWeights::Cotangent);
-  m->free = layout.free;
+  m->order = detail::spatial_order(mesh_.V);
+  std::vector<int> rank(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) rank[m->order[k]] = k;
+  m->rest.resize(n, 3);
+  for (int k = 0; k < n; ++k) m->rest.row(k) = mesh_.V.row(m->order[k]);
+  geometry::Faces F = mesh_.F;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) F(f, c) = rank[F(f, c)];
+  m->s = detail::make_stencil(m->rest, F, LaplacianWeights::Cotangent);
+  for (int v : layout.free) m->free.push_back(rank[v]);
+  std::sort(m->free.begin(), m->free.end());
   m->local.assign(static_cast<size_t>(n), -1);
   for (size_t k = 0; k < m->free.size(); ++k) m->local[m->free[k]] = static_cast<int>(k);
   std::vector<char> need(static_cast<size_t>(n), 0);
@@ -80,14 +170,15 @@ void ArapDeformer::setup(const Layout& layout) {
     throw NotPositiveDefinite(std::string("mesh_deform::ArapDeformer::precompute(): the cotangent Laplacian of the "
                                           "free vertices is not positive definite (is some part of the ROI not "
                                           "connected to a handle or the fixed region?): ") + e.what(),
-                              e.column() >= 0 ? m->free[static_cast<size_t>(e.column())] : -1);
+                              e.column() >= 0 ? m->order[m->free[static_cast<size_t>(e.column())]] : -1);
   }
   m->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
+  m->q.assign(static_cast<size_t>(n), Eigen::Quaterniond::Identity());
   m->we.resize(m->s.nbr.size());
   m->rest_sq.assign(static_cast<size_t>(n), 0.0);
   for (int i = 0; i < n; ++i)
     for (int k = m->s.offsets[i]; k < m->s.offsets[i + 1]; ++k) {
-      const Eigen::Vector3d e = (mesh_.V.row(i) - mesh_.V.row(m->s.nbr[k])).transpose();
+      const Eigen::Vector3d e = (m->rest.row(i) - m->rest.row(m->s.nbr[k])).transpose();
       m->we[k] = m->s.w[k] * e;
       m->rest_sq[i] += m->s.w[k] * e.squaredNorm();
     }
@@ -99,67 +190,18 @@ void ArapDeformer::setup(const Layout& layout) {
 void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
-  const detail::Stencil& s = m.s;
-  const Vertices& V = mesh_.V;
-  // Start: the previous result with this frame's handle targets, or the rest mesh.
-  out = targets;
-  if (options_.warm_start && m.have_previous)
-    for (int i : m.free) out.row(i) = m.previous.row(i);
-
-  const int nf = static_cast<int>(m.free.size());
-  const int nr = static_cast<int>(m.fitted.size());
-  // The part of the right-hand side fixed for the whole frame: − (L V)_i = − Σ_j w_ij e_ij and
-  // the constrained neighbours' displacements Σ_j w_ij d_j.
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> lap(nf, 3), frame_rhs(nf, 3);
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nf; ++k) {
-    const int i = m.free[k];
-    Eigen::Vector3d l = Eigen::Vector3d::Zero(), c = Eigen::Vector3d::Zero();
-    for (int e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
-      l += m.we[e];
-      const int j = s.nbr[e];
-      if (m.local[j] < 0) c += s.w[e] * (targets.row(j) - V.row(j)).transpose();
-    }
-    lap.row(k) = l.transpose();
-    frame_rhs.row(k) = (c - l).transpose();
-  }
-  solver::DenseMatrix b(nf, 3);
+  m.start_frame(targets, options_.warm_start);
   double rot_ms = 0, solve_ms = 0, last_energy = -1;
   int it = 0, fallbacks = 0;
   for (; it < options_.max_iterations;) {
     auto t0 = std::chrono::steady_clock::now();
-    // Local step: R_i maximizes tr(R_iᵀ Σ_j w_ij ẽ_ij e_ijᵀ) (Sorkine & Alexa Eq. 5–6).
-    double energy = 0;
-#pragma omp parallel for schedule(static) reduction(+ : energy, fallbacks)
-    for (int r = 0; r < nr; ++r) {
-      const int i = m.fitted[r];
-      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-      double sq = m.rest_sq[i];
-      const Eigen::Vector3d qi = out.row(i).transpose();
-      for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-        const Eigen::Vector3d et = qi - out.row(s.nbr[k]).transpose();
-        A.noalias() += et * m.we[k].transpose();
-        sq += s.w[k] * et.squaredNorm();
-      }
-      bool fell_back = false;
-      m.R[i] = detail::nearest_rotation(A, &fell_back);
-      fallbacks += fell_back;
-      energy += sq - 2 * (m.R[i].transpose() * A).trace();
-    }
-    // Right-hand side (Eq. 8): b_i = Σ_j w_ij/2 (R_i + R_j)(v_i − v_j)
-    //                              = R_i (L V)_i / 2 + Σ_j R_j w_ij e_ij / 2, plus the frame part.
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < nf; ++k) {
-      const int i = m.free[k];
-      Eigen::Vector3d acc = m.R[i] * lap.row(k).transpose();
-      for (int l = s.offsets[i]; l < s.offsets[i + 1]; ++l) acc.noalias() += m.R[s.nbr[l]] * m.we[l];
-      b.row(k) = 0.5 * acc.transpose() + frame_rhs.row(k);
-    }
+    const double energy = m.fit_rotations(fallbacks);
+    m.assemble_rhs();
     rot_ms += ms_since(t0);
     ++it;
     t0 = std::chrono::steady_clock::now();
-    const solver::DenseMatrix d = m.chol.solve(b);
-    for (int k = 0; k < nf; ++k) out.row(m.free[k]) = V.row(m.free[k]) + d.row(k);
+    const solver::DenseMatrix d = m.chol.solve(m.b);
+    for (size_t k = 0; k < m.free.size(); ++k) m.X.row(m.free[k]) = m.rest.row(m.free[k]) + d.row(static_cast<Eigen::Index>(k));
     solve_ms += ms_since(t0);
     const bool converged = options_.tolerance > 0 && last_energy >= 0 &&
                            last_energy - energy <= options_.tolerance * std::max(last_energy, 1e-300);
@@ -167,7 +209,8 @@ void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Verti
     stats_.energy = energy;
     if (converged) break;
   }
-  m.previous = out;
+  out.resize(m.X.rows(), 3);
+  for (size_t k = 0; k < m.order.size(); ++k) out.row(m.order[k]) = m.X.row(static_cast<Eigen::Index>(k));
   m.have_previous = true;
   stats_.iterations = it;
   stats_.rotation_fallbacks = fallbacks;

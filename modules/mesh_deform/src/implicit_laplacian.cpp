@@ -61,6 +61,7 @@ struct ImplicitLaplacianDeformer::Impl {
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
   solver::DenseMatrix blend_rest;               // E_T rows (§3.3.3) at the rest state
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
+  std::vector<Eigen::Quaterniond> polar_start;  // per free vertex: last frame's R_i (§2.4.4)
   // Eq. 2.8 as X = X_I + Φ C (options.max_basis_columns): X_I the solution for identity
   // transforms, Φ one column per handle parameter, C the parameters' change from identity.
   solver::DenseMatrix at_identity, basis;
@@ -198,6 +199,7 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   const int n = w.mesh.num_vertices();
   const Vertices& P = w.displaced;
   for (int v = 0; v < n; ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
+  m->polar_start.assign(m->free.size(), Eigen::Quaterniond::Identity());
 
   // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
   // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
@@ -467,12 +469,13 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   solver::DenseMatrix rhs2(nf, 3);
   const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
   int fallbacks = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks)
+#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : fallbacks)
   for (int k = 0; k < nf; ++k) {
     const int v = m.free[k];
     const Eigen::Matrix3d M = m.G.gradient(v, Xv);
     bool fell_back = false;
-    const Eigen::Matrix3d R = detail::nearest_rotation(M, &fell_back);
+    // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
+    const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[k], &fell_back);
     fallbacks += fell_back;
     const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
     const Eigen::Vector3d d = m.delta.row(k).transpose();

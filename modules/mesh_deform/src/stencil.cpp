@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Geometry>
 
@@ -25,7 +26,38 @@ int slot(const Stencil& s, int i, int j) {
   return static_cast<int>(std::lower_bound(b, e, j) - s.nbr.begin());
 }
 
+// Bits 0..20 of x spread to bits 0, 3, 6, ..., 60 (the interleaving step of a Morton code).
+uint64_t spread_bits(uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffff;
+  x = (x | x << 16) & 0x1f0000ff0000ff;
+  x = (x | x << 8) & 0x100f00f00f00f00f;
+  x = (x | x << 4) & 0x10c30c30c30c30c3;
+  x = (x | x << 2) & 0x1249249249249249;
+  return x;
+}
+
 }  // namespace
+
+std::vector<int> spatial_order(const Vertices& P) {
+  const int n = static_cast<int>(P.rows());
+  std::vector<std::pair<uint64_t, int>> key(static_cast<size_t>(n));
+  if (n == 0) return {};
+  const Eigen::RowVector3d lo = P.colwise().minCoeff(), extent = P.colwise().maxCoeff() - lo;
+  const double cells = (1 << 21) - 1;
+  for (int v = 0; v < n; ++v) {
+    uint64_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double t = extent[a] > 0 ? (P(v, a) - lo[a]) / extent[a] : 0.0;
+      code |= spread_bits(static_cast<uint64_t>(t * cells)) << a;
+    }
+    key[static_cast<size_t>(v)] = {code, v};
+  }
+  std::sort(key.begin(), key.end());  // ties (coincident cells) by index: deterministic
+  std::vector<int> order(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) order[static_cast<size_t>(k)] = key[static_cast<size_t>(k)].second;
+  return order;
+}
 
 void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights) {
   const int n = s.size();

@@ -38,6 +38,18 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
 // δ_i for every vertex (#V by 3).
 Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);
 
+// OpenMP chunk of the per-frame and per-iteration vertex loops, as schedule(dynamic,
+// kVertexChunk): the work per vertex varies (Newton steps in the rotation fits, valence), and on
+// a shared machine one thread may lose its core for a while; whole chunks keep a thread's
+// neighbour gathers local in a spatially ordered loop, at ~100 chunks per 100K vertices.
+constexpr int kVertexChunk = 1024;
+
+// Vertex order along a Morton (Z-order) curve through P's bounding box, as new index -> old:
+// surface neighbours then lie close in memory, so a per-vertex loop's gathers of neighbour
+// data hit the cache. Loop subdivision, for one, appends the edge midpoints, putting half of
+// every vertex's neighbours #V/2 entries away.
+std::vector<int> spatial_order(const Vertices& P);
+
 // Mean edge length over the stencil's edges: the length scale that makes the soft weights of
 // terms with different units (positions vs. deformation gradients) scale invariant.
 double mean_edge_length(const Stencil& s, const Vertices& P);
