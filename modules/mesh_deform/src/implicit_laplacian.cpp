@@ -31,6 +31,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 struct FirstSystemInput {
   std::vector<solver::DenseMatrix> rhs;
   solver::DenseMatrix fixed;
+  int transform_block = -1;  // index in rhs of the transformation constraints, if any
 };
 
 }  // namespace
@@ -95,6 +96,7 @@ struct ImplicitLaplacianDeformer::Impl {
         // Row a of M_c against coordinate a: block rows 3t + b hold M_c(a, b) in column a.
         r.middleRows(static_cast<Eigen::Index>(3 * t), 3) += W.transpose();
       }
+      in.transform_block = static_cast<int>(in.rhs.size());
       in.rhs.push_back(std::move(r));
     }
     // E_T is homogeneous in the positions: in displacements its right-hand side is −A_B v'.
@@ -128,12 +130,12 @@ struct ImplicitLaplacianDeformer::Impl {
       }
     }
     unit.rhs.resize(at_rest.rhs.size());  // zero everywhere but the transformation rows
-    if (transform_rest.rows() > 0) {
+    if (at_rest.transform_block >= 0) {
       solver::DenseMatrix r = solver::DenseMatrix::Zero(transform_rest.rows(), q);
       for (size_t t = 0; t < transform_vertex.size(); ++t)
         if (const int h = transform_handle[t]; h >= 0)
           for (int b = 0; b < 3; ++b) r(static_cast<Eigen::Index>(3 * t + b), 4 * h + b) = 1;
-      unit.rhs[has_coherence ? 2 : 1] = std::move(r);
+      unit.rhs[static_cast<size_t>(at_rest.transform_block)] = std::move(r);
     }
     basis = first.solve(unit.rhs, unit.fixed);
   }
