@@ -35,7 +35,7 @@ void Cholesky::analyze(const SparseMatrix& A) {
   m.stats.n = m.n;
   m.stats.nnz_A = A.nonZeros();
   if (m.options.backend == Backend::Cholmod)
-    m.cholmod.analyze(A, m.options.kind, m.stats, fn);
+    m.cholmod.analyze(A, m.options.kind, m.stats, fn, m.options.threads);
   else
     m.eigen.analyze(A, m.stats);
   m.analyzed = true;

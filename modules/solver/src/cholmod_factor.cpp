@@ -27,7 +27,7 @@ void CholmodFactor::free_factor() {
 }
 
 void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats,
-                            const char* function) {
+                            const char* function, int solve_threads) {
   free_factor();
   if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
   cholmod_common* c = context_.get();
@@ -53,7 +53,7 @@ void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats&
   inverse_perm_.resize(static_cast<size_t>(n_));
   for (int k = 0; k < n_; ++k) inverse_perm_[static_cast<size_t>(perm[k])] = k;
   // Built here, not on first solve, so that solve() stays read-only (callable concurrently).
-  if (symbolic_->is_super) supernodal_schedule_ = schedule_supernodes(*symbolic_, 0);
+  if (symbolic_->is_super) supernodal_schedule_ = schedule_supernodes(*symbolic_, solve_threads);
 }
 
 bool CholmodFactor::analyzed_for(const SparseMatrix& A) const {

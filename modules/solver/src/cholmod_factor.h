@@ -20,8 +20,10 @@ class CholmodFactor {
   CholmodFactor& operator=(const CholmodFactor&) = delete;
 
   // Symbolic analysis of A (lower triangle read) for a factor of the given kind; fills
-  // stats.ordering, nnz_L, flops, analyze_ms. Keeps A's pattern to detect changes.
-  void analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function);
+  // stats.ordering, nnz_L, flops, analyze_ms. Keeps A's pattern to detect changes. A
+  // supernodal factor's solve is scheduled here for `solve_threads` (0: OpenMP's default).
+  void analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function,
+               int solve_threads = 0);
   bool analyzed_for(const SparseMatrix& A) const;
   // Numeric factorization into the analyzed structure. Throws NotPositiveDefinite naming the
   // (un-permuted) column; the factor is then unusable until the next factorize().
