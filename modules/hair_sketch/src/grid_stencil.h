@@ -6,6 +6,9 @@
 // matrix at all.
 #pragma once
 
+#include <omp.h>
+
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -49,36 +52,69 @@ inline void neighbour_pass(const std::array<int, 3>& dims, const T* src, const T
   for (int i = 0; i < nx; ++i) node(first + i, neighbour_count(i, nx, yz), sum + 3 * i);
 }
 
+// What normal_operator needs besides its operands: a zero x-line and one neighbour-sum line
+// per thread. The caller owns it so that iterations reuse it (allocating it on every apply
+// cost page faults in each CG iteration and each smoothing step).
+template <class T>
+struct StencilScratch {
+  std::vector<T> zero, sums;
+  int threads = 1;
+
+  // Sizes the buffers for x-lines of dims[0] nodes and the current OpenMP thread count.
+  void fit(const std::array<int, 3>& dims) {
+    const size_t line = 3 * static_cast<size_t>(dims[0]);
+    threads = std::max(1, omp_get_max_threads());
+    if (zero.size() != line) zero.assign(line, T(0));
+    if (sums.size() < line * threads) sums.resize(line * threads);
+  }
+};
+
+// The operator's two passes, handing each node's result to the caller instead of storing
+// it: node(i, v) receives v[c] = ((DᵀD + diag(w)) x)[3i + c], c = 0..2. x  3n; w  n;
+// scratch  3n (holds D x scaled by 1/|N|). D(i,i) = −1 and D(i,j) = 1/|N(i)|, so with
+// L' = (D x)/|N|:  (DᵀD x)_i = −|N(i)| L'_i + Σ_{j∈N(i)} L'_j.
+// The second pass reads x only at node i itself, so `node` may overwrite x[3i..3i+2]
+// (the multigrid smoother updates its operand in place this way, one pass per step).
+template <class T, class W, class Node>
+void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* x, T* scratch,
+                           StencilScratch<T>& buffers, Node&& node) {
+  const int lines = dims[1] * dims[2];
+  buffers.fit(dims);
+  const T* zero = buffers.zero.data();
+  const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(dims[0]);
+#pragma omp parallel num_threads(buffers.threads) if (lines * dims[0] > 20000)
+  {
+    T* sum = buffers.sums.data() + line * omp_get_thread_num();
+#pragma omp for schedule(static)
+    for (int l = 0; l < lines; ++l)
+      neighbour_pass(dims, x, zero, sum, l, [&](std::ptrdiff_t i, int count, const T* s) {
+        const T inv = T(1) / T(count);
+        for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f)
+          scratch[f] = inv * (inv * s[f - 3 * i] - x[f]);
+      });
+#pragma omp for schedule(static)
+    for (int l = 0; l < lines; ++l)
+      neighbour_pass(dims, scratch, zero, sum, l, [&](std::ptrdiff_t i, int count, const T* s) {
+        const T wi = static_cast<T>(w[i]);
+        T v[3];
+        for (int c = 0; c < 3; ++c)
+          v[c] = s[c] - T(count) * scratch[3 * i + c] + wi * x[3 * i + c];
+        node(i, static_cast<const T*>(v));
+      });
+  }
+}
+
 // y = (DᵀD + diag(w)) x, or r -= (DᵀD + diag(w)) x when `subtract` (y is then r).
-// x, y  3n; w  n; scratch  3n (holds D x scaled by 1/|N|). D(i,i) = −1 and
-// D(i,j) = 1/|N(i)|, so with L' = (D x)/|N|:  (DᵀD x)_i = −|N(i)| L'_i + Σ_{j∈N(i)} L'_j.
 template <class T, class W>
 void normal_operator(const std::array<int, 3>& dims, const W* w, const T* x, T* scratch, T* y,
-                     bool subtract) {
-  const int lines = dims[1] * dims[2];
-  const std::vector<T> zero(3 * static_cast<size_t>(dims[0]), T(0));
-#pragma omp parallel if (lines * dims[0] > 20000)
-  {
-    std::vector<T> sum(zero.size());
-#pragma omp for schedule(static)
-    for (int l = 0; l < lines; ++l)
-      neighbour_pass(dims, x, zero.data(), sum.data(), l,
-                     [&](std::ptrdiff_t i, int count, const T* s) {
-                       const T inv = T(1) / T(count);
-                       for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f)
-                         scratch[f] = inv * (inv * s[f - 3 * i] - x[f]);
-                     });
-#pragma omp for schedule(static)
-    for (int l = 0; l < lines; ++l)
-      neighbour_pass(dims, scratch, zero.data(), sum.data(), l,
-                     [&](std::ptrdiff_t i, int count, const T* s) {
-                       const T wi = static_cast<T>(w[i]);
-                       for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) {
-                         const T v = s[f - 3 * i] - T(count) * scratch[f] + wi * x[f];
-                         y[f] = subtract ? y[f] - v : v;
-                       }
-                     });
-  }
+                     bool subtract, StencilScratch<T>& buffers) {
+  normal_operator_visit(dims, w, x, scratch, buffers, [&](std::ptrdiff_t i, const T* v) {
+    T* yi = y + 3 * i;
+    if (subtract)
+      yi[0] -= v[0], yi[1] -= v[1], yi[2] -= v[2];
+    else
+      yi[0] = v[0], yi[1] = v[1], yi[2] = v[2];
+  });
 }
 
 }  // namespace lapis::hair_sketch::detail

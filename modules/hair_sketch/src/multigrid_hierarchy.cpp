@@ -69,6 +69,13 @@ inline std::ptrdiff_t value_index(const RowSparseD& A, int i, int j) {
 
 enum class Mode { Assign, Add, Subtract };
 
+// Below this many stored entries a sparse product runs on one thread. The threshold counts
+// entries, not rows: level 1 of a 50K grid has only 7.4K rows but 0.9M entries (up to 125
+// a row), the costliest product of the cycle, and a row threshold left it on one thread.
+constexpr std::ptrdiff_t parallel_nonzeros = 50000;
+// Element-wise passes: below this many nodes one thread.
+constexpr int parallel_nodes = 20000;
+
 // y = A x, y += A x or y -= A x, 3 columns at once.
 void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   const int n = static_cast<int>(A.rows());
@@ -77,7 +84,7 @@ void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   const Real* val = A.valuePtr();
   const Real* xp = x.data();
   Real* yp = y.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
+#pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
   for (int i = 0; i < n; ++i) {
     Real s0 = 0, s1 = 0, s2 = 0;
     for (int p = outer[i]; p < outer[i + 1]; ++p) {
@@ -98,19 +105,37 @@ void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   }
 }
 
-// One Chebyshev step after r was updated: d = a d + c D⁻¹ r, x += d, one fused pass.
-void chebyshev_update(FieldF& x, FieldF& d, const FieldF& r, const VectorR& inv_diag, Real a,
-                      Real c) {
-  const int n = static_cast<int>(x.rows());
-  Real* xp = x.data();
-  Real* dp = d.data();
-  const Real* rp = r.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
+// One Chebyshev step on a sparse level fused with the product before it, in one pass:
+//   r_out = r_in − A u,  d_new = a d + c D⁻¹ r_out,  x += d_new (+ d when add_d).
+// u is d, except in the first step of a smoothing from a non-zero x, where u is x itself:
+// that step may not write x while other rows still gather from it, so it passes
+// x = nullptr and the next step adds both corrections (add_d). d_new is a separate buffer
+// for the same reason. d may be nullptr when a = 0.
+void sparse_chebyshev_step(const RowSparseF& A, const Real* u, const Real* d, Real* d_new,
+                           Real* x, bool add_d, const Real* r_in, Real* r_out,
+                           const VectorR& inv_diag, Real a, Real c) {
+  const int n = static_cast<int>(A.rows());
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  const Real* val = A.valuePtr();
+#pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
   for (int i = 0; i < n; ++i) {
-    const Real s = c * inv_diag[i];
-    for (int k = 3 * i; k < 3 * i + 3; ++k) {
-      dp[k] = a * dp[k] + s * rp[k];
-      xp[k] += dp[k];
+    Real s[3] = {0, 0, 0};
+    for (int p = outer[i]; p < outer[i + 1]; ++p) {
+      const Real v = val[p];
+      const Real* uc = u + 3 * static_cast<std::ptrdiff_t>(inner[p]);
+      s[0] += v * uc[0];
+      s[1] += v * uc[1];
+      s[2] += v * uc[2];
+    }
+    const Real ci = c * inv_diag[i];
+    for (int k = 0; k < 3; ++k) {
+      const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + k;
+      const Real r = r_in[f] - s[k];
+      r_out[f] = r;
+      const Real dn = (d ? a * d[f] : Real(0)) + ci * r;
+      d_new[f] = dn;
+      if (x) x[f] += add_d ? dn + d[f] : dn;
     }
   }
 }
@@ -157,6 +182,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.b.setZero(n, 3);
     L.r.setZero(n, 3);
     L.d.setZero(n, 3);
+    if (!L.matrix_free) L.d2.setZero(n, 3);
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
@@ -277,45 +303,103 @@ void MultigridHierarchy::set_prolongation_row(int s, bool free) {
   }
 }
 
-void MultigridHierarchy::multiply(Level& L, const FieldF& x, FieldF& y, bool subtract) {
-  if (L.matrix_free)
-    normal_operator(L.dims, L.weights.data(), x.data(), L.scratch.data(), y.data(), subtract);
-  else
-    spmv(L.Af, x, y, subtract ? Mode::Subtract : Mode::Assign);
+void MultigridHierarchy::residual(Level& L) {
+  const Real* b = L.b.data();
+  Real* r = L.r.data();
+  if (L.matrix_free) {
+    normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.scratch.data(), L.buffers,
+                          [&](std::ptrdiff_t i, const Real* v) {
+                            for (std::ptrdiff_t k = 0; k < 3; ++k)
+                              r[3 * i + k] = b[3 * i + k] - v[k];
+                          });
+  } else {
+    L.r = L.b;
+    spmv(L.Af, L.x, L.r, Mode::Subtract);
+  }
+}
+
+void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in,
+                                        Real a, Real c) {
+  Real* r = L.r.data();
+  if (L.matrix_free) {
+    // The matrix-free apply's second pass reads its operand only at the node it visits, so
+    // the step updates d (or x) in place, node by node.
+    Real* x = L.x.data();
+    Real* d = L.d.data();
+    const Real* inv = L.inv_diag.data();
+    normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.scratch.data(), L.buffers,
+                          [&](std::ptrdiff_t i, const Real* v) {
+                            const Real ci = c * inv[i];
+                            for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) {
+                              const Real rf = r_in[f] - v[f - 3 * i];
+                              r[f] = rf;
+                              const Real dn = (from_x ? Real(0) : a * d[f]) + ci * rf;
+                              d[f] = dn;
+                              x[f] += dn;
+                            }
+                          });
+    return;
+  }
+  if (from_x) {
+    sparse_chebyshev_step(L.Af, L.x.data(), nullptr, L.d.data(), nullptr, false, r_in, r,
+                          L.inv_diag, 0, c);
+    pending = true;
+    return;
+  }
+  sparse_chebyshev_step(L.Af, L.d.data(), L.d.data(), L.d2.data(), L.x.data(), pending, r_in, r,
+                        L.inv_diag, a, c);
+  L.d.swap(L.d2);
+  pending = false;
 }
 
 void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
   // Chebyshev iteration on D⁻¹A over [lmin, lmax] (Adams, Brezina, Hu, Tuminaro 2003).
+  // Each step is one pass fused with the operator apply before it (chebyshev_step); the
+  // residual is only ever stored, never copied: the first step reads b.
   const Real lmax = L.lambda_max, lmin = static_cast<Real>(opt_.smoothing_range) * lmax;
   const Real theta = Real(0.5) * (lmax + lmin), delta = Real(0.5) * (lmax - lmin);
   const Real sigma = theta / delta;
   Real rho = Real(1) / sigma;
-  L.r = L.b;
-  if (zero_initial)
-    L.x.setZero();
-  else
-    multiply(L, L.x, L.r, true);
-  L.d.setZero();
-  chebyshev_update(L.x, L.d, L.r, L.inv_diag, 0, 1 / theta);
+  const Real* r_in = L.b.data();
+  bool pending = false;
+  if (zero_initial) {
+    // From x = 0 the residual is b: x = d = D⁻¹ b / θ, no operator apply.
+    const int n = static_cast<int>(L.x.rows());
+    const Real* b = L.b.data();
+    Real* x = L.x.data();
+    Real* d = L.d.data();
+    const Real c = 1 / theta;
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i) {
+      const Real ci = c * L.inv_diag[i];
+      for (std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i); f < 3 * i + 3; ++f)
+        x[f] = d[f] = ci * b[f];
+    }
+  } else {
+    chebyshev_step(L, true, pending, r_in, 0, 1 / theta);
+    r_in = L.r.data();
+  }
   for (int it = 1; it < opt_.smoothing_degree; ++it) {
-    multiply(L, L.d, L.r, true);
     const Real rho_new = Real(1) / (Real(2) * sigma - rho);
-    chebyshev_update(L.x, L.d, L.r, L.inv_diag, rho_new * rho, Real(2) * rho_new / delta);
+    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta);
+    r_in = L.r.data();
     rho = rho_new;
   }
+  if (pending) L.x += L.d;  // degree 1 from a non-zero x on a sparse level
 }
 
 void MultigridHierarchy::cycle(int l) {
   Level& L = levels_[l];
   if (l + 1 == static_cast<int>(levels_.size())) {
-    L.x = coarsest_.solve(L.b.cast<double>()).cast<Real>();
+    coarse_rhs_ = L.b.cast<double>();
+    coarsest_.solveInPlace(coarse_rhs_);
+    L.x = coarse_rhs_.cast<Real>();
     return;
   }
   Level& C = levels_[l + 1];
   smooth(L, true);
   for (int g = 0; g < opt_.cycle_index; ++g) {
-    L.r = L.b;
-    multiply(L, L.x, L.r, true);
+    residual(L);
     spmv(L.R, L.r, C.b, Mode::Assign);
     cycle(l + 1);
     spmv(L.P, C.x, L.x, Mode::Add);
