@@ -40,24 +40,13 @@ inline void line_neighbour_sum(const std::array<int, 3>& dims, const T* src, con
   for (std::ptrdiff_t f = 0; f + 3 < line; ++f) out[f] += c[f + 3];
 }
 
-// For every node of x-line l (= j + ny·k): node(index, |N(i)|, Σ_{j∈N(i)} src[3j..3j+2]).
-template <class T, class F>
-inline void neighbour_pass(const std::array<int, 3>& dims, const T* src, const T* zero, T* sum,
-                           int l, F&& node) {
-  const int nx = dims[0], ny = dims[1], nz = dims[2];
-  const int j = l % ny, k = l / ny;
-  line_neighbour_sum(dims, src, zero, j, k, sum);
-  const int yz = (j > 0) + (j + 1 < ny) + (k > 0) + (k + 1 < nz);
-  const std::ptrdiff_t first = static_cast<std::ptrdiff_t>(nx) * l;
-  for (int i = 0; i < nx; ++i) node(first + i, neighbour_count(i, nx, yz), sum + 3 * i);
-}
-
-// What normal_operator needs besides its operands: a zero x-line and one neighbour-sum line
-// per thread. The caller owns it so that iterations reuse it (allocating it on every apply
-// cost page faults in each CG iteration and each smoothing step).
+// What normal_operator needs besides its operands: a zero x-line and two lines per thread
+// (neighbour sums, the operator's values on the line). The caller owns it so that
+// iterations reuse it (allocating it on every apply cost page faults in each CG iteration
+// and each smoothing step).
 template <class T>
 struct StencilScratch {
-  std::vector<T> zero, sums;
+  std::vector<T> zero, lines;
   int threads = 1;
 
   // Sizes the buffers for x-lines of dims[0] nodes and the current OpenMP thread count.
@@ -65,42 +54,75 @@ struct StencilScratch {
     const size_t line = 3 * static_cast<size_t>(dims[0]);
     threads = std::max(1, omp_get_max_threads());
     if (zero.size() != line) zero.assign(line, T(0));
-    if (sums.size() < line * threads) sums.resize(line * threads);
+    if (lines.size() < 2 * line * threads) lines.resize(2 * line * threads);
   }
 };
 
-// The operator's two passes, handing each node's result to the caller instead of storing
-// it: node(i, v) receives v[c] = ((DᵀD + diag(w)) x)[3i + c], c = 0..2. x  3n; w  n;
-// scratch  3n (holds D x scaled by 1/|N|). D(i,i) = −1 and D(i,j) = 1/|N(i)|, so with
-// L' = (D x)/|N|:  (DᵀD x)_i = −|N(i)| L'_i + Σ_{j∈N(i)} L'_j.
-// The second pass reads x only at node i itself, so `node` may overwrite x[3i..3i+2]
-// (the multigrid smoother updates its operand in place this way, one pass per step).
-template <class T, class W, class Node>
+// Sets out[f] = g(inv, f) for the 3·nx entries f of an x-line whose nodes have |N(i)| =
+// yz + 2 except at the two ends: one branch-free loop the compiler vectorizes, then the end
+// nodes redone with their own count. inv = 1/|N(i)| or |N(i)| itself (`reciprocal`).
+template <class T, class G>
+inline void line_by_count(int nx, int yz, bool reciprocal, G&& g) {
+  auto value = [&](int count) { return reciprocal ? T(1) / T(count) : T(count); };
+  const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(nx);
+  const T inner = value(yz + 2);
+  for (std::ptrdiff_t f = 0; f < line; ++f) g(inner, f);
+  for (int i : {0, nx - 1}) {
+    const T end = value(neighbour_count(i, nx, yz));
+    for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) g(end, f);
+  }
+}
+
+// The operator's two passes, handing each x-line's result to the caller instead of storing
+// it: line(f0, len, v) receives v[f] = ((DᵀD + diag(w)) x)[f0 + f] for the len = 3·nx
+// entries of one x-line (nodes f0/3 .. f0/3 + nx − 1). x  3n; w  n; scratch  3n (holds D x
+// scaled by 1/|N|). D(i,i) = −1 and D(i,j) = 1/|N(i)|, so with L' = (D x)/|N|:
+// (DᵀD x)_i = −|N(i)| L'_i + Σ_{j∈N(i)} L'_j. Both passes work a line at a time in
+// per-entry loops that vectorize (per-node callbacks did not).
+// The second pass reads x only on the line it visits, so `line` may overwrite those
+// entries of x (the multigrid smoother updates its operand in place this way).
+template <class T, class W, class Line>
 void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* x, T* scratch,
-                           StencilScratch<T>& buffers, Node&& node) {
-  const int lines = dims[1] * dims[2];
+                           StencilScratch<T>& buffers, Line&& line) {
+  const int nx = dims[0], ny = dims[1], nz = dims[2];
+  const int lines = ny * nz;
   buffers.fit(dims);
   const T* zero = buffers.zero.data();
-  const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(dims[0]);
-#pragma omp parallel num_threads(buffers.threads) if (lines * dims[0] > 20000)
+  const std::ptrdiff_t len = 3 * static_cast<std::ptrdiff_t>(nx);
+#pragma omp parallel num_threads(buffers.threads) if (lines * nx > 20000)
   {
-    T* sum = buffers.sums.data() + line * omp_get_thread_num();
+    T* sum = buffers.lines.data() + 2 * len * omp_get_thread_num();
+    T* v = sum + len;
 #pragma omp for schedule(static)
-    for (int l = 0; l < lines; ++l)
-      neighbour_pass(dims, x, zero, sum, l, [&](std::ptrdiff_t i, int count, const T* s) {
-        const T inv = T(1) / T(count);
-        for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f)
-          scratch[f] = inv * (inv * s[f - 3 * i] - x[f]);
+    for (int l = 0; l < lines; ++l) {
+      const int j = l % ny, k = l / ny;
+      const int yz = (j > 0) + (j + 1 < ny) + (k > 0) + (k + 1 < nz);
+      line_neighbour_sum(dims, x, zero, j, k, sum);
+      const T* xl = x + len * l;
+      T* sl = scratch + len * l;
+      line_by_count<T>(nx, yz, true, [&](T inv, std::ptrdiff_t f) {
+        sl[f] = inv * (inv * sum[f] - xl[f]);
       });
+    }
 #pragma omp for schedule(static)
-    for (int l = 0; l < lines; ++l)
-      neighbour_pass(dims, scratch, zero, sum, l, [&](std::ptrdiff_t i, int count, const T* s) {
-        const T wi = static_cast<T>(w[i]);
-        T v[3];
-        for (int c = 0; c < 3; ++c)
-          v[c] = s[c] - T(count) * scratch[3 * i + c] + wi * x[3 * i + c];
-        node(i, static_cast<const T*>(v));
+    for (int l = 0; l < lines; ++l) {
+      const int j = l % ny, k = l / ny;
+      const int yz = (j > 0) + (j + 1 < ny) + (k > 0) + (k + 1 < nz);
+      line_neighbour_sum(dims, scratch, zero, j, k, sum);
+      const T* xl = x + len * l;
+      const T* sl = scratch + len * l;
+      line_by_count<T>(nx, yz, false, [&](T count, std::ptrdiff_t f) {
+        v[f] = sum[f] - count * sl[f];
       });
+      // The weights are zero but at constrained nodes.
+      const W* wl = w + static_cast<std::ptrdiff_t>(nx) * l;
+      for (int i = 0; i < nx; ++i)
+        if (wl[i] != W(0)) {
+          const T wi = static_cast<T>(wl[i]);
+          for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) v[f] += wi * xl[f];
+        }
+      line(len * l, len, static_cast<const T*>(v));
+    }
   }
 }
 
@@ -108,13 +130,14 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
 template <class T, class W>
 void normal_operator(const std::array<int, 3>& dims, const W* w, const T* x, T* scratch, T* y,
                      bool subtract, StencilScratch<T>& buffers) {
-  normal_operator_visit(dims, w, x, scratch, buffers, [&](std::ptrdiff_t i, const T* v) {
-    T* yi = y + 3 * i;
-    if (subtract)
-      yi[0] -= v[0], yi[1] -= v[1], yi[2] -= v[2];
-    else
-      yi[0] = v[0], yi[1] = v[1], yi[2] = v[2];
-  });
+  normal_operator_visit(dims, w, x, scratch, buffers,
+                        [&](std::ptrdiff_t f0, std::ptrdiff_t len, const T* v) {
+                          T* yl = y + f0;
+                          if (subtract)
+                            for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] -= v[f];
+                          else
+                            for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] = v[f];
+                        });
 }
 
 }  // namespace lapis::hair_sketch::detail

@@ -103,9 +103,9 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
   wk.x = field_;
   detail::normal_operator_visit(grid_.dims, wt, x, wk.scratch.data(), wk.buffers,
-                                [&](std::ptrdiff_t i, const double* v) {
-                                  for (std::ptrdiff_t c = 0; c < 3; ++c)
-                                    r[3 * i + c] = wt[i] * tg[3 * i + c] - v[c];
+                                [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
+                                  for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
+                                    r[f] = wt[f / 3] * tg[f] - v[f - f0];
                                 });
   double bnorm2 = 0;  // b is zero off the constraints
   for (const Constraint& c : current.items())

@@ -175,6 +175,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     const int n = static_cast<int>(L.A.rows());
     if (!L.matrix_free) L.Af = L.A.cast<Real>();
     L.inv_diag.resize(n);
+    if (L.matrix_free) L.inv_diag3.resize(3 * n);
     L.gershgorin.resize(n);
     for (int i = 0; i < n; ++i) refresh_row(L, i);
     L.lambda_max = L.gershgorin.maxCoeff();
@@ -203,6 +204,7 @@ void MultigridHierarchy::refresh_row(Level& L, int row) {
   // A zero diagonal only occurs for a coarse node outside the fine box that no fine node
   // interpolates from; such a node has an empty row and never receives a residual.
   L.inv_diag[row] = diag > 0 ? static_cast<Real>(1.0 / diag) : Real(0);
+  if (L.matrix_free) L.inv_diag3.segment(3 * row, 3).setConstant(L.inv_diag[row]);
   L.gershgorin[row] = diag > 0 ? static_cast<Real>(sum / diag) : Real(0);
 }
 
@@ -308,9 +310,8 @@ void MultigridHierarchy::residual(Level& L) {
   Real* r = L.r.data();
   if (L.matrix_free) {
     normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.scratch.data(), L.buffers,
-                          [&](std::ptrdiff_t i, const Real* v) {
-                            for (std::ptrdiff_t k = 0; k < 3; ++k)
-                              r[3 * i + k] = b[3 * i + k] - v[k];
+                          [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
+                            for (std::ptrdiff_t f = 0; f < len; ++f) r[f0 + f] = b[f0 + f] - v[f];
                           });
   } else {
     L.r = L.b;
@@ -322,20 +323,30 @@ void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, co
                                         Real a, Real c) {
   Real* r = L.r.data();
   if (L.matrix_free) {
-    // The matrix-free apply's second pass reads its operand only at the node it visits, so
-    // the step updates d (or x) in place, node by node.
+    // The matrix-free apply's second pass reads its operand only on the line it visits, so
+    // the step updates d (or x) in place, a line at a time.
     Real* x = L.x.data();
     Real* d = L.d.data();
-    const Real* inv = L.inv_diag.data();
+    const Real* inv = L.inv_diag3.data();
     normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.scratch.data(), L.buffers,
-                          [&](std::ptrdiff_t i, const Real* v) {
-                            const Real ci = c * inv[i];
-                            for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) {
-                              const Real rf = r_in[f] - v[f - 3 * i];
-                              r[f] = rf;
-                              const Real dn = (from_x ? Real(0) : a * d[f]) + ci * rf;
-                              d[f] = dn;
-                              x[f] += dn;
+                          [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
+                            Real* xl = x + f0;
+                            Real* dl = d + f0;
+                            Real* rl = r + f0;
+                            const Real* rin = r_in + f0;
+                            const Real* il = inv + f0;
+                            if (from_x) {
+                              for (std::ptrdiff_t f = 0; f < len; ++f) {
+                                rl[f] = rin[f] - v[f];
+                                dl[f] = c * il[f] * rl[f];
+                                xl[f] += dl[f];
+                              }
+                            } else {
+                              for (std::ptrdiff_t f = 0; f < len; ++f) {
+                                rl[f] = rin[f] - v[f];
+                                dl[f] = a * dl[f] + c * il[f] * rl[f];
+                                xl[f] += dl[f];
+                              }
                             }
                           });
     return;
