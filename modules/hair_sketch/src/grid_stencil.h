@@ -22,12 +22,14 @@ inline int neighbour_count(int i, int nx, int yz_neighbours) {
   return yz_neighbours + (i > 0) + (i + 1 < nx);
 }
 
-// out[3i + c] = Σ_{j∈N(i)} src[3j + c] for the nodes of the x-line (j, k); missing
-// neighbours (outside the grid) contribute nothing. `zero` is a zero line (3·nx values)
-// standing in for a missing y or z neighbour line, so the inner loop has no branches.
-template <class T>
-inline void line_neighbour_sum(const std::array<int, 3>& dims, const T* src, const T* zero, int j,
-                               int k, T* out) {
+// Calls g(f, s) for the entries f = 3i + c of the x-line (j, k), s = Σ_{j∈N(i)} src[3j + c];
+// missing neighbours (outside the grid) contribute nothing. `zero` is a zero line (3·nx
+// values) standing in for a missing y or z neighbour line, so the loops have no branches.
+// The two end nodes, whose |N(i)| differs, go to `end` instead, after the inner ones. The
+// sums are formed where they are used, never stored: one pass over the line.
+template <class T, class G, class E>
+inline void line_neighbour_visit(const std::array<int, 3>& dims, const T* src, const T* zero,
+                                 int j, int k, G&& inner, E&& end) {
   const int nx = dims[0], ny = dims[1], nz = dims[2];
   const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(nx);
   const T* c = src + line * (j + static_cast<std::ptrdiff_t>(ny) * k);
@@ -35,13 +37,19 @@ inline void line_neighbour_sum(const std::array<int, 3>& dims, const T* src, con
   const T* yp = j + 1 < ny ? c + line : zero;
   const T* zm = k > 0 ? c - line * ny : zero;
   const T* zp = k + 1 < nz ? c + line * ny : zero;
-  for (std::ptrdiff_t f = 0; f < line; ++f) out[f] = ym[f] + yp[f] + zm[f] + zp[f];
-  for (std::ptrdiff_t f = 3; f < line; ++f) out[f] += c[f - 3];
-  for (std::ptrdiff_t f = 0; f + 3 < line; ++f) out[f] += c[f + 3];
+  for (std::ptrdiff_t f = 3; f < line - 3; ++f)
+    inner(f, ym[f] + yp[f] + zm[f] + zp[f] + c[f - 3] + c[f + 3]);
+  for (std::ptrdiff_t f = 0; f < 3; ++f) {
+    T s = ym[f] + yp[f] + zm[f] + zp[f];
+    if (nx > 1) s += c[f + 3];
+    end(f, s);
+  }
+  for (std::ptrdiff_t f = std::max<std::ptrdiff_t>(3, line - 3); f < line; ++f)
+    end(f, ym[f] + yp[f] + zm[f] + zp[f] + c[f - 3]);
 }
 
-// What normal_operator needs besides its operands: a zero x-line and two lines per thread
-// (neighbour sums, the operator's values on the line). The caller owns it so that
+// What normal_operator needs besides its operands: a zero x-line and one line per thread
+// (the operator's values on the line being visited). The caller owns it so that
 // iterations reuse it (allocating it on every apply cost page faults in each CG iteration
 // and each smoothing step).
 template <class T>
@@ -54,24 +62,9 @@ struct StencilScratch {
     const size_t line = 3 * static_cast<size_t>(dims[0]);
     threads = std::max(1, omp_get_max_threads());
     if (zero.size() != line) zero.assign(line, T(0));
-    if (lines.size() < 2 * line * threads) lines.resize(2 * line * threads);
+    if (lines.size() < line * threads) lines.resize(line * threads);
   }
 };
-
-// Sets out[f] = g(inv, f) for the 3·nx entries f of an x-line whose nodes have |N(i)| =
-// yz + 2 except at the two ends: one branch-free loop the compiler vectorizes, then the end
-// nodes redone with their own count. inv = 1/|N(i)| or |N(i)| itself (`reciprocal`).
-template <class T, class G>
-inline void line_by_count(int nx, int yz, bool reciprocal, G&& g) {
-  auto value = [&](int count) { return reciprocal ? T(1) / T(count) : T(count); };
-  const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(nx);
-  const T inner = value(yz + 2);
-  for (std::ptrdiff_t f = 0; f < line; ++f) g(inner, f);
-  for (int i : {0, nx - 1}) {
-    const T end = value(neighbour_count(i, nx, yz));
-    for (std::ptrdiff_t f = 3 * i; f < 3 * i + 3; ++f) g(end, f);
-  }
-}
 
 // The operator's two passes, handing each x-line's result to the caller instead of storing
 // it: line(f0, len, v) receives v[f] = ((DᵀD + diag(w)) x)[f0 + f] for the len = 3·nx
@@ -91,29 +84,29 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
   const std::ptrdiff_t len = 3 * static_cast<std::ptrdiff_t>(nx);
 #pragma omp parallel num_threads(buffers.threads) if (lines * nx > 20000)
   {
-    T* sum = buffers.lines.data() + 2 * len * omp_get_thread_num();
-    T* v = sum + len;
+    T* v = buffers.lines.data() + len * omp_get_thread_num();
 #pragma omp for schedule(static)
     for (int l = 0; l < lines; ++l) {
       const int j = l % ny, k = l / ny;
       const int yz = (j > 0) + (j + 1 < ny) + (k > 0) + (k + 1 < nz);
-      line_neighbour_sum(dims, x, zero, j, k, sum);
       const T* xl = x + len * l;
       T* sl = scratch + len * l;
-      line_by_count<T>(nx, yz, true, [&](T inv, std::ptrdiff_t f) {
-        sl[f] = inv * (inv * sum[f] - xl[f]);
-      });
+      const T inv = T(1) / T(yz + 2), inv_end = T(1) / T(neighbour_count(0, nx, yz));
+      line_neighbour_visit(
+          dims, x, zero, j, k,
+          [&](std::ptrdiff_t f, T s) { sl[f] = inv * (inv * s - xl[f]); },
+          [&](std::ptrdiff_t f, T s) { sl[f] = inv_end * (inv_end * s - xl[f]); });
     }
 #pragma omp for schedule(static)
     for (int l = 0; l < lines; ++l) {
       const int j = l % ny, k = l / ny;
       const int yz = (j > 0) + (j + 1 < ny) + (k > 0) + (k + 1 < nz);
-      line_neighbour_sum(dims, scratch, zero, j, k, sum);
       const T* xl = x + len * l;
       const T* sl = scratch + len * l;
-      line_by_count<T>(nx, yz, false, [&](T count, std::ptrdiff_t f) {
-        v[f] = sum[f] - count * sl[f];
-      });
+      const T count = T(yz + 2), count_end = T(neighbour_count(0, nx, yz));
+      line_neighbour_visit(
+          dims, scratch, zero, j, k, [&](std::ptrdiff_t f, T s) { v[f] = s - count * sl[f]; },
+          [&](std::ptrdiff_t f, T s) { v[f] = s - count_end * sl[f]; });
       // The weights are zero but at constrained nodes.
       const W* wl = w + static_cast<std::ptrdiff_t>(nx) * l;
       for (int i = 0; i < nx; ++i)
