@@ -58,7 +58,9 @@ void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const 
                            Field& Y) {
   Field scratch(X.rows(), 3);
   Y.resize(X.rows(), 3);
-  detail::normal_operator(g.dims, weights.data(), X.data(), scratch.data(), Y.data(), false);
+  detail::StencilScratch<double> buffers;
+  detail::normal_operator(g.dims, weights.data(), X.data(), scratch.data(), Y.data(), false,
+                          buffers);
 }
 
 }  // namespace lapis::hair_sketch

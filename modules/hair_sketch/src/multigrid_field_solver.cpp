@@ -1,19 +1,32 @@
 #include "lapis/hair_sketch/multigrid_field_solver.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
 
 #include "field_report.h"
 #include "lapis/core/error.h"
+#include "grid_stencil.h"
 #include "multigrid_hierarchy.h"
 
 namespace lapis::hair_sketch {
+
+// The iteration's vectors, allocated with the solver: an iteration allocates nothing (a
+// fresh 50K×3 temporary per vector operation cost page faults in every iteration).
+struct MultigridFieldSolver::Work {
+  Field x, r, p, q, scratch;
+  detail::FieldF rf, zf;  // the cycle's residual and correction, in its precision
+  detail::StencilScratch<double> buffers;
+
+  explicit Work(int n)
+      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), scratch(n, 3), rf(n, 3), zf(n, 3) {}
+};
+
 namespace {
 
-Eigen::RowVector3d column_dots(const Field& a, const Field& b) {
-  return (a.array() * b.array()).colwise().sum();
-}
+// Element-wise passes over the field run on one thread below this many nodes.
+constexpr int parallel_nodes = 20000;
 
 }  // namespace
 
@@ -33,6 +46,7 @@ MultigridFieldSolver::MultigridFieldSolver(const Grid& grid, MultigridFieldOptio
   mo.coarsest_nodes = opt_.coarsest_nodes;
   mo.cubic = opt_.cubic_prolongation;
   mg_ = std::make_unique<detail::MultigridHierarchy>(grid_, weights_, mo);
+  work_ = std::make_unique<Work>(static_cast<int>(n));
 }
 
 MultigridFieldSolver::~MultigridFieldSolver() = default;
@@ -73,54 +87,112 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     return rep;
   }
 
-  // b = WᵀW c; r = b − A x with the exact double operator.
-  const Field b = weights_.asDiagonal() * targets_;
-  Field x = field_, Ax, r, p, q;
-  apply_normal_operator(grid_, weights_, x, Ax);
-  r = b - Ax;
-  const double bnorm = b.norm();
-  detail::FieldF zf;
-  mg_->apply(r.cast<detail::Real>(), zf);
-  Field z = zf.cast<double>();
-  p = z;
-  Eigen::RowVector3d rz = column_dots(r, z);
+  // The vector operations of an iteration are fused into as few passes over the field as
+  // the dot products allow (each must complete before the update that uses it), each pass
+  // one parallel loop over work vectors that live as long as the solver.
+  Work& wk = *work_;
+  double* x = wk.x.data();
+  double* r = wk.r.data();
+  double* p = wk.p.data();
+  double* q = wk.q.data();
+  detail::Real* rf = wk.rf.data();
+  const detail::Real* zf = wk.zf.data();
+  const double* wt = weights_.data();
+  const double* tg = targets_.data();
+
+  // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
+  wk.x = field_;
+  detail::normal_operator_visit(grid_.dims, wt, x, wk.scratch.data(), wk.buffers,
+                                [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
+                                  for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
+                                    r[f] = wt[f / 3] * tg[f] - v[f - f0];
+                                });
+  double bnorm2 = 0;  // b is zero off the constraints
+  for (const Constraint& c : current.items())
+    bnorm2 += wt[c.node] * wt[c.node] * targets_.row(c.node).squaredNorm();
+  const double bnorm = std::sqrt(bnorm2);
+  double rnorm2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : rnorm2) if (n > parallel_nodes)
+  for (int i = 0; i < 3 * n; ++i) {
+    rf[i] = static_cast<detail::Real>(r[i]);
+    rnorm2 += r[i] * r[i];
+  }
+  // The column dots of r and z = the cycle's output widened to double (z is never stored),
+  // and `also(f)` for each node's first entry f in the same pass.
+  auto dots_rz = [&](auto&& also) {
+    double s0 = 0, s1 = 0, s2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : s0, s1, s2) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i) {
+      const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i);
+      s0 += r[f] * static_cast<double>(zf[f]);
+      s1 += r[f + 1] * static_cast<double>(zf[f + 1]);
+      s2 += r[f + 2] * static_cast<double>(zf[f + 2]);
+      also(f);
+    }
+    return Eigen::RowVector3d(s0, s1, s2);
+  };
+  mg_->apply(wk.rf, wk.zf);
+  Eigen::RowVector3d rz = dots_rz([&](std::ptrdiff_t f) {
+    for (std::ptrdiff_t k = f; k < f + 3; ++k) p[k] = static_cast<double>(zf[k]);
+  });
   double prev_step = 0, est = 0;
   int it = 0;
-  bool converged = r.norm() <= 1e-15 * std::max(bnorm, 1e-300);
+  bool converged = std::sqrt(rnorm2) <= 1e-15 * std::max(bnorm, 1e-300);
   for (; !converged && it < opt_.max_iterations; ++it) {
-    apply_normal_operator(grid_, weights_, p, q);
-    const Eigen::RowVector3d pq = column_dots(p, q);
-    Eigen::RowVector3d alpha;
+    detail::normal_operator(grid_.dims, wt, p, wk.scratch.data(), q, false, wk.buffers);
+    double pq0 = 0, pq1 = 0, pq2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : pq0, pq1, pq2) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i) {
+      const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i);
+      pq0 += p[f] * q[f];
+      pq1 += p[f + 1] * q[f + 1];
+      pq2 += p[f + 2] * q[f + 2];
+    }
+    const double pq[3] = {pq0, pq1, pq2};
+    double alpha[3];
     for (int c = 0; c < 3; ++c) alpha[c] = pq[c] > 0 ? rz[c] / pq[c] : 0.0;
-    const Field step = p * alpha.asDiagonal();
-    x += step;
-    r -= q * alpha.asDiagonal();
+    // x += α p and r −= α q, with the cycle's copy of r and the norms of the step and of x.
+    double step2 = 0, x2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : step2, x2) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
+        const double step = alpha[c] * p[f];
+        x[f] += step;
+        r[f] -= alpha[c] * q[f];
+        rf[f] = static_cast<detail::Real>(r[f]);
+        step2 += step * step;
+        x2 += x[f] * x[f];
+      }
     // With a uniform preconditioned spectrum the steps shrink geometrically at rate ρ;
     // the error left is then about step·ρ/(1−ρ). ρ is taken pessimistically (max of the
     // last ratio and 0.5) so one lucky short step cannot stop the iteration.
-    const double step_norm = step.norm();
+    const double step_norm = std::sqrt(step2);
     const double rho = it == 0 ? 0.9 : std::clamp(step_norm / std::max(prev_step, 1e-300), 0.5, 0.95);
     prev_step = step_norm;
-    est = step_norm * rho / (1 - rho) / std::max(x.norm(), 1e-300);
+    est = step_norm * rho / (1 - rho) / std::max(std::sqrt(x2), 1e-300);
     if (it >= 1 && est <= opt_.tolerance) {
       converged = true;
       ++it;
       break;
     }
-    mg_->apply(r.cast<detail::Real>(), zf);
-    z = zf.cast<double>();
-    const Eigen::RowVector3d rz_new = column_dots(r, z);
-    for (int c = 0; c < 3; ++c) {
-      const double beta = rz[c] > 0 ? rz_new[c] / rz[c] : 0.0;
-      p.col(c) = z.col(c) + beta * p.col(c);
-    }
+    mg_->apply(wk.rf, wk.zf);
+    const Eigen::RowVector3d rz_new = dots_rz([](std::ptrdiff_t) {});
+    double beta[3];
+    for (int c = 0; c < 3; ++c) beta[c] = rz[c] > 0 ? rz_new[c] / rz[c] : 0.0;
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
+        p[f] = static_cast<double>(zf[f]) + beta[c] * p[f];
+      }
     rz = rz_new;
   }
   if (!converged)
     throw SolverFailure("hair_sketch::MultigridFieldSolver::apply(): no convergence in " +
                         std::to_string(opt_.max_iterations) + " iterations (estimated error " +
                         std::to_string(est) + ")");
-  field_ = std::move(x);
+  field_.swap(wk.x);
   rep.iterations = it;
   rep.error_estimate = est;
   rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels, " + std::to_string(it) +

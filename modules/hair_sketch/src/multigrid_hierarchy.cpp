@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <unordered_map>
 
 #include "lapis/core/error.h"
@@ -69,6 +70,13 @@ inline std::ptrdiff_t value_index(const RowSparseD& A, int i, int j) {
 
 enum class Mode { Assign, Add, Subtract };
 
+// Below this many stored entries a sparse product runs on one thread. The threshold counts
+// entries, not rows: level 1 of a 50K grid has only 7.4K rows but 0.9M entries (up to 125
+// a row), the costliest product of the cycle, and a row threshold left it on one thread.
+constexpr std::ptrdiff_t parallel_nonzeros = 50000;
+// Element-wise passes: below this many nodes one thread.
+constexpr int parallel_nodes = 20000;
+
 // y = A x, y += A x or y -= A x, 3 columns at once.
 void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   const int n = static_cast<int>(A.rows());
@@ -77,7 +85,7 @@ void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   const Real* val = A.valuePtr();
   const Real* xp = x.data();
   Real* yp = y.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
+#pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
   for (int i = 0; i < n; ++i) {
     Real s0 = 0, s1 = 0, s2 = 0;
     for (int p = outer[i]; p < outer[i + 1]; ++p) {
@@ -98,19 +106,74 @@ void spmv(const RowSparseF& A, const FieldF& x, FieldF& y, Mode mode) {
   }
 }
 
-// One Chebyshev step after r was updated: d = a d + c D⁻¹ r, x += d, one fused pass.
-void chebyshev_update(FieldF& x, FieldF& d, const FieldF& r, const VectorR& inv_diag, Real a,
-                      Real c) {
-  const int n = static_cast<int>(x.rows());
-  Real* xp = x.data();
-  Real* dp = d.data();
-  const Real* rp = r.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
+// Four floats as one SSE register (GCC/Clang vector extension): the compiler did not
+// vectorize the 3-column gather loop by itself.
+typedef Real Real4 __attribute__((vector_size(4 * sizeof(Real))));
+
+inline Real4 load4(const Real* p) {
+  Real4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// s[0..2] = (A u)_i, 3 columns. A row has up to 125 entries. Where the row's last column
+// is not the vector's last node, an entry's 3 values are read as 4 (the 4th belongs to the
+// next node and is ignored) and multiplied and added as one vector, in two partial sums so
+// consecutive entries do not wait for each other's addition.
+inline void row_product(const RowSparseF& A, const Real* u, int i, Real s[4]) {
+  const int* inner = A.innerIndexPtr();
+  const Real* val = A.valuePtr();
+  const int begin = A.outerIndexPtr()[i], end = A.outerIndexPtr()[i + 1];
+  Real4 a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0};
+  int p = begin;
+  if (end > begin && inner[end - 1] + 1 < A.cols()) {
+    for (; p + 2 <= end; p += 2) {
+      a0 += val[p] * load4(u + 3 * static_cast<std::ptrdiff_t>(inner[p]));
+      a1 += val[p + 1] * load4(u + 3 * static_cast<std::ptrdiff_t>(inner[p + 1]));
+    }
+  }
+  a0 += a1;
+  for (int k = 0; k < 4; ++k) s[k] = a0[k];
+  for (; p < end; ++p) {
+    const Real v = val[p];
+    const Real* uc = u + 3 * static_cast<std::ptrdiff_t>(inner[p]);
+    for (int k = 0; k < 3; ++k) s[k] += v * uc[k];
+  }
+}
+
+// r = b − A x on a sparse level.
+void sparse_residual(const RowSparseF& A, const Real* x, const Real* b, Real* r) {
+  const int n = static_cast<int>(A.rows());
+#pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
   for (int i = 0; i < n; ++i) {
-    const Real s = c * inv_diag[i];
-    for (int k = 3 * i; k < 3 * i + 3; ++k) {
-      dp[k] = a * dp[k] + s * rp[k];
-      xp[k] += dp[k];
+    Real s[4];
+    row_product(A, x, i, s);
+    for (std::ptrdiff_t k = 0; k < 3; ++k) r[3 * i + k] = b[3 * i + k] - s[k];
+  }
+}
+
+// One Chebyshev step on a sparse level fused with the product before it, in one pass:
+//   r_out = r_in − A u,  d_new = a d + c D⁻¹ r_out,  x += d_new (+ d when add_d).
+// u is d, except in the first step of a smoothing from a non-zero x, where u is x itself:
+// that step may not write x while other rows still gather from it, so it passes
+// x = nullptr and the next step adds both corrections (add_d). d_new is a separate buffer
+// for the same reason. d may be nullptr when a = 0.
+void sparse_chebyshev_step(const RowSparseF& A, const Real* u, const Real* d, Real* d_new,
+                           Real* x, bool add_d, const Real* r_in, Real* r_out,
+                           const VectorR& inv_diag, Real a, Real c) {
+  const int n = static_cast<int>(A.rows());
+#pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
+  for (int i = 0; i < n; ++i) {
+    Real s[4];
+    row_product(A, u, i, s);
+    const Real ci = c * inv_diag[i];
+    for (int k = 0; k < 3; ++k) {
+      const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + k;
+      const Real r = r_in[f] - s[k];
+      r_out[f] = r;
+      const Real dn = (d ? a * d[f] : Real(0)) + ci * r;
+      d_new[f] = dn;
+      if (x) x[f] += add_d ? dn + d[f] : dn;
     }
   }
 }
@@ -150,6 +213,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     const int n = static_cast<int>(L.A.rows());
     if (!L.matrix_free) L.Af = L.A.cast<Real>();
     L.inv_diag.resize(n);
+    if (L.matrix_free) L.inv_diag3.resize(3 * n);
     L.gershgorin.resize(n);
     for (int i = 0; i < n; ++i) refresh_row(L, i);
     L.lambda_max = L.gershgorin.maxCoeff();
@@ -157,6 +221,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.b.setZero(n, 3);
     L.r.setZero(n, 3);
     L.d.setZero(n, 3);
+    if (!L.matrix_free) L.d2.setZero(n, 3);
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
@@ -177,6 +242,7 @@ void MultigridHierarchy::refresh_row(Level& L, int row) {
   // A zero diagonal only occurs for a coarse node outside the fine box that no fine node
   // interpolates from; such a node has an empty row and never receives a residual.
   L.inv_diag[row] = diag > 0 ? static_cast<Real>(1.0 / diag) : Real(0);
+  if (L.matrix_free) L.inv_diag3.segment(3 * row, 3).setConstant(L.inv_diag[row]);
   L.gershgorin[row] = diag > 0 ? static_cast<Real>(sum / diag) : Real(0);
 }
 
@@ -277,45 +343,111 @@ void MultigridHierarchy::set_prolongation_row(int s, bool free) {
   }
 }
 
-void MultigridHierarchy::multiply(Level& L, const FieldF& x, FieldF& y, bool subtract) {
-  if (L.matrix_free)
-    normal_operator(L.dims, L.weights.data(), x.data(), L.scratch.data(), y.data(), subtract);
-  else
-    spmv(L.Af, x, y, subtract ? Mode::Subtract : Mode::Assign);
+void MultigridHierarchy::residual(Level& L) {
+  const Real* b = L.b.data();
+  Real* r = L.r.data();
+  if (L.matrix_free) {
+    normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.scratch.data(), L.buffers,
+                          [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
+                            for (std::ptrdiff_t f = 0; f < len; ++f) r[f0 + f] = b[f0 + f] - v[f];
+                          });
+  } else {
+    sparse_residual(L.Af, L.x.data(), L.b.data(), L.r.data());
+  }
+}
+
+void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in,
+                                        Real a, Real c) {
+  Real* r = L.r.data();
+  if (L.matrix_free) {
+    // The matrix-free apply's second pass reads its operand only on the line it visits, so
+    // the step updates d (or x) in place, a line at a time.
+    Real* x = L.x.data();
+    Real* d = L.d.data();
+    const Real* inv = L.inv_diag3.data();
+    normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.scratch.data(), L.buffers,
+                          [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
+                            Real* xl = x + f0;
+                            Real* dl = d + f0;
+                            Real* rl = r + f0;
+                            const Real* rin = r_in + f0;
+                            const Real* il = inv + f0;
+                            if (from_x) {
+                              for (std::ptrdiff_t f = 0; f < len; ++f) {
+                                rl[f] = rin[f] - v[f];
+                                dl[f] = c * il[f] * rl[f];
+                                xl[f] += dl[f];
+                              }
+                            } else {
+                              for (std::ptrdiff_t f = 0; f < len; ++f) {
+                                rl[f] = rin[f] - v[f];
+                                dl[f] = a * dl[f] + c * il[f] * rl[f];
+                                xl[f] += dl[f];
+                              }
+                            }
+                          });
+    return;
+  }
+  if (from_x) {
+    sparse_chebyshev_step(L.Af, L.x.data(), nullptr, L.d.data(), nullptr, false, r_in, r,
+                          L.inv_diag, 0, c);
+    pending = true;
+    return;
+  }
+  sparse_chebyshev_step(L.Af, L.d.data(), L.d.data(), L.d2.data(), L.x.data(), pending, r_in, r,
+                        L.inv_diag, a, c);
+  L.d.swap(L.d2);
+  pending = false;
 }
 
 void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
   // Chebyshev iteration on D⁻¹A over [lmin, lmax] (Adams, Brezina, Hu, Tuminaro 2003).
+  // Each step is one pass fused with the operator apply before it (chebyshev_step); the
+  // residual is only ever stored, never copied: the first step reads b.
   const Real lmax = L.lambda_max, lmin = static_cast<Real>(opt_.smoothing_range) * lmax;
   const Real theta = Real(0.5) * (lmax + lmin), delta = Real(0.5) * (lmax - lmin);
   const Real sigma = theta / delta;
   Real rho = Real(1) / sigma;
-  L.r = L.b;
-  if (zero_initial)
-    L.x.setZero();
-  else
-    multiply(L, L.x, L.r, true);
-  L.d.setZero();
-  chebyshev_update(L.x, L.d, L.r, L.inv_diag, 0, 1 / theta);
+  const Real* r_in = L.b.data();
+  bool pending = false;
+  if (zero_initial) {
+    // From x = 0 the residual is b: x = d = D⁻¹ b / θ, no operator apply.
+    const int n = static_cast<int>(L.x.rows());
+    const Real* b = L.b.data();
+    Real* x = L.x.data();
+    Real* d = L.d.data();
+    const Real c = 1 / theta;
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i) {
+      const Real ci = c * L.inv_diag[i];
+      for (std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i); f < 3 * i + 3; ++f)
+        x[f] = d[f] = ci * b[f];
+    }
+  } else {
+    chebyshev_step(L, true, pending, r_in, 0, 1 / theta);
+    r_in = L.r.data();
+  }
   for (int it = 1; it < opt_.smoothing_degree; ++it) {
-    multiply(L, L.d, L.r, true);
     const Real rho_new = Real(1) / (Real(2) * sigma - rho);
-    chebyshev_update(L.x, L.d, L.r, L.inv_diag, rho_new * rho, Real(2) * rho_new / delta);
+    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta);
+    r_in = L.r.data();
     rho = rho_new;
   }
+  if (pending) L.x += L.d;  // degree 1 from a non-zero x on a sparse level
 }
 
 void MultigridHierarchy::cycle(int l) {
   Level& L = levels_[l];
   if (l + 1 == static_cast<int>(levels_.size())) {
-    L.x = coarsest_.solve(L.b.cast<double>()).cast<Real>();
+    coarse_rhs_ = L.b.cast<double>();
+    coarsest_.solveInPlace(coarse_rhs_);
+    L.x = coarse_rhs_.cast<Real>();
     return;
   }
   Level& C = levels_[l + 1];
   smooth(L, true);
   for (int g = 0; g < opt_.cycle_index; ++g) {
-    L.r = L.b;
-    multiply(L, L.x, L.r, true);
+    residual(L);
     spmv(L.R, L.r, C.b, Mode::Assign);
     cycle(l + 1);
     spmv(L.P, C.x, L.x, Mode::Add);

@@ -23,6 +23,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
+#include "grid_stencil.h"
 #include "lapis/hair_sketch/grid.h"
 
 namespace lapis::hair_sketch::detail {
@@ -70,11 +71,14 @@ class MultigridHierarchy {
     VectorR gershgorin;  // per row Σ|a_ij| / a_ii: bounds λ(D⁻¹A)
     Real lambda_max = 0;
     FieldF x, b, r, d;  // work vectors
+    FieldF d2;          // sparse levels: the next Chebyshev direction while d is still read
     // The finest level applies A matrix-free (grid_stencil.h) with these weights (ω² at
     // constrained nodes).
     bool matrix_free = false;
     VectorR weights;
     FieldF scratch;
+    VectorR inv_diag3;  // inv_diag repeated per entry (x y z), for per-entry loops
+    StencilScratch<Real> buffers;
     Eigen::VectorXd base_diag;  // diagonal without constraints
   };
   struct Entry {
@@ -85,7 +89,9 @@ class MultigridHierarchy {
   void free_set_change(int s, double sign, std::unordered_map<long long, double>& acc) const;
   void set_prolongation_row(int s, bool free);
   void cycle(int l);
-  void multiply(Level& L, const FieldF& x, FieldF& y, bool subtract);
+  void residual(Level& L);  // r = b − A x
+  // One Chebyshev step of smooth(): from_x for the first step from a non-zero x.
+  void chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c);
   void smooth(Level& L, bool zero_initial);
   void refresh_row(Level& L, int row);
   void factor_coarsest();
@@ -93,6 +99,7 @@ class MultigridHierarchy {
   MultigridOptions opt_;
   std::vector<Level> levels_;
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
+  Eigen::MatrixXd coarse_rhs_;  // the coarsest solve's right-hand side, solved in place
   Eigen::VectorXd fine_weights_;  // the weights on the fine diagonal, exact
   std::vector<char> pinned_;      // fine nodes with a weight: their prolongation row is zero
 };

@@ -49,6 +49,8 @@ class MultigridFieldSolver final : public FieldSolver {
   Field targets_;            // c_i at constrained nodes, 0 elsewhere
   Field field_;
   std::unique_ptr<detail::MultigridHierarchy> mg_;
+  struct Work;  // the iteration's vectors, kept between solves
+  std::unique_ptr<Work> work_;
 };
 
 }  // namespace lapis::hair_sketch
