@@ -22,6 +22,7 @@ class SampledField {
   // Trilinear interpolation; zero outside the grid.
   Eigen::Vector3f operator()(const Eigen::Vector3f& p) const;
   const Grid& grid() const { return grid_; }
+  const float* data() const { return data_.data(); }  // x y z per node, node-major
 
  private:
   Grid grid_;
