@@ -19,6 +19,7 @@
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/stream_curve.h"
 #include "lapis_bench.h"
+#include "memory_bandwidth.h"
 
 using namespace lapis::hair_sketch;
 namespace bench = lapis::bench;
@@ -76,6 +77,10 @@ int main(int argc, char** argv) {
   }
   nlohmann::json out;
   out["threads"] = omp_get_max_threads();
+  const bench::MemoryBandwidth bandwidth = bench::measure_memory_bandwidth();
+  out["memory_bandwidth"] = bandwidth.to_json();
+  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
+              bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
   bench::Table table({"unknowns", "method", "edit", "nodes +/-", "diff ms", "update ms",
                       "solve ms", "iters", "grow20K ms", "total20K ms", "detail"});
   bench::Table growth({"unknowns", "strands", "segments", "grow ms"});

@@ -13,6 +13,7 @@
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "lapis_bench.h"
+#include "memory_bandwidth.h"
 
 using namespace lapis;
 using namespace lapis::mesh_merge;
@@ -55,6 +56,9 @@ int main(int argc, char** argv) {
   bench::Table table({"source", "V_src", "boundary", "setup ms", "solve ms", "zip ms", "smooth ms", "total ms",
                       "cpu ms", "re-merge ms", "seam ok", "residual"});
   nlohmann::json results = nlohmann::json::array();
+  const bench::MemoryBandwidth bandwidth = bench::measure_memory_bandwidth();
+  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
+              bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
   for (const Case& c : cases) {
     if (quick && std::strcmp(c.name, "50K") == 0) break;
     const geometry::TriMesh src = cap(c);
@@ -109,6 +113,8 @@ int main(int argc, char** argv) {
                        {"second_factor_nnz", r.solver.second_factor_nnz}});
   }
   table.print();
-  if (!quick) bench::write_results("mesh_merge", {{"cases", results}, {"peak_rss_mib", bench::peak_rss_mib()}});
+  if (!quick) bench::write_results("mesh_merge", {{"cases", results},
+                                                  {"memory_bandwidth", bandwidth.to_json()},
+                                                  {"peak_rss_mib", bench::peak_rss_mib()}});
   return 0;
 }
