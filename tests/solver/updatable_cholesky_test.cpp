@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "grid_matrices.h"
@@ -255,6 +256,47 @@ TEST_CASE("solver: many diagonal weight changes agree with general updates and a
     CHECK(relative_difference(sweep.solve(B), general.solve(B)) <= 1e-9);
     CHECK(relative_difference(sweep.solve(B), solve_spd(sweep.matrix(), B)) <= 1e-9);
   }
+}
+
+TEST_CASE("solver: one-sweep diagonal changes equal cholmod_updown's update and downdate, any rank and threads") {
+  // N = 20: top-separator columns long enough to be split over the threads. Ranks around
+  // the 16 terms one sweep takes, signs mixed, every node once.
+  const int N = 20, n = N * N * N;
+  const SparseMatrix DtD = hair_normal_matrix(N, {});
+  Eigen::VectorXd weights = Eigen::VectorXd::Zero(n);
+  for (int i : spread_nodes(n, n / 40)) weights[i] = 1e4;
+  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> node(0, n - 1);
+  for (int threads : {1, 2, 3})
+    for (int rank : {1, 2, 15, 16, 17, 40}) {
+      CAPTURE(threads);
+      CAPTURE(rank);
+      UpdatableCholesky sweep({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
+      UpdatableCholesky general({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
+      sweep.compute(DtD, weights);
+      general.compute(DtD, weights);
+      std::vector<int> idx;
+      std::vector<double> w;
+      std::vector<Eigen::Triplet<double, int>> up, down;
+      while (static_cast<int>(idx.size()) < rank) {
+        const int i = node(rng);
+        if (std::find(idx.begin(), idx.end(), i) != idx.end()) continue;
+        const double now = weights[i], next = now > 0 ? 0.0 : 2.5e3 * (1 + idx.size() % 3);
+        idx.push_back(i);
+        w.push_back(next);
+        if (next > now) up.emplace_back(i, static_cast<int>(up.size()), std::sqrt(next - now));
+        else down.emplace_back(i, static_cast<int>(down.size()), std::sqrt(now - next));
+      }
+      sweep.set_diagonal_weights(idx, w);
+      SparseMatrix U(n, static_cast<int>(up.size())), D(n, static_cast<int>(down.size()));
+      U.setFromTriplets(up.begin(), up.end());
+      D.setFromTriplets(down.begin(), down.end());
+      if (U.cols() > 0) general.update(U);
+      if (D.cols() > 0) general.downdate(D);
+      CHECK(relative_difference(sweep.solve(B), general.solve(B)) <= 1e-11);
+      CHECK(relative_difference(sweep.solve(B), solve_spd(sweep.matrix(), B)) <= 1e-9);
+    }
 }
 
 TEST_CASE("solver: weights whose removal makes the matrix indefinite throw and keep the previous system") {

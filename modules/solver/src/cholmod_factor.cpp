@@ -138,6 +138,20 @@ void CholmodFactor::updown(bool update, const SparseMatrix& C, const char* funct
   context_.check(function, "cholmod_updown");
 }
 
+bool CholmodFactor::can_update_diagonal() const {
+  return diagonal_updown_available() && L_ && !L_->is_super && !L_->is_ll;
+}
+
+std::ptrdiff_t CholmodFactor::update_diagonal(const std::vector<std::pair<int, double>>& deltas, int threads) {
+  std::vector<std::pair<int, double>> permuted_deltas;
+  permuted_deltas.reserve(deltas.size());
+  for (const auto& [i, d] : deltas)
+    if (d != 0) permuted_deltas.emplace_back(permuted(i), d);
+  const std::ptrdiff_t bad = diagonal_updown(*L_, permuted_deltas, diagonal_work_, threads);
+  const int* perm = static_cast<const int*>(L_->Perm);
+  return bad < 0 ? -1 : (perm ? perm[bad] : bad);
+}
+
 std::ptrdiff_t CholmodFactor::first_bad_pivot() const {
   const int* Lp = static_cast<const int*>(L_->p);
   const double* Lx = static_cast<const double*>(L_->x);

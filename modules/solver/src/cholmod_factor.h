@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cholmod_context.h"
+#include "diagonal_updown.h"
 #include "simplicial_solve.h"
 #include "supernodal_solve.h"
 
@@ -39,6 +40,12 @@ class CholmodFactor {
   void to_simplicial_ldl(const char* function);
   // L·D·L' ± C·C' where C's rows are in the caller's (un-permuted) ordering; permutes them.
   void updown(bool update, const SparseMatrix& C, const char* function);
+  // A(i, i) += δ for each (i, δ) (un-permuted i, either sign), in place in one sweep on
+  // `threads` threads (0: OpenMP's default; diagonal_updown.h); only when can_update_diagonal(). Returns -1, or the un-permuted column
+  // whose pivot would not stay positive: the factor is then partly modified and must be
+  // refactorized.
+  bool can_update_diagonal() const;
+  std::ptrdiff_t update_diagonal(const std::vector<std::pair<int, double>>& deltas, int threads = 0);
   // First column j of the simplicial LDL' factor whose pivot D(j,j) is not finite and
   // positive, un-permuted; -1 if all are.
   std::ptrdiff_t first_bad_pivot() const;
@@ -69,6 +76,7 @@ class CholmodFactor {
   mutable SubtreeSchedule schedule_;  // for the simplicial solve; rebuilt when L's pattern changes
   mutable int schedule_threads_ = 0;
   SupernodalSchedule supernodal_schedule_;  // for the supernodal solve; built by analyze()
+  DiagonalUpdownWork diagonal_work_;
 };
 
 }  // namespace lapis::solver::detail
