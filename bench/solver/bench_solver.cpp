@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <string>
 
@@ -227,29 +228,42 @@ int main(int argc, char** argv) {
     for (int k : ks) {
       const Edit edit = make_edit(weights, k);
       nlohmann::json mk;
-      double best = 1e300, auto_ms = 0;
+      // The three methods interleaved, repetition by repetition, so that a slow spell of this
+      // shared machine hits them alike; update/downdate and the automatic choice swap places
+      // each time. Each timing is one application or one undo. A refactorization leaves a
+      // freshly allocated factor behind whose first update pays for its page faults: one
+      // untimed update/downdate follows it when that is cheap. The first, untimed run sets
+      // the repetitions: as many as fit in about a second of update/downdate (two to eight),
+      // at most three of refactorization.
+      std::map<ModifyMethod, std::vector<double>> ms;
       std::string auto_choice;
-      for (ModifyMethod method : {ModifyMethod::UpdateDowndate, ModifyMethod::Refactorize, ModifyMethod::Auto}) {
+      auto apply_and_undo = [&](ModifyMethod method) {
         upd.set_method(method);
-        // Once untimed, so that every method starts from a factor in use (a refactorization
-        // leaves a freshly allocated one behind, whose first update pays for its page faults);
-        // its time sets how many timed repetitions fit in about two seconds (two to eight
-        // applications and as many undos: the cheap edits are the noisy ones).
-        const double first_ms = upd.set_diagonal_weights(edit.indices, edit.forward).ms;
-        upd.set_diagonal_weights(edit.indices, edit.backward);
-        const int reps = std::clamp(static_cast<int>(1000.0 / std::max(first_ms, 1e-3)), 2, 8);
-        std::vector<double> ms;
-        std::string chose;
-        for (int rep = 0; rep < reps; ++rep) {
-          ms.push_back(upd.set_diagonal_weights(edit.indices, edit.forward).ms);
-          chose = to_string(upd.last_report().method);
-          ms.push_back(upd.set_diagonal_weights(edit.indices, edit.backward).ms);
+        const double apply = upd.set_diagonal_weights(edit.indices, edit.forward).ms;
+        if (method == ModifyMethod::Auto) auto_choice = to_string(upd.last_report().method);
+        return std::pair{apply, upd.set_diagonal_weights(edit.indices, edit.backward).ms};
+      };
+      const double first_ms = apply_and_undo(ModifyMethod::UpdateDowndate).first;
+      const int reps = std::clamp(static_cast<int>(1000.0 / std::max(first_ms, 1e-3)), 2, 8);
+      for (int rep = 0; rep < reps; ++rep) {
+        std::vector<std::pair<ModifyMethod, bool>> steps{{ModifyMethod::UpdateDowndate, true},
+                                                         {ModifyMethod::Auto, true}};
+        if (rep % 2) std::swap(steps[0], steps[1]);
+        if (rep < 3) {
+          if (first_ms < 500) steps.insert(steps.begin(), {ModifyMethod::UpdateDowndate, false});
+          steps.insert(steps.begin(), {ModifyMethod::Refactorize, true});
         }
-        const double med = bench::median(ms);
-        mk[to_string(method)] = med;
-        if (method == ModifyMethod::Auto) auto_ms = med, auto_choice = chose;
-        else best = std::min(best, med);
+        for (const auto& [method, timed] : steps) {
+          const auto [apply, undo] = apply_and_undo(method);
+          if (!timed) continue;
+          ms[method].push_back(apply);
+          ms[method].push_back(undo);
+        }
       }
+      for (const auto& [method, times] : ms) mk[to_string(method)] = bench::median(times);
+      const double auto_ms = bench::median(ms[ModifyMethod::Auto]);
+      const double best = std::min(bench::median(ms[ModifyMethod::UpdateDowndate]),
+                                   bench::median(ms[ModifyMethod::Refactorize]));
       mk["auto_choice"] = auto_choice;
       mk["auto_over_best"] = auto_ms / best;
       upd.set_method(ModifyMethod::Auto);
