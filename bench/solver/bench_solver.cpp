@@ -233,8 +233,8 @@ int main(int argc, char** argv) {
       // each time. Each timing is one application or one undo. A refactorization leaves a
       // freshly allocated factor behind whose first update pays for its page faults: one
       // untimed update/downdate follows it when that is cheap. The first, untimed run sets
-      // the repetitions: as many as fit in about a second of update/downdate (two to eight),
-      // at most three of refactorization.
+      // the repetitions: as many as fit in about a second of update/downdate (three to eight),
+      // and of refactorization three, or all when it takes under half a second.
       std::map<ModifyMethod, std::vector<double>> ms;
       std::string auto_choice;
       auto apply_and_undo = [&](ModifyMethod method) {
@@ -244,12 +244,13 @@ int main(int argc, char** argv) {
         return std::pair{apply, upd.set_diagonal_weights(edit.indices, edit.backward).ms};
       };
       const double first_ms = apply_and_undo(ModifyMethod::UpdateDowndate).first;
-      const int reps = std::clamp(static_cast<int>(1000.0 / std::max(first_ms, 1e-3)), 2, 8);
+      const int reps = std::clamp(static_cast<int>(1000.0 / std::max(first_ms, 1e-3)), 3, 8);
       for (int rep = 0; rep < reps; ++rep) {
+        const bool refactorize = rep < 3 || bench::median(ms[ModifyMethod::Refactorize]) < 500;
         std::vector<std::pair<ModifyMethod, bool>> steps{{ModifyMethod::UpdateDowndate, true},
                                                          {ModifyMethod::Auto, true}};
         if (rep % 2) std::swap(steps[0], steps[1]);
-        if (rep < 3) {
+        if (refactorize) {
           if (first_ms < 500) steps.insert(steps.begin(), {ModifyMethod::UpdateDowndate, false});
           steps.insert(steps.begin(), {ModifyMethod::Refactorize, true});
         }
