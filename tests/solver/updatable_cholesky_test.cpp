@@ -32,6 +32,16 @@ SparseMatrix random_columns(int n, int r, std::mt19937& rng, double scale) {
   return C;
 }
 
+// The hair system on an N³ grid: DᵀD, and ω² = 10⁴ on 2.5% of the nodes.
+struct HairSystem {
+  int n;
+  SparseMatrix DtD;
+  Eigen::VectorXd weights;
+  explicit HairSystem(int N) : n(N * N * N), DtD(hair_normal_matrix(N, {})), weights(Eigen::VectorXd::Zero(n)) {
+    for (int i : spread_nodes(n, n / 40)) weights[i] = 1e4;
+  }
+};
+
 }  // namespace
 
 TEST_CASE("solver: updown matches refactor after 50 random mixed modifications") {
@@ -216,10 +226,10 @@ TEST_CASE("solver: the parallel simplicial solve equals cholmod's supernodal sol
 
 TEST_CASE("solver: many diagonal weight changes agree with general updates and a fresh factor, any threads") {
   // N = 18: subtrees worth splitting over threads in the solve.
-  const int N = 18, n = N * N * N;
-  const SparseMatrix DtD = hair_normal_matrix(N, {});
-  Eigen::VectorXd weights = Eigen::VectorXd::Zero(n);
-  for (int i : spread_nodes(n, n / 40)) weights[i] = 1e4;
+  const HairSystem sys(18);
+  const int n = sys.n;
+  const SparseMatrix& DtD = sys.DtD;
+  const Eigen::VectorXd& weights = sys.weights;
   const DenseMatrix B = DenseMatrix::Random(n, 3);
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> node(0, n - 1);
@@ -261,10 +271,10 @@ TEST_CASE("solver: many diagonal weight changes agree with general updates and a
 TEST_CASE("solver: one-sweep diagonal changes equal cholmod_updown's update and downdate, any rank and threads") {
   // N = 20: top-separator columns long enough to be split over the threads. Ranks around
   // the 16 terms one sweep takes, signs mixed, every node once.
-  const int N = 20, n = N * N * N;
-  const SparseMatrix DtD = hair_normal_matrix(N, {});
-  Eigen::VectorXd weights = Eigen::VectorXd::Zero(n);
-  for (int i : spread_nodes(n, n / 40)) weights[i] = 1e4;
+  const HairSystem sys(20);
+  const int n = sys.n;
+  const SparseMatrix& DtD = sys.DtD;
+  const Eigen::VectorXd& weights = sys.weights;
   const DenseMatrix B = DenseMatrix::Random(n, 3);
   std::mt19937 rng(11);
   std::uniform_int_distribution<int> node(0, n - 1);
