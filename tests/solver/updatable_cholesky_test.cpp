@@ -227,16 +227,13 @@ TEST_CASE("solver: the parallel simplicial solve equals cholmod's supernodal sol
 TEST_CASE("solver: many diagonal weight changes agree with general updates and a fresh factor, any threads") {
   // N = 18: subtrees worth splitting over threads in the solve.
   const HairSystem sys(18);
-  const int n = sys.n;
-  const SparseMatrix& DtD = sys.DtD;
-  const Eigen::VectorXd& weights = sys.weights;
-  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  const DenseMatrix B = DenseMatrix::Random(sys.n, 3);
   std::mt19937 rng(3);
-  std::uniform_int_distribution<int> node(0, n - 1);
+  std::uniform_int_distribution<int> node(0, sys.n - 1);
   for (int threads : {1, 2, 3}) {
     CAPTURE(threads);
     UpdatableCholesky sweep({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
-    sweep.compute(DtD, weights);
+    sweep.compute(sys.DtD, sys.weights);
     SparseMatrix A = sweep.matrix();
     // Twenty edits, each switching 70 random nodes on or off.
     for (int edit = 0; edit < 20; ++edit) {
@@ -251,14 +248,14 @@ TEST_CASE("solver: many diagonal weight changes agree with general updates and a
     }
     // The same matrix through cholmod_updown (general columns) and through a fresh factor.
     UpdatableCholesky general({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
-    general.compute(DtD, weights);
+    general.compute(sys.DtD, sys.weights);
     const SparseMatrix delta = sweep.matrix() - general.matrix();
     std::vector<Eigen::Triplet<double, int>> up, down;
     for (int k = 0; k < delta.outerSize(); ++k)
       for (SparseMatrix::InnerIterator it(delta, k); it; ++it)
         if (it.value() > 0) up.emplace_back(it.row(), static_cast<int>(up.size()), std::sqrt(it.value()));
         else if (it.value() < 0) down.emplace_back(it.row(), static_cast<int>(down.size()), std::sqrt(-it.value()));
-    SparseMatrix U(n, static_cast<int>(up.size())), D(n, static_cast<int>(down.size()));
+    SparseMatrix U(sys.n, static_cast<int>(up.size())), D(sys.n, static_cast<int>(down.size()));
     U.setFromTriplets(up.begin(), up.end());
     D.setFromTriplets(down.begin(), down.end());
     general.update(U);
@@ -272,34 +269,31 @@ TEST_CASE("solver: one-sweep diagonal changes equal cholmod_updown's update and 
   // N = 20: top-separator columns long enough to be split over the threads. Ranks around
   // the 16 terms one sweep takes, signs mixed, every node once.
   const HairSystem sys(20);
-  const int n = sys.n;
-  const SparseMatrix& DtD = sys.DtD;
-  const Eigen::VectorXd& weights = sys.weights;
-  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  const DenseMatrix B = DenseMatrix::Random(sys.n, 3);
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> node(0, n - 1);
+  std::uniform_int_distribution<int> node(0, sys.n - 1);
   for (int threads : {1, 2, 3})
     for (int rank : {1, 2, 15, 16, 17, 40}) {
       CAPTURE(threads);
       CAPTURE(rank);
       UpdatableCholesky sweep({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
       UpdatableCholesky general({Backend::Cholmod, ModifyMethod::UpdateDowndate, threads});
-      sweep.compute(DtD, weights);
-      general.compute(DtD, weights);
+      sweep.compute(sys.DtD, sys.weights);
+      general.compute(sys.DtD, sys.weights);
       std::vector<int> idx;
       std::vector<double> w;
       std::vector<Eigen::Triplet<double, int>> up, down;
       while (static_cast<int>(idx.size()) < rank) {
         const int i = node(rng);
         if (std::find(idx.begin(), idx.end(), i) != idx.end()) continue;
-        const double now = weights[i], next = now > 0 ? 0.0 : 2.5e3 * (1 + idx.size() % 3);
+        const double now = sys.weights[i], next = now > 0 ? 0.0 : 2.5e3 * (1 + idx.size() % 3);
         idx.push_back(i);
         w.push_back(next);
         if (next > now) up.emplace_back(i, static_cast<int>(up.size()), std::sqrt(next - now));
         else down.emplace_back(i, static_cast<int>(down.size()), std::sqrt(now - next));
       }
       sweep.set_diagonal_weights(idx, w);
-      SparseMatrix U(n, static_cast<int>(up.size())), D(n, static_cast<int>(down.size()));
+      SparseMatrix U(sys.n, static_cast<int>(up.size())), D(sys.n, static_cast<int>(down.size()));
       U.setFromTriplets(up.begin(), up.end());
       D.setFromTriplets(down.begin(), down.end());
       if (U.cols() > 0) general.update(U);
