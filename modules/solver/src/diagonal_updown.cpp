@@ -222,7 +222,8 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
     // in the subtree where it starts, so the shared α array has one writer per entry.
     for (int j : columns) {
       const int u = work.owner[static_cast<size_t>(j)];
-      if (u < 0 || thread_of[static_cast<size_t>(u)] != me) continue;
+      // (Modulo the team: a nested call may get fewer threads than asked for.)
+      if (u < 0 || thread_of[static_cast<size_t>(u)] % threads != me) continue;
       const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], alpha, w_all, n, slot);
       if (slot.active < 0) {
         failed = j;
