@@ -1,13 +1,17 @@
 // A change of diagonal entries, A + Σ_t δ_t e_{s_t} e_{s_t}ᵀ with δ_t of either sign, applied to
 // a simplicial LDLᵀ factor in place: the rank-1 updates (δ > 0) and downdates (δ < 0) of
-// Method C1 (Gill, Golub, Murray & Saunders 1974; Davis & Hager 1999, Alg. 5) interleaved
-// column by column over the union of their elimination-tree paths, in one sweep.
+// Method C1 (Gill, Golub, Murray & Saunders 1974, in the column-wise form of Davis & Hager's
+// multiple-rank update) interleaved column by column over the union of their
+// elimination-tree paths, in one sweep.
 //
 // Why not cholmod_updown: it takes one sign per call, so an edit that adds and removes
 // constraints sweeps the shared top of the tree twice, and its scalar kernel spends one
-// dependent multiply-add chain per term and entry. Here the rows of a column are taken four at
-// a time with AVX2/FMA (a column's row updates are independent; each carries its chain over the
-// terms), the terms of both signs in one pass. Used where the CPU has AVX2 and FMA
+// dependent multiply-add chain per term and entry. Here the rows of a column go four or eight
+// at a time with AVX2/FMA (a column's row updates are independent; each carries its chain over
+// the terms), the terms of both signs in one pass. Threads: the subtrees under the top
+// separators are swept side by side (a term's path below the top stays in one subtree, and so
+// do the workspace rows it writes), dealt by where this edit's terms start; then the rows of
+// each shared ancestor are split over the threads. Used where the CPU has AVX2 and FMA
 // (diagonal_updown_available()); elsewhere the caller keeps using cholmod_updown.
 #pragma once
 
