@@ -29,16 +29,17 @@ inline void trilinear(const float* data, const std::array<int, 3>& dims, float q
   const float* e10 = e00 + sy;
   const float* e01 = e00 + sz;
   const float* e11 = e01 + sy;
+  auto lerp = [](float a, float b, float t) { return a + t * (b - a); };
   for (int c = 0; c < 3; ++c) {
-    const float c00 = e00[c] + fx * (e00[3 + c] - e00[c]), c10 = e10[c] + fx * (e10[3 + c] - e10[c]);
-    const float c01 = e01[c] + fx * (e01[3 + c] - e01[c]), c11 = e11[c] + fx * (e11[3 + c] - e11[c]);
-    const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-    v[c] = c0 + fz * (c1 - c0);
+    const float c00 = lerp(e00[c], e00[3 + c], fx), c10 = lerp(e10[c], e10[3 + c], fx);
+    const float c01 = lerp(e01[c], e01[3 + c], fx), c11 = lerp(e11[c], e11[3 + c], fx);
+    v[c] = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
   }
 }
 
 inline bool inside(const std::array<int, 3>& dims, float qx, float qy, float qz) {
-  return qx >= 0 && qy >= 0 && qz >= 0 && qx <= dims[0] - 1 && qy <= dims[1] - 1 && qz <= dims[2] - 1;
+  return qx >= 0 && qy >= 0 && qz >= 0 && qx <= dims[0] - 1 && qy <= dims[1] - 1 &&
+         qz <= dims[2] - 1;
 }
 
 }  // namespace
@@ -46,7 +47,8 @@ inline bool inside(const std::array<int, 3>& dims, float qx, float qy, float qz)
 Eigen::Vector3f SampledField::operator()(const Eigen::Vector3f& p) const {
   const Eigen::Vector3f q = (p - origin_) * inv_spacing_;
   Eigen::Vector3f v = Eigen::Vector3f::Zero();
-  if (inside(grid_.dims, q.x(), q.y(), q.z())) trilinear(data_.data(), grid_.dims, q.x(), q.y(), q.z(), v.data());
+  if (inside(grid_.dims, q.x(), q.y(), q.z()))
+    trilinear(data_.data(), grid_.dims, q.x(), q.y(), q.z(), v.data());
   return v;
 }
 
@@ -75,7 +77,8 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
                   static_cast<float>(roots[s].z())};
     out.points.emplace_back(p[0], p[1], p[2]);
     for (int it = 0; it < max_steps; ++it) {
-      const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv, qz = (p[2] - o.z()) * inv;
+      const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv;
+      const float qz = (p[2] - o.z()) * inv;
       // Outside the grid the field is zero, so the strand stops at the box.
       if (!inside(dims, qx, qy, qz)) break;
       float v[3];

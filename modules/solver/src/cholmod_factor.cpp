@@ -142,7 +142,8 @@ bool CholmodFactor::can_update_diagonal() const {
   return diagonal_updown_available() && L_ && !L_->is_super && !L_->is_ll;
 }
 
-std::ptrdiff_t CholmodFactor::update_diagonal(const std::vector<std::pair<int, double>>& deltas, int threads) {
+std::ptrdiff_t CholmodFactor::update_diagonal(const std::vector<std::pair<int, double>>& deltas,
+                                              int threads) {
   std::vector<std::pair<int, double>> permuted_deltas;
   permuted_deltas.reserve(deltas.size());
   for (const auto& [i, d] : deltas)

@@ -41,9 +41,9 @@ class CholmodFactor {
   // L·D·L' ± C·C' where C's rows are in the caller's (un-permuted) ordering; permutes them.
   void updown(bool update, const SparseMatrix& C, const char* function);
   // A(i, i) += δ for each (i, δ) (un-permuted i, either sign), in place in one sweep on
-  // `threads` threads (0: OpenMP's default; diagonal_updown.h); only when can_update_diagonal(). Returns -1, or the un-permuted column
-  // whose pivot would not stay positive: the factor is then partly modified and must be
-  // refactorized.
+  // `threads` threads (0: OpenMP's default; diagonal_updown.h); only when
+  // can_update_diagonal(). Returns -1, or the un-permuted column whose pivot would not stay
+  // positive: the factor is then partly modified and must be refactorized.
   bool can_update_diagonal() const;
   std::ptrdiff_t update_diagonal(const std::vector<std::pair<int, double>>& deltas, int threads = 0);
   // First column j of the simplicial LDL' factor whose pivot D(j,j) is not finite and

@@ -234,42 +234,59 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
         update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, f.nz[j] - 1, terms_of(slot, w_all, n));
     }
 #pragma omp barrier
-    // The shared ancestors, column by column with the rows split over the threads. Every
+    // The shared ancestors in order. A long column's rows are split over the threads: every
     // thread takes the same pivot (the same arithmetic on the same data, with its own α), so
-    // one barrier per column suffices; D(j) is written back by thread 0 after the next
-    // column's barrier, once no thread reads it any more.
+    // one barrier per column suffices, and D(j) is written back by thread 0 once that barrier
+    // is passed and no thread reads it any more. A run of short columns goes to thread 0
+    // alone, with one barrier after the run (a barrier per short column would cost more than
+    // its rows, and far more when the machine is busy and a waiting thread loses its core).
     if (failed < 0) {
       double my_alpha[kTermsPerSweep];
       std::copy(alpha, alpha + kTermsPerSweep, my_alpha);
-      int pending = -1;
-      double pending_d = 0;
-      for (int j : top) {
+      auto rows_of = [&](int j) { return f.nz[j] - 1; };
+      for (size_t k = 0; k < top.size() && failed < 0;) {
+        if (rows_of(top[k]) < kSplitRows) {
+          size_t end = k;
+          while (end < top.size() && rows_of(top[end]) < kSplitRows) ++end;
+          if (me == 0) {
+            for (; k < end; ++k) {
+              const int j = top[k];
+              const double d =
+                  pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
+              if (slot.active < 0) {
+                failed = j;
+                break;
+              }
+              f.x[f.p[j]] = d;
+              if (slot.active > 0)
+                update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, rows_of(j), terms_of(slot, w_all, n));
+            }
+            std::copy(my_alpha, my_alpha + kTermsPerSweep, alpha);
+          }
+#pragma omp barrier
+          std::copy(alpha, alpha + kTermsPerSweep, my_alpha);
+          k = end;
+#pragma omp barrier
+          continue;
+        }
+        const int j = top[k++];
         const double d =
             pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
         if (slot.active < 0) {  // the same on every thread
           if (me == 0) failed = j;
           break;
         }
-        if (me == 0 && pending >= 0) f.x[f.p[pending]] = pending_d;
-        pending = j;
-        pending_d = d;
-        const int count = f.nz[j] - 1;
         if (slot.active > 0) {
-          int r0 = 0, r1 = count;
-          if (count >= kSplitRows) {
-            const int share = ((count + threads - 1) / threads + 7) & ~7;  // groups of eight rows
-            r0 = std::min(count, me * share);
-            r1 = std::min(count, r0 + share);
-          } else if (me != 0) {
-            r1 = 0;
-          }
+          const int count = rows_of(j);
+          const int share = ((count + threads - 1) / threads + 7) & ~7;  // groups of eight rows
+          const int r0 = std::min(count, me * share), r1 = std::min(count, r0 + share);
           if (r1 > r0)
             update_rows(f.i + f.p[j] + 1 + r0, f.x + f.p[j] + 1 + r0, r1 - r0,
                         terms_of(slot, w_all, n));
         }
 #pragma omp barrier
+        if (me == 0) f.x[f.p[j]] = d;
       }
-      if (me == 0 && pending >= 0 && failed < 0) f.x[f.p[pending]] = pending_d;
     }
   }
   // Every row a column touches is one of its ancestors, so on the paths: clear just those.
