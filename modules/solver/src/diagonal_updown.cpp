@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "simplicial_view.h"
 #include "tree_split.h"
 
 namespace lapis::solver::detail {
@@ -25,21 +26,7 @@ struct PivotSlot {
 constexpr int kUnitsPerThread = 4;  // subtrees per thread to deal by work (more: a bigger top)
 constexpr int kSplitRows = 512;     // a shared ancestor's rows are split over the threads from here
 
-struct Factor {
-  const int* p;
-  const int* i;
-  const int* nz;
-  double* x;
-  int n;
-  explicit Factor(cholmod_factor& L)
-      : p(static_cast<const int*>(L.p)),
-        i(static_cast<const int*>(L.i)),
-        nz(static_cast<const int*>(L.nz)),
-        x(static_cast<double*>(L.x)),
-        n(static_cast<int>(L.n)) {}
-  // Columns are sorted with the diagonal first: the parent is the first row below it.
-  int parent(int j) const { return nz[j] > 1 ? i[p[j] + 1] : -1; }
-};
+using Factor = SimplicialView<double>;
 
 // The terms that change a column, as the row kernel reads them.
 struct Terms {
@@ -311,8 +298,7 @@ std::ptrdiff_t diagonal_updown(cholmod_factor& L, const std::vector<std::pair<in
   threads = threads > 0 ? threads : omp_get_max_threads();
   // A general update (cholmod_updown) may have added fill and changed the elimination tree
   // since the split was made: rebuild it then.
-  long long entries_of_L = 0;
-  for (size_t j = 0; j < n; ++j) entries_of_L += f.nz[j];
+  const long long entries_of_L = f.entries();
   if (work.w.size() != kTermsPerSweep * n || work.threads != threads ||
       work.pattern_entries != entries_of_L) {
     work.pattern_entries = entries_of_L;

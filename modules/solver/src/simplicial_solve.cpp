@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "permuted_rows.h"
+#include "simplicial_view.h"
 #include "tree_split.h"
 
 namespace lapis::solver::detail {
@@ -13,29 +14,7 @@ namespace {
 constexpr int kMaxBlock = 64;  // right-hand sides per pass
 constexpr int kMaxRun = 8;     // columns per run
 
-struct FactorView {
-  const int* p;
-  const int* i;
-  const int* nz;
-  const double* x;
-  const int* perm;
-  int n;
-
-  explicit FactorView(const cholmod_factor& L)
-      : p(static_cast<const int*>(L.p)), i(static_cast<const int*>(L.i)),
-        nz(static_cast<const int*>(L.nz)), x(static_cast<const double*>(L.x)),
-        perm(static_cast<const int*>(L.Perm)), n(static_cast<int>(L.n)) {}
-
-  // Columns are sorted with the diagonal first, so the parent in the elimination tree is the
-  // first off-diagonal row.
-  int parent(int j) const { return nz[j] > 1 ? i[p[j] + 1] : -1; }
-};
-
-long long pattern_entries(const FactorView& f) {
-  long long total = 0;
-  for (int j = 0; j < f.n; ++j) total += f.nz[j];
-  return total;
-}
+using FactorView = SimplicialView<const double>;
 
 // Column j + 1 continues a run ending at column j when it is j's parent and j's pattern is
 // exactly {j} ∪ pattern(j + 1) (checked entry by entry: it is what the kernels rely on).
@@ -61,7 +40,7 @@ SubtreeSchedule schedule_subtrees(const cholmod_factor& L, int threads) {
   const int n = f.n;
   SubtreeSchedule s;
   s.n = n;
-  s.pattern_entries = pattern_entries(f);
+  s.pattern_entries = f.entries();
   std::vector<int> parent(static_cast<size_t>(n));
   std::vector<double> work(static_cast<size_t>(n));
   for (int j = 0; j < n; ++j) {
@@ -87,7 +66,7 @@ SubtreeSchedule schedule_subtrees(const cholmod_factor& L, int threads) {
 
 bool schedule_matches(const SubtreeSchedule& schedule, const cholmod_factor& L) {
   const FactorView f(L);
-  return schedule.n == f.n && schedule.pattern_entries == pattern_entries(f);
+  return schedule.n == f.n && schedule.pattern_entries == f.entries();
 }
 
 namespace {
