@@ -44,14 +44,17 @@ void add_to_diagonal(SparseMatrix& A, const std::vector<std::pair<int, double>>&
   if (inserted) A.makeCompressed();
 }
 
-// Columns sqrt(|d_i|) e_i for the entries of `deltas` with the given sign.
+// Columns sqrt(|d_i|) e_i for the entries of `deltas` with the given sign. Built column by
+// column (one entry each): setFromTriplets would sort through an n-long temporary on every
+// edit, for matrices the one-sweep kernel only reads the first rows of.
 SparseMatrix diagonal_columns(int n, const std::vector<std::pair<int, double>>& deltas, double sign) {
-  std::vector<Eigen::Triplet<double, int>> t;
+  int count = 0;
+  for (const auto& [i, d] : deltas) count += d * sign > 0;
+  SparseMatrix C(n, count);
+  C.reserve(Eigen::VectorXi::Constant(count, 1));
   int col = 0;
   for (const auto& [i, d] : deltas)
-    if (d * sign > 0) t.emplace_back(i, col++, std::sqrt(std::abs(d)));
-  SparseMatrix C(n, col);
-  C.setFromTriplets(t.begin(), t.end());
+    if (d * sign > 0) C.insert(i, col++) = std::sqrt(std::abs(d));
   C.makeCompressed();
   return C;
 }
