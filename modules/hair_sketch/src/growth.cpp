@@ -4,37 +4,74 @@
 #include <array>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace lapis::hair_sketch {
 
 SampledField::SampledField(const Grid& grid, const Field& field)
     : grid_(grid),
       origin_(grid.origin.cast<float>()),
       inv_spacing_(static_cast<float>(1.0 / grid.spacing)),
-      data_(field.data(), field.data() + field.size()) {}
+      data_(field.data(), field.data() + field.size()) {
+  // Padding: the vector lookup reads a node's x y z as four floats (trilinear_sse).
+  data_.resize(data_.size() + 4, 0.0f);
+}
 
 namespace {
 
 // Trilinear interpolation at grid coordinates q (in spacings from the origin), which must
-// lie inside the grid. The four x-edges of the cell, then lerps along x, y, z: a dependency
-// chain three multiply-adds deep instead of a sum over the eight corners. Growth is a chain
-// of dependent lookups, so that chain's latency is what a step costs.
-inline void trilinear(const float* data, const std::array<int, 3>& dims, float qx, float qy,
-                      float qz, float v[3]) {
+// lie inside the grid: the cell's first corner and its fractions.
+struct Cell {
+  const float* e00;  // x y z of corner (i, j, k); (i+1, j, k) follows
+  std::ptrdiff_t sy, sz;
+  float fx, fy, fz;
+};
+
+inline Cell locate(const float* data, const std::array<int, 3>& dims, float qx, float qy,
+                   float qz) {
   const int i = std::min(static_cast<int>(qx), dims[0] - 2);
   const int j = std::min(static_cast<int>(qy), dims[1] - 2);
   const int k = std::min(static_cast<int>(qz), dims[2] - 2);
-  const float fx = qx - i, fy = qy - j, fz = qz - k;
   const std::ptrdiff_t sy = 3 * static_cast<std::ptrdiff_t>(dims[0]), sz = sy * dims[1];
-  const float* e00 = data + 3 * static_cast<std::ptrdiff_t>(i) + sy * j + sz * k;
-  const float* e10 = e00 + sy;
-  const float* e01 = e00 + sz;
-  const float* e11 = e01 + sy;
+  return {data + 3 * static_cast<std::ptrdiff_t>(i) + sy * j + sz * k, sy, sz, qx - i, qy - j,
+          qz - k};
+}
+
+// The four x-edges of the cell, then lerps along x, y, z: a dependency chain three
+// multiply-adds deep instead of a sum over the eight corners.
+inline void trilinear(const Cell& c, float v[3]) {
+  const float *e00 = c.e00, *e10 = e00 + c.sy, *e01 = e00 + c.sz, *e11 = e01 + c.sy;
   auto lerp = [](float a, float b, float t) { return a + t * (b - a); };
-  for (int c = 0; c < 3; ++c) {
-    const float c00 = lerp(e00[c], e00[3 + c], fx), c10 = lerp(e10[c], e10[3 + c], fx);
-    const float c01 = lerp(e01[c], e01[3 + c], fx), c11 = lerp(e11[c], e11[3 + c], fx);
-    v[c] = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+  for (int d = 0; d < 3; ++d) {
+    const float c00 = lerp(e00[d], e00[3 + d], c.fx), c10 = lerp(e10[d], e10[3 + d], c.fx);
+    const float c01 = lerp(e01[d], e01[3 + d], c.fx), c11 = lerp(e11[d], e11[3 + d], c.fx);
+    v[d] = lerp(lerp(c00, c10, c.fy), lerp(c01, c11, c.fy), c.fz);
   }
+}
+
+#if defined(__SSE2__)
+// The same lerps on x y z at once (lane 3 is ignored): an x-edge is six consecutive floats,
+// read as two overlapping 4-float loads, so each lerp is one vector subtract, multiply and
+// add. The operations and their order per component are those of trilinear(), so the
+// result is bit for bit the same (x86-64 has no fused multiply-add to contract into).
+inline void trilinear_sse(const Cell& c, float v[4]) {
+  const __m128 fx = _mm_set1_ps(c.fx), fy = _mm_set1_ps(c.fy), fz = _mm_set1_ps(c.fz);
+  auto lerp = [](__m128 a, __m128 b, __m128 t) { return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a))); };
+  auto edge = [&](const float* e) { return lerp(_mm_loadu_ps(e), _mm_loadu_ps(e + 3), fx); };
+  const __m128 c00 = edge(c.e00), c10 = edge(c.e00 + c.sy);
+  const __m128 c01 = edge(c.e00 + c.sz), c11 = edge(c.e00 + c.sz + c.sy);
+  _mm_storeu_ps(v, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+}
+#endif
+
+inline void field_at(const Cell& c, float v[4]) {
+#if defined(__SSE2__)
+  trilinear_sse(c, v);
+#else
+  trilinear(c, v);
+#endif
 }
 
 inline bool inside(const std::array<int, 3>& dims, float qx, float qy, float qz) {
@@ -48,7 +85,7 @@ Eigen::Vector3f SampledField::operator()(const Eigen::Vector3f& p) const {
   const Eigen::Vector3f q = (p - origin_) * inv_spacing_;
   Eigen::Vector3f v = Eigen::Vector3f::Zero();
   if (inside(grid_.dims, q.x(), q.y(), q.z()))
-    trilinear(data_.data(), grid_.dims, q.x(), q.y(), q.z(), v.data());
+    trilinear(locate(data_.data(), grid_.dims, q.x(), q.y(), q.z()), v.data());
   return v;
 }
 
@@ -60,8 +97,15 @@ struct StrandBlock {
   std::vector<int> counts;
 };
 
-// Strands [first, last) grown into one block. One growing buffer per block instead of one
-// per strand: a strand's push_backs reallocate a dozen times, a block's a few.
+// Strands growing side by side in one thread. A strand's steps form one dependency chain
+// (position → cell → lookup → position), so a lone strand leaves the core waiting on
+// latency; eight chains in turn keep it busy.
+constexpr int kLanes = 8;
+
+// Strands [first, last) grown into one block, kLanes at a time: each lane writes its points
+// to its own row of `lanes`, and finished groups are appended to the block in strand order.
+// One growing buffer per block instead of one per strand: a strand's push_backs would
+// reallocate a dozen times, a block's a few.
 void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
                 int last, float l, int max_steps, float vmin, StrandBlock& out) {
   const float vmin2 = vmin * vmin;
@@ -69,25 +113,40 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   const float* data = field.data();
   const Eigen::Vector3f o = field.grid().origin.cast<float>();
   const float inv = static_cast<float>(1.0 / field.grid().spacing);
+  const std::ptrdiff_t row = max_steps + 1;
+  std::vector<Eigen::Vector3f> lanes(static_cast<size_t>(kLanes * row));
   out.points.reserve(static_cast<size_t>(last - first) * 64);
   out.counts.reserve(last - first);
-  for (int s = first; s < last; ++s) {
-    const size_t start = out.points.size();
-    float p[3] = {static_cast<float>(roots[s].x()), static_cast<float>(roots[s].y()),
-                  static_cast<float>(roots[s].z())};
-    out.points.emplace_back(p[0], p[1], p[2]);
-    for (int it = 0; it < max_steps; ++it) {
-      const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv;
-      const float qz = (p[2] - o.z()) * inv;
-      // Outside the grid the field is zero, so the strand stops at the box.
-      if (!inside(dims, qx, qy, qz)) break;
-      float v[3];
-      trilinear(data, dims, qx, qy, qz, v);
-      if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < vmin2) break;
-      for (int c = 0; c < 3; ++c) p[c] += l * v[c];
-      out.points.emplace_back(p[0], p[1], p[2]);
+  for (int s0 = first; s0 < last; s0 += kLanes) {
+    const int m = std::min(kLanes, last - s0);
+    int count[kLanes];
+    unsigned growing = 0;
+    for (int a = 0; a < m; ++a) {
+      lanes[a * row] = roots[s0 + a].cast<float>();
+      count[a] = 1;
+      growing |= 1u << a;
     }
-    out.counts.push_back(static_cast<int>(out.points.size() - start));
+    for (int it = 0; it < max_steps && growing; ++it)
+      for (int a = 0; a < m; ++a) {
+        if (!(growing & (1u << a))) continue;
+        const float* p = lanes[a * row + it].data();
+        const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv;
+        const float qz = (p[2] - o.z()) * inv;
+        // Outside the grid the field is zero, so the strand stops at the box.
+        const bool in = inside(dims, qx, qy, qz);
+        float v[4];
+        if (in) field_at(locate(data, dims, qx, qy, qz), v);
+        if (!in || v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < vmin2) {
+          growing &= ~(1u << a);
+          continue;
+        }
+        lanes[a * row + it + 1] = Eigen::Vector3f(p[0] + l * v[0], p[1] + l * v[1], p[2] + l * v[2]);
+        ++count[a];
+      }
+    for (int a = 0; a < m; ++a) {
+      out.points.insert(out.points.end(), lanes.begin() + a * row, lanes.begin() + a * row + count[a]);
+      out.counts.push_back(count[a]);
+    }
   }
 }
 
