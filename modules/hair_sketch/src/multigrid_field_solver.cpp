@@ -171,7 +171,9 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     const double rho = it == 0 ? 0.9 : std::clamp(step_norm / std::max(prev_step, 1e-300), 0.5, 0.95);
     prev_step = step_norm;
     est = step_norm * rho / (1 - rho) / std::max(std::sqrt(x2), 1e-300);
-    if (it >= 1 && est <= opt_.tolerance) {
+    // Not before the third step: the first ratios are not yet the settled rate (the estimate
+    // at the second step was measured at half the true error).
+    if (it >= 2 && est <= opt_.tolerance) {
       converged = true;
       ++it;
       break;
