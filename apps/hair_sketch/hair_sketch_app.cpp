@@ -345,7 +345,10 @@ void HairSketchApp::request_regrowth() {
   const HairstyleSettings settings = document_.style().settings;
   const std::vector<StylePrimitive> primitives = document_.style().primitives;
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
-  worker_.submit([slot, head, settings, primitives, revision, epoch] {
+  // The strands last replaced on screen go with the job, to be written over (their
+  // storage is already paged in: LiveHairstyle::update).
+  worker_.submit([slot, head, settings, primitives, revision, epoch,
+                  spare = std::move(spare_strands_)]() mutable {
     if (!slot->live || slot->epoch != epoch) {
       slot->live.reset();  // free the old solver before building the new one
       slot->live = std::make_unique<LiveHairstyle>(*head, settings);
@@ -354,7 +357,7 @@ void HairSketchApp::request_regrowth() {
     Regrowth r;
     r.revision = revision;
     r.settings_epoch = epoch;
-    r.update = slot->live->update(primitives);
+    r.update = slot->live->update(primitives, std::move(spare));
     r.grid = slot->live->grid();
     r.field = std::make_shared<const Field>(slot->live->field());
     return r;
@@ -375,6 +378,7 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   if (r->revision == document_.revision() && last_edit_time_ > 0)
     latencies_ms_.push_back((v.time() - last_edit_time_) * 1000.0);
   update_strand_item(v, r->update.strands);
+  if (last_) spare_strands_ = std::move(last_->update.strands);
   last_ = std::move(r);
   if (show_glyphs_) update_glyph_item(v);
 }

@@ -128,6 +128,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   std::uint64_t settings_epoch_ = 0;
   std::uint64_t requested_revision_ = ~0ull, requested_epoch_ = ~0ull;
   std::optional<Regrowth> last_;
+  Strands spare_strands_;  // replaced on screen; the next regrowth writes into them
   std::string engine_error_;
   double last_edit_time_ = 0;
   double last_autosave_ = 0;

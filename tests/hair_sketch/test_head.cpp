@@ -77,6 +77,48 @@ TEST_CASE("hair_sketch: growth is deterministic and independent of the thread co
   for (int i = 0; i < one.count(); ++i) CHECK_FALSE(bundled_head().inside(one.points[one.offsets[i]].cast<double>()));
 }
 
+TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth into reused storage "
+          "gives the same strands") {
+  const Grid g = small_grid(6000);
+  StreamCurve s;
+  s.points = {{0, 1.3, 0}, {0, 0.8, -1.2}, {0, -1.0, -1.3}};
+  const ConstraintSet set = ConstraintSet::from(s.constraints(g));
+  const SampledField field(g, solve_exact(g, set));
+  RootOptions ro;
+  ro.count = 3000;
+  const auto roots = sample_roots(bundled_head(), ro);
+  const GrowthOptions opt;
+  const Strands grown = grow_strands(field, roots, opt);
+  REQUIRE(grown.count() == static_cast<int>(roots.size()));
+  // The reference: one strand at a time through the public scalar lookup, p += l·v(p) until
+  // |v| < 0.05, the box is left (v = 0 there) or the length cap. The kernel (eight strands
+  // side by side, vector lerps) must give exactly these floats.
+  const float l = static_cast<float>(opt.step * g.spacing);
+  const int max_steps = static_cast<int>(opt.max_length / opt.step);
+  for (int i = 0; i < grown.count(); i += 7) {
+    std::vector<Eigen::Vector3f> ref{roots[i].cast<float>()};
+    for (int it = 0; it < max_steps; ++it) {
+      const Eigen::Vector3f v = field(ref.back());
+      if (v.squaredNorm() < static_cast<float>(opt.min_magnitude * opt.min_magnitude)) break;
+      ref.push_back(ref.back() + l * v);
+    }
+    REQUIRE(grown.offsets[i + 1] - grown.offsets[i] == static_cast<int>(ref.size()));
+    for (size_t k = 0; k < ref.size(); ++k) REQUIRE(grown.points[grown.offsets[i] + k] == ref[k]);
+  }
+  // Regrowth into storage that held more strands, then fewer.
+  StrandGrower grower(opt);
+  Strands reused;
+  grower.grow(field, roots, reused);
+  const std::vector<Eigen::Vector3d> fewer(roots.begin(), roots.begin() + roots.size() / 3);
+  grower.grow(field, fewer, reused);
+  const Strands fresh = grow_strands(field, fewer, opt);
+  REQUIRE(reused.offsets == fresh.offsets);
+  CHECK(reused.points == fresh.points);
+  grower.grow(field, roots, reused);
+  REQUIRE(reused.offsets == grown.offsets);
+  CHECK(reused.points == grown.points);
+}
+
 TEST_CASE("hair_sketch: malformed head and scalp files give clear errors") {
   CHECK_THROWS_AS(load_head(temp_file("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n")), lapis::Error);
   CHECK_THROWS_AS(load_head(temp_file("garbage.obj", "this is not a mesh\n")), lapis::Error);

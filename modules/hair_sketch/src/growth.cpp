@@ -91,12 +91,6 @@ Eigen::Vector3f SampledField::operator()(const Eigen::Vector3f& p) const {
 
 namespace {
 
-// Strands grown by one task: their points back to back and each strand's point count.
-struct StrandBlock {
-  std::vector<Eigen::Vector3f> points;
-  std::vector<int> counts;
-};
-
 // Strands growing side by side in one thread. A strand's steps form one dependency chain
 // (position → cell → lookup → position), so a lone strand leaves the core waiting on
 // latency; eight chains in turn keep it busy.
@@ -107,7 +101,8 @@ constexpr int kLanes = 8;
 // One growing buffer per block instead of one per strand: a strand's push_backs would
 // reallocate a dozen times, a block's a few.
 void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
-                int last, float l, int max_steps, float vmin, StrandBlock& out) {
+                int last, float l, int max_steps, float vmin, std::vector<Eigen::Vector3f>& points,
+                std::vector<int>& counts) {
   const float vmin2 = vmin * vmin;
   const std::array<int, 3>& dims = field.grid().dims;
   const float* data = field.data();
@@ -115,8 +110,9 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   const float inv = static_cast<float>(1.0 / field.grid().spacing);
   const std::ptrdiff_t row = max_steps + 1;
   std::vector<Eigen::Vector3f> lanes(static_cast<size_t>(kLanes * row));
-  out.points.reserve(static_cast<size_t>(last - first) * 64);
-  out.counts.reserve(last - first);
+  points.clear();
+  counts.clear();
+  points.reserve(static_cast<size_t>(last - first) * 64);
   for (int s0 = first; s0 < last; s0 += kLanes) {
     const int m = std::min(kLanes, last - s0);
     int count[kLanes];
@@ -144,38 +140,44 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
         ++count[a];
       }
     for (int a = 0; a < m; ++a) {
-      out.points.insert(out.points.end(), lanes.begin() + a * row, lanes.begin() + a * row + count[a]);
-      out.counts.push_back(count[a]);
+      points.insert(points.end(), lanes.begin() + a * row, lanes.begin() + a * row + count[a]);
+      counts.push_back(count[a]);
     }
   }
 }
 
 }  // namespace
 
-Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
-                     const GrowthOptions& options) {
+void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
+                        Strands& out) {
   const int n = static_cast<int>(roots.size());
-  const float l = static_cast<float>(options.step * field.grid().spacing);
-  const int max_steps = std::max(1, static_cast<int>(options.max_length / options.step));
-  const float vmin = static_cast<float>(options.min_magnitude);
+  const float l = static_cast<float>(options_.step * field.grid().spacing);
+  const int max_steps = std::max(1, static_cast<int>(options_.max_length / options_.step));
+  const float vmin = static_cast<float>(options_.min_magnitude);
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
-  std::vector<StrandBlock> grown(blocks);
+  if (static_cast<int>(blocks_.size()) < blocks) blocks_.resize(blocks);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int b = 0; b < blocks; ++b)
     grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin,
-               grown[b]);
+               blocks_[b].points, blocks_[b].counts);
   // Blocks in strand order, so the result does not depend on which thread grew what.
   std::vector<size_t> block_start(blocks + 1, 0);
-  for (int b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + grown[b].points.size();
-  Strands out;
+  for (int b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + blocks_[b].points.size();
   out.points.resize(block_start[blocks]);
+  out.offsets.assign(1, 0);
   out.offsets.reserve(n + 1);
-  for (const StrandBlock& g : grown)
-    for (int c : g.counts) out.offsets.push_back(out.offsets.back() + c);
+  for (int b = 0; b < blocks; ++b)
+    for (int c : blocks_[b].counts) out.offsets.push_back(out.offsets.back() + c);
 #pragma omp parallel for schedule(static)
   for (int b = 0; b < blocks; ++b)
-    std::copy(grown[b].points.begin(), grown[b].points.end(), out.points.begin() + block_start[b]);
+    std::copy(blocks_[b].points.begin(), blocks_[b].points.end(), out.points.begin() + block_start[b]);
+}
+
+Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
+                     const GrowthOptions& options) {
+  Strands out;
+  StrandGrower(options).grow(field, roots, out);
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "lapis/hair_sketch/live_hairstyle.h"
 
 #include <chrono>
+#include <utility>
 
 #include "lapis/hair_sketch/scalp_avoidance.h"
 
@@ -26,8 +27,9 @@ LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings
       field_(head, hairstyle_grid(head, settings), settings.field_method, settings.omega),
       roots_(sample_roots(head, root_options(settings))) {}
 
-LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives) {
+LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {
   LiveUpdate out;
+  out.strands = std::move(reuse);
   const auto t0 = std::chrono::steady_clock::now();
   out.solves.push_back(field_.update(primitives));
   // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
@@ -40,7 +42,8 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives) 
   GrowthOptions growth;
   growth.step = settings_.step;
   growth.max_length = settings_.max_length;
-  out.strands = grow_strands(SampledField(field_.grid(), field_.field()), roots_, growth);
+  grower_.set_options(growth);
+  grower_.grow(SampledField(field_.grid(), field_.field()), roots_, out.strands);
   out.growth_ms = ms_since(t1);
   out.total_ms = ms_since(t0);
   return out;

@@ -46,8 +46,35 @@ struct Strands {
   int segments() const { return static_cast<int>(points.size()) - count(); }
 };
 
+// One strand from each root.
 Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
                      const GrowthOptions& options = {});
+
+// Growth for the interactive loop, where the strands regrow after every edit: it writes into
+// memory that the previous regrowth touched (its own per-block buffers and the caller's
+// strands), because a fresh allocation pays a page fault per 4 KB on first touch, which on
+// this machine cost as much as the growth itself (20K strands at 50K unknowns: ~30 ms of
+// faults against ~20 ms of steps). Keeps about one set of strands' worth of buffers.
+class StrandGrower {
+ public:
+  explicit StrandGrower(GrowthOptions options = {}) : options_(options) {}
+
+  // One strand from each root into `out`, whose storage is reused; the same strands as
+  // grow_strands().
+  void grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, Strands& out);
+
+  const GrowthOptions& options() const { return options_; }
+  void set_options(const GrowthOptions& options) { options_ = options; }
+
+ private:
+  // Strands grown by one task: their points back to back and each strand's point count.
+  struct Block {
+    std::vector<Eigen::Vector3f> points;
+    std::vector<int> counts;
+  };
+  GrowthOptions options_;
+  std::vector<Block> blocks_;
+};
 
 // Segments that cross the head surface or lie inside it (one BVH ray cast per segment,
 // crossing parity from the outside root), in parallel.

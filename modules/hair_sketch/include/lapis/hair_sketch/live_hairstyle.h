@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lapis/hair_sketch/document.h"
+#include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/style_field.h"
 
@@ -29,8 +30,10 @@ class LiveHairstyle {
   // Throws ResourceLimit when the grid's solver would not fit in memory.
   LiveHairstyle(const Head& head, const HairstyleSettings& settings);
 
-  // Brings the field and the strands up to date with `primitives`.
-  LiveUpdate update(const std::vector<StylePrimitive>& primitives);
+  // Brings the field and the strands up to date with `primitives`. `reuse`: strands of an
+  // earlier update the caller is done with; the new strands are written into their storage
+  // (a fresh allocation's page faults cost as much as the growth, StrandGrower).
+  LiveUpdate update(const std::vector<StylePrimitive>& primitives, Strands reuse = {});
 
   const HairstyleSettings& settings() const { return settings_; }
   const Grid& grid() const { return field_.grid(); }
@@ -42,6 +45,7 @@ class LiveHairstyle {
   HairstyleSettings settings_;
   StyleField field_;
   std::vector<Eigen::Vector3d> roots_;
+  StrandGrower grower_;
 };
 
 }  // namespace lapis::hair_sketch
