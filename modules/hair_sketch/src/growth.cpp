@@ -112,7 +112,9 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   std::vector<Eigen::Vector3f> lanes(static_cast<size_t>(kLanes * row));
   points.clear();
   counts.clear();
-  points.reserve(static_cast<size_t>(last - first) * 64);
+  // Room for the longest possible strands: the buffer never moves, so a regrowth with longer
+  // strands only touches new pages at its end (reserved but untouched memory costs nothing).
+  points.reserve(static_cast<size_t>(last - first) * static_cast<size_t>(row));
   for (int s0 = first; s0 < last; s0 += kLanes) {
     const int m = std::min(kLanes, last - s0);
     int count[kLanes];
@@ -164,6 +166,9 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   // Blocks in strand order, so the result does not depend on which thread grew what.
   std::vector<size_t> block_start(blocks + 1, 0);
   for (int b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + blocks_[b].points.size();
+  // With headroom, so that strands growing a little longer on the next edit do not move the
+  // whole buffer to fresh pages.
+  if (block_start[blocks] > out.points.capacity()) out.points.reserve(block_start[blocks] * 3 / 2);
   out.points.resize(block_start[blocks]);
   out.offsets.assign(1, 0);
   out.offsets.reserve(n + 1);
