@@ -67,13 +67,15 @@ TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 rando
   Grid g;
   g.dims = {12, 14, 11};
   g.spacing = 0.1;
-  CholeskyFieldSolver thesis(g);
+  // Update/downdate forced: the cost model's choice depends on timings (a busy machine can
+  // make refactorizing look cheaper), and this test is about the modified factor.
+  CholeskyFieldSolver thesis(g, {}, lapis::solver::ModifyMethod::UpdateDowndate);
   MultigridFieldSolver fast(g);
   std::mt19937 rng(11);
   std::vector<StreamCurve> curves;
   ConstraintSet prev;
   double worst_thesis = 0, worst_fast = 0;
-  int updowns = 0;
+  int updowns = 0, rebuilt = 0;
   for (int step = 0; step < 100; ++step) {
     const unsigned op = rng() % 4;
     if (curves.empty() || op == 0 || (op == 1 && curves.size() < 4)) {
@@ -91,6 +93,7 @@ TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 rando
     fast.apply(d, cur);
     prev = cur;
     updowns += rt.detail.rfind("update/downdate", 0) == 0;
+    rebuilt += rt.detail.rfind("refactorize", 0) == 0;
     if (cur.empty()) {
       CHECK(thesis.field().norm() == 0.0);
       continue;
@@ -103,7 +106,8 @@ TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 rando
                                           << ", update/downdate edits " << updowns);
   CHECK(worst_thesis <= 1e-8);
   CHECK(worst_fast <= 1e-6);
-  CHECK(updowns > 50);  // the factor was modified, not rebuilt, on most edits
+  CHECK(updowns > 50);  // the factor was modified on most edits (the others: right-hand side only)
+  CHECK(rebuilt == 0);
 }
 
 TEST_CASE("hair_sketch: target-only changes touch the right-hand side alone") {

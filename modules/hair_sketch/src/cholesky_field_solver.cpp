@@ -11,8 +11,8 @@
 namespace lapis::hair_sketch {
 
 CholeskyFieldSolver::CholeskyFieldSolver(const Grid& grid, const FieldSolverOptions& options,
-                                         bool refactorize_always)
-    : grid_(grid), omega_(options.omega), refactorize_always_(refactorize_always) {
+                                         solver::ModifyMethod modify)
+    : grid_(grid), omega_(options.omega), modify_(modify) {
   const double bytes = estimate_cholesky_bytes(grid.num_nodes());
   if (bytes > options.memory_limit_bytes)
     throw ResourceLimit("hair_sketch::CholeskyFieldSolver(): the factor of " +
@@ -64,7 +64,7 @@ FieldSolveReport CholeskyFieldSolver::apply(const ConstraintDiff& diff,
   }
   if (!factor_) {
     factor_ = std::make_unique<solver::UpdatableCholesky>();
-    if (refactorize_always_) factor_->set_method(solver::ModifyMethod::Refactorize);
+    factor_->set_method(modify_);
     factor_->compute(DtD_, weights_);
     rep.detail = "factorize";
   } else if (!idx.empty()) {

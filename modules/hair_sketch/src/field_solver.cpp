@@ -27,9 +27,9 @@ std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod met
   if (method == FieldMethod::Auto) method = choose_field_method(grid, options);
   switch (method) {
     case FieldMethod::Thesis:
-      return std::make_unique<CholeskyFieldSolver>(grid, options, false);
+      return std::make_unique<CholeskyFieldSolver>(grid, options, solver::ModifyMethod::Auto);
     case FieldMethod::Refactorize:
-      return std::make_unique<CholeskyFieldSolver>(grid, options, true);
+      return std::make_unique<CholeskyFieldSolver>(grid, options, solver::ModifyMethod::Refactorize);
     default: {
       if (estimate_multigrid_bytes(grid.num_nodes()) > options.memory_limit_bytes)
         throw ResourceLimit("hair_sketch::make_field_solver(): the multigrid field of " +

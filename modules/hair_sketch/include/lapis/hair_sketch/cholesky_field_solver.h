@@ -7,32 +7,31 @@
 #include <memory>
 
 #include "lapis/hair_sketch/field_solver.h"
-
-namespace lapis::solver {
-class UpdatableCholesky;
-}
+#include "lapis/solver/updatable_cholesky.h"
 
 namespace lapis::hair_sketch {
 
 class CholeskyFieldSolver final : public FieldSolver {
  public:
-  // refactorize_always: force a numeric refactorization per edit (the baseline the
-  // benchmark compares against) instead of the cost model's choice.
+  // modify: how edits change the factor. Auto: the solver layer's cost model picks update/
+  // downdate or refactorization per edit (timed on this machine); Refactorize: the baseline
+  // the benchmark compares against; UpdateDowndate: always modify (tests of the thesis path,
+  // which must not depend on timings).
   // Throws ResourceLimit when estimate_cholesky_bytes(n) exceeds options.memory_limit_bytes.
   CholeskyFieldSolver(const Grid& grid, const FieldSolverOptions& options = {},
-                      bool refactorize_always = false);
+                      solver::ModifyMethod modify = solver::ModifyMethod::Auto);
   ~CholeskyFieldSolver() override;
 
   FieldSolveReport apply(const ConstraintDiff& diff, const ConstraintSet& current) override;
   const Field& field() const override { return field_; }
   FieldMethod method() const override {
-    return refactorize_always_ ? FieldMethod::Refactorize : FieldMethod::Thesis;
+    return modify_ == solver::ModifyMethod::Refactorize ? FieldMethod::Refactorize : FieldMethod::Thesis;
   }
 
  private:
   Grid grid_;
   double omega_;
-  bool refactorize_always_;
+  solver::ModifyMethod modify_;
   SparseMatrix DtD_;
   Eigen::VectorXd weights_;  // ω² at constrained nodes
   Field targets_;
