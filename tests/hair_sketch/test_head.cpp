@@ -56,15 +56,27 @@ TEST_CASE("hair_sketch: roots lie on the scalp, never inside the head, determini
   CHECK((c.size() != a.size() || c[0] != a[0]));
 }
 
-TEST_CASE("hair_sketch: growth is deterministic and independent of the thread count") {
+namespace {
+
+// The exact field of one stream curve down the back of the head, on a small grid.
+SampledField stream_curve_field() {
   const Grid g = small_grid(6000);
   StreamCurve s;
   s.points = {{0, 1.3, 0}, {0, 0.8, -1.2}, {0, -1.0, -1.3}};
-  const ConstraintSet set = ConstraintSet::from(s.constraints(g));
-  const SampledField field(g, solve_exact(g, set));
+  return SampledField(g, solve_exact(g, ConstraintSet::from(s.constraints(g))));
+}
+
+std::vector<Eigen::Vector3d> scalp_roots(int count) {
   RootOptions ro;
-  ro.count = 2000;
-  const auto roots = sample_roots(bundled_head(), ro);
+  ro.count = count;
+  return sample_roots(bundled_head(), ro);
+}
+
+}  // namespace
+
+TEST_CASE("hair_sketch: growth is deterministic and independent of the thread count") {
+  const SampledField field = stream_curve_field();
+  const auto roots = scalp_roots(2000);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   const Strands one = grow_strands(field, roots);
@@ -79,14 +91,9 @@ TEST_CASE("hair_sketch: growth is deterministic and independent of the thread co
 
 TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth into reused storage "
           "gives the same strands") {
-  const Grid g = small_grid(6000);
-  StreamCurve s;
-  s.points = {{0, 1.3, 0}, {0, 0.8, -1.2}, {0, -1.0, -1.3}};
-  const ConstraintSet set = ConstraintSet::from(s.constraints(g));
-  const SampledField field(g, solve_exact(g, set));
-  RootOptions ro;
-  ro.count = 3000;
-  const auto roots = sample_roots(bundled_head(), ro);
+  const SampledField field = stream_curve_field();
+  const Grid& g = field.grid();
+  const auto roots = scalp_roots(3000);
   const GrowthOptions opt;
   const Strands grown = grow_strands(field, roots, opt);
   REQUIRE(grown.count() == static_cast<int>(roots.size()));
