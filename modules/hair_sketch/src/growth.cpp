@@ -96,10 +96,8 @@ namespace {
 // latency; eight chains in turn keep it busy.
 constexpr int kLanes = 8;
 
-// Strands [first, last) grown into one block, kLanes at a time: each lane writes its points
-// to its own row of `lanes`, and finished groups are appended to the block in strand order.
-// One growing buffer per block instead of one per strand: a strand's push_backs would
-// reallocate a dozen times, a block's a few.
+// Strands [first, last) grown into one block, kLanes at a time: each lane appends its points
+// to its own buffer, and finished groups go to the block in strand order.
 void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
                 int last, float l, int max_steps, float vmin, std::vector<Eigen::Vector3f>& points,
                 std::vector<int>& counts) {
@@ -108,26 +106,25 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   const float* data = field.data();
   const Eigen::Vector3f o = field.grid().origin.cast<float>();
   const float inv = static_cast<float>(1.0 / field.grid().spacing);
-  const std::ptrdiff_t row = max_steps + 1;
-  std::vector<Eigen::Vector3f> lanes(static_cast<size_t>(kLanes * row));
+  std::array<std::vector<Eigen::Vector3f>, kLanes> lanes;
   points.clear();
   counts.clear();
-  // Room for the longest possible strands: the buffer never moves, so a regrowth with longer
-  // strands only touches new pages at its end (reserved but untouched memory costs nothing).
-  points.reserve(static_cast<size_t>(last - first) * static_cast<size_t>(row));
+  // Room for strands of the default maximum length (240 steps): the buffer then does not
+  // move, and a regrowth with longer strands only touches new pages at its end (reserved but
+  // untouched memory costs nothing). Capped, so that a huge maximum length reserves nothing
+  // absurd.
+  points.reserve(static_cast<size_t>(last - first) * static_cast<size_t>(std::min(max_steps + 1, 256)));
   for (int s0 = first; s0 < last; s0 += kLanes) {
     const int m = std::min(kLanes, last - s0);
-    int count[kLanes];
     unsigned growing = 0;
     for (int a = 0; a < m; ++a) {
-      lanes[a * row] = roots[s0 + a].cast<float>();
-      count[a] = 1;
+      lanes[a].assign(1, roots[s0 + a].cast<float>());
       growing |= 1u << a;
     }
     for (int it = 0; it < max_steps && growing; ++it)
       for (int a = 0; a < m; ++a) {
         if (!(growing & (1u << a))) continue;
-        const float* p = lanes[a * row + it].data();
+        const Eigen::Vector3f p = lanes[a].back();
         const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv;
         const float qz = (p[2] - o.z()) * inv;
         // Outside the grid the field is zero, so the strand stops at the box.
@@ -138,12 +135,11 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
           growing &= ~(1u << a);
           continue;
         }
-        lanes[a * row + it + 1] = Eigen::Vector3f(p[0] + l * v[0], p[1] + l * v[1], p[2] + l * v[2]);
-        ++count[a];
+        lanes[a].emplace_back(p[0] + l * v[0], p[1] + l * v[1], p[2] + l * v[2]);
       }
     for (int a = 0; a < m; ++a) {
-      points.insert(points.end(), lanes.begin() + a * row, lanes.begin() + a * row + count[a]);
-      counts.push_back(count[a]);
+      points.insert(points.end(), lanes[a].begin(), lanes[a].end());
+      counts.push_back(static_cast<int>(lanes[a].size()));
     }
   }
 }
