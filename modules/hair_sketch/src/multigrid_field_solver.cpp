@@ -42,6 +42,7 @@ MultigridFieldSolver::MultigridFieldSolver(const Grid& grid, MultigridFieldOptio
   detail::MultigridOptions mo;
   mo.smoothing_degree = opt_.smoothing_degree;
   mo.cycle_index = opt_.cycle_index;
+  mo.coarse_cycle_index = opt_.coarse_cycle_index;
   mo.smoothing_range = opt_.smoothing_range;
   mo.coarsest_nodes = opt_.coarsest_nodes;
   mo.cubic = opt_.cubic_prolongation;
@@ -197,8 +198,9 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   field_.swap(wk.x);
   rep.iterations = it;
   rep.error_estimate = est;
-  rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels, " + std::to_string(it) +
-               " iterations";
+  rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels" +
+               (mg_->coarse_cycle_index() > 1 ? " (W below the finest)" : "") + ", " +
+               std::to_string(it) + " iterations";
   rep.solve_ms = detail::ms_since(t1);
   rep.total_ms = detail::ms_since(t0);
   return rep;

@@ -225,6 +225,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
+  if (opt_.coarse_cycle_index <= 0) opt_.coarse_cycle_index = levels_.size() >= 5 ? 2 : 1;
   std::vector<std::pair<int, double>> initial;
   for (int i = 0; i < weights.size(); ++i)
     if (weights[i] != 0) initial.emplace_back(i, weights[i]);
@@ -446,7 +447,8 @@ void MultigridHierarchy::cycle(int l) {
   }
   Level& C = levels_[l + 1];
   smooth(L, true);
-  for (int g = 0; g < opt_.cycle_index; ++g) {
+  const int corrections = l == 0 ? opt_.cycle_index : opt_.coarse_cycle_index;
+  for (int g = 0; g < corrections; ++g) {
     residual(L);
     spmv(L.R, L.r, C.b, Mode::Assign);
     cycle(l + 1);

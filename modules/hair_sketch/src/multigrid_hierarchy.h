@@ -37,7 +37,10 @@ using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 
 struct MultigridOptions {
   int smoothing_degree = 3;      // Chebyshev polynomial degree, pre and post
-  int cycle_index = 1;           // 1: V-cycle, 2: W-cycle
+  int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
+  // ... and per visit of each coarser level (1: V-cycle below the finest, 2: W-cycle); 0:
+  // automatic, 2 from five levels on, else 1 (MultigridFieldOptions::coarse_cycle_index).
+  int coarse_cycle_index = 0;
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
@@ -56,6 +59,7 @@ class MultigridHierarchy {
   void apply(const FieldF& r, FieldF& z);
 
   int levels() const { return static_cast<int>(levels_.size()); }
+  int coarse_cycle_index() const { return opt_.coarse_cycle_index; }
   std::array<int, 3> dims(int level) const { return levels_[level].dims; }
   std::int64_t operator_nonzeros() const;
 
