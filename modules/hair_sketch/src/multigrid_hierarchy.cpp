@@ -183,6 +183,9 @@ void sparse_chebyshev_step(const RowSparseF& A, const Real* u, const Real* d, Re
 MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& weights,
                                        MultigridOptions options)
     : opt_(options) {
+  opt_.smoothing_degree = std::max(1, opt_.smoothing_degree);
+  opt_.cycle_index = std::max(1, opt_.cycle_index);
+  opt_.coarse_cycle_index = std::max(1, opt_.coarse_cycle_index);
   // The hierarchy of the unconstrained operator DᵀD first; the weights then arrive as an
   // edit, exactly as later constraint changes do.
   Level fine;
@@ -225,7 +228,6 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
-  if (opt_.coarse_cycle_index <= 0) opt_.coarse_cycle_index = levels_.size() >= 5 ? 2 : 1;
   std::vector<std::pair<int, double>> initial;
   for (int i = 0; i < weights.size(); ++i)
     if (weights[i] != 0) initial.emplace_back(i, weights[i]);

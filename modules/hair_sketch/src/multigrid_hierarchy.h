@@ -36,11 +36,9 @@ using RowSparseD = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 
 struct MultigridOptions {
-  int smoothing_degree = 3;      // Chebyshev polynomial degree, pre and post
+  int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
   int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
-  // ... and per visit of each coarser level (1: V-cycle below the finest, 2: W-cycle); 0:
-  // automatic, 2 from five levels on, else 1 (MultigridFieldOptions::coarse_cycle_index).
-  int coarse_cycle_index = 0;
+  int coarse_cycle_index = 2;    // ... and per visit of each coarser level (2: W-cycle)
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation

@@ -24,16 +24,18 @@ struct MultigridFieldOptions {
   // iteration had settled, and the factor 2 here is margin on top of that.
   double tolerance = 5e-7;
   int max_iterations = 200;
-  int smoothing_degree = 3;       // Chebyshev degree per pre/post smoothing
+  // The cycle: Chebyshev smoothing of degree 2 before and after each coarse correction, one
+  // coarse correction per cycle on the finest level and two on each coarser one (a W-cycle
+  // below the finest level). The V-cycle's coarse correction weakens with depth, and a strong
+  // one lets the costly fine level smooth less. Measured on the bundled head after a stroke
+  // (field solve ms, iterations), against the V-cycle with degree 3 used before: 50K 68–76 /
+  // 12 against 90–107 / 13.5; 250K 366–482 / 15 against 585 / 22 (W below the finest with
+  // degree 3: 14 iterations, ~510 ms); 1M 2.35 s / 19 against ~4.1 s / 27 (degree 3: 17,
+  // 3.06 s). Degree 1 needs 17.5 iterations at 50K; a W-cycle on the finest level too
+  // (9–11 iterations) doubles the costliest products and is slower everywhere.
+  int smoothing_degree = 2;       // Chebyshev degree per pre/post smoothing
   int cycle_index = 1;            // coarse corrections per cycle on the finest level
-  // Coarse corrections per visit of each coarser level: 1 gives a V-cycle, 2 a W-cycle below
-  // the finest level. 0 picks 2 from five levels on (grids of ~150K unknowns and more), else
-  // 1. The V-cycle's coarse correction weakens with depth: at 250K (five levels) the W-cycle
-  // below the finest level took 14 iterations instead of 22 and ~20% less time, at 1M 17
-  // instead of 27 and ~25% less; at 50K (four levels) 12 instead of 13.5 but no faster, its
-  // extra level-1 products costing what the iterations saved. A W-cycle on the finest level
-  // too doubles the costliest products and was slower everywhere.
-  int coarse_cycle_index = 0;
+  int coarse_cycle_index = 2;     // ... per visit of each coarser level (1: V-cycle)
   int coarsest_nodes = 500;       // dense LDLᵀ at or below this many nodes
   bool cubic_prolongation = false;  // cubic measured worse (70 vs 41 iterations)
   double smoothing_range = 0.12;  // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
