@@ -55,7 +55,8 @@ inline void trilinear(const Cell& c, float v[3]) {
 // The same lerps on x y z at once (lane 3 is ignored): an x-edge is six consecutive floats,
 // read as two overlapping 4-float loads, so each lerp is one vector subtract, multiply and
 // add. The operations and their order per component are those of trilinear(), so the
-// result is bit for bit the same (x86-64 has no fused multiply-add to contract into).
+// result is bit for bit the same (the project's portable x86-64 build has no fused
+// multiply-add for the compiler to contract either into; a -march=native build may).
 inline void trilinear_sse(const Cell& c, float v[4]) {
   const __m128 fx = _mm_set1_ps(c.fx), fy = _mm_set1_ps(c.fy), fz = _mm_set1_ps(c.fz);
   auto lerp = [](__m128 a, __m128 b, __m128 t) { return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a))); };
