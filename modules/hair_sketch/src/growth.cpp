@@ -108,13 +108,15 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   const Eigen::Vector3f o = field.grid().origin.cast<float>();
   const float inv = static_cast<float>(1.0 / field.grid().spacing);
   std::array<std::vector<Eigen::Vector3f>, kLanes> lanes;
+  const size_t typical = static_cast<size_t>(std::min(max_steps + 1, 256));
+  for (auto& lane : lanes) lane.reserve(typical);  // once per block, not per growing strand
   points.clear();
   counts.clear();
   // Room for strands of the default maximum length (240 steps): the buffer then does not
   // move, and a regrowth with longer strands only touches new pages at its end (reserved but
   // untouched memory costs nothing). Capped, so that a huge maximum length reserves nothing
   // absurd.
-  points.reserve(static_cast<size_t>(last - first) * static_cast<size_t>(std::min(max_steps + 1, 256)));
+  points.reserve(static_cast<size_t>(last - first) * typical);
   for (int s0 = first; s0 < last; s0 += kLanes) {
     const int m = std::min(kLanes, last - s0);
     unsigned growing = 0;
