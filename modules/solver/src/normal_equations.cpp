@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
 
 namespace lapis::solver::detail {
 namespace {
@@ -24,37 +25,56 @@ struct Accumulator {
   explicit Accumulator(int n) : value(static_cast<size_t>(n), 0.0), touched(static_cast<size_t>(n), 0) {}
 };
 
-// W A in rows (Gustavson): row r is Σ_s W(r, s) · row s of A. Eigen's product builds the
-// column-major result and converts it, several times slower on E_R's metric.
+// W A in rows (Gustavson): row r is Σ_s W(r, s) · row s of A, W symmetric so its column r
+// (read in place) is its row r. Eigen's product builds the column-major result and converts
+// it, several times slower on E_R's metric. Rows in contiguous ranges, one per thread.
 RowMajor metric_times(const SparseMatrix& W, const RowMajor& A) {
-  const RowMajor Wr = W;
-  RowMajor Y(W.rows(), A.cols());
-  std::vector<double> acc(static_cast<size_t>(A.cols()), 0.0);
-  std::vector<char> touched(static_cast<size_t>(A.cols()), 0);
-  std::vector<int> list;
-  std::vector<int> outer(static_cast<size_t>(W.rows()) + 1, 0);
-  std::vector<int> inner;
-  std::vector<double> values;
-  for (int r = 0; r < Wr.rows(); ++r) {
-    for (RowMajor::InnerIterator w(Wr, r); w; ++w)
-      for (RowMajor::InnerIterator a(A, w.col()); a; ++a) {
-        const size_t k = static_cast<size_t>(a.col());
-        if (!touched[k]) touched[k] = 1, list.push_back(a.col());
-        acc[k] += w.value() * a.value();
+  struct Range {
+    std::vector<int> row_end, inner;
+    std::vector<double> values;
+  };
+  const int m = static_cast<int>(W.cols());
+  const int threads = std::max(1, std::min(omp_get_max_threads(), m / 4096 + 1));
+  std::vector<Range> ranges(static_cast<size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    Range& out = ranges[static_cast<size_t>(t)];
+    std::vector<double> acc(static_cast<size_t>(A.cols()), 0.0);
+    std::vector<char> touched(static_cast<size_t>(A.cols()), 0);
+    std::vector<int> list;
+    const int first = static_cast<int>(static_cast<std::int64_t>(m) * t / threads);
+    const int last = static_cast<int>(static_cast<std::int64_t>(m) * (t + 1) / threads);
+    for (int r = first; r < last; ++r) {
+      for (SparseMatrix::InnerIterator w(W, r); w; ++w)
+        for (RowMajor::InnerIterator a(A, w.row()); a; ++a) {
+          const size_t k = static_cast<size_t>(a.col());
+          if (!touched[k]) touched[k] = 1, list.push_back(a.col());
+          acc[k] += w.value() * a.value();
+        }
+      std::sort(list.begin(), list.end());
+      for (int k : list) {
+        out.inner.push_back(k);
+        out.values.push_back(acc[static_cast<size_t>(k)]);
+        acc[static_cast<size_t>(k)] = 0, touched[static_cast<size_t>(k)] = 0;
       }
-    std::sort(list.begin(), list.end());
-    for (int k : list) {
-      inner.push_back(k);
-      values.push_back(acc[static_cast<size_t>(k)]);
-      acc[static_cast<size_t>(k)] = 0, touched[static_cast<size_t>(k)] = 0;
+      list.clear();
+      out.row_end.push_back(static_cast<int>(out.inner.size()));
     }
-    list.clear();
-    outer[static_cast<size_t>(r) + 1] = static_cast<int>(inner.size());
   }
-  Y.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), Y.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), Y.innerIndexPtr());
-  std::copy(values.begin(), values.end(), Y.valuePtr());
+  size_t total = 0;
+  for (const Range& r : ranges) total += r.inner.size();
+  RowMajor Y(W.rows(), A.cols());
+  Y.resizeNonZeros(static_cast<Eigen::Index>(total));
+  int* outer = Y.outerIndexPtr();
+  int row = 0, at = 0;
+  outer[0] = 0;
+  for (const Range& r : ranges) {
+    std::copy(r.inner.begin(), r.inner.end(), Y.innerIndexPtr() + at);
+    std::copy(r.values.begin(), r.values.end(), Y.valuePtr() + at);
+    for (int end : r.row_end) outer[++row] = at + end;
+    at += static_cast<int>(r.inner.size());
+  }
   return Y;
 }
 
