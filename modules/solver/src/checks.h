@@ -38,6 +38,20 @@ inline void require_rows(const DenseMatrix& B, Eigen::Index n, const char* funct
     throw InvalidArgument(std::string(function) + ": " + what + " has a non-finite entry (NaN or Inf)");
 }
 
+// `p` holds each of 0..n-1 once.
+inline void require_permutation(const std::vector<int>& p, int n, const char* function) {
+  if (static_cast<int>(p.size()) != n)
+    throw InvalidArgument(std::string(function) + ": ordering has " + std::to_string(p.size()) +
+                          " entries, expected " + std::to_string(n));
+  std::vector<char> seen(static_cast<size_t>(n), 0);
+  for (int v : p) {
+    if (v < 0 || v >= n || seen[static_cast<size_t>(v)])
+      throw InvalidArgument(std::string(function) + ": ordering is not a permutation of 0.." + std::to_string(n - 1) +
+                            " (entry " + std::to_string(v) + (v < 0 || v >= n ? " out of range)" : " repeated)"));
+    seen[static_cast<size_t>(v)] = 1;
+  }
+}
+
 // True when A's sparsity pattern equals the stored one.
 inline bool same_pattern(const SparseMatrix& A, const std::vector<int>& outer,
                          const std::vector<int>& inner) {

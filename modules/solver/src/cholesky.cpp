@@ -26,16 +26,25 @@ Cholesky::~Cholesky() = default;
 Cholesky::Cholesky(Cholesky&&) noexcept = default;
 Cholesky& Cholesky::operator=(Cholesky&&) noexcept = default;
 
-void Cholesky::analyze(const SparseMatrix& A) {
+void Cholesky::analyze(const SparseMatrix& A) { analyze_with(A, nullptr); }
+
+void Cholesky::analyze(const SparseMatrix& A, const std::vector<int>& ordering) {
   constexpr const char* fn = "solver::Cholesky::analyze()";
   detail::require_square(A, fn);
-  if (!A.isCompressed()) return analyze(SparseMatrix(A));  // CHOLMOD needs compressed storage
+  detail::require_permutation(ordering, static_cast<int>(A.rows()), fn);
+  analyze_with(A, &ordering);
+}
+
+void Cholesky::analyze_with(const SparseMatrix& A, const std::vector<int>* ordering) {
+  constexpr const char* fn = "solver::Cholesky::analyze()";
+  detail::require_square(A, fn);
+  if (!A.isCompressed()) return analyze_with(SparseMatrix(A), ordering);  // CHOLMOD needs compressed storage
   Impl& m = *impl_;
   m.n = static_cast<int>(A.rows());
   m.stats.n = m.n;
   m.stats.nnz_A = A.nonZeros();
   if (m.options.backend == Backend::Cholmod)
-    m.cholmod.analyze(A, m.options.kind, m.stats, fn, m.options.threads);
+    m.cholmod.analyze(A, m.options.kind, m.stats, fn, m.options.threads, ordering);
   else
     m.eigen.analyze(A, m.stats);
   m.analyzed = true;

@@ -27,7 +27,7 @@ void CholmodFactor::free_factor() {
 }
 
 void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats,
-                            const char* function, int solve_threads) {
+                            const char* function, int solve_threads, const std::vector<int>* ordering) {
   free_factor();
   if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
   cholmod_common* c = context_.get();
@@ -38,11 +38,22 @@ void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats&
   c->nmethods = 0;
   const auto t0 = std::chrono::steady_clock::now();
   cholmod_sparse a = sparse_view(A, -1);
-  symbolic_ = cholmod_analyze(&a, c);
-  context_.check(function, "cholmod_analyze");
+  if (ordering) {
+    // cholmod_analyze_p with nmethods = 0 would also try AMD and keep the better; the given
+    // ordering is meant to replace that search, so it is the only method.
+    const int first_method = c->method[0].ordering;
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    symbolic_ = cholmod_analyze_p(&a, const_cast<int*>(ordering->data()), nullptr, 0, c);
+    c->nmethods = 0;
+    c->method[0].ordering = first_method;
+  } else {
+    symbolic_ = cholmod_analyze(&a, c);
+  }
+  context_.check(function, ordering ? "cholmod_analyze_p" : "cholmod_analyze");
   if (!symbolic_) throw SolverFailure(std::string(function) + ": cholmod_analyze returned no factor");
   stats.analyze_ms = ms_since(t0);
-  stats.ordering = ordering_name(c->method[c->selected].ordering);
+  stats.ordering = ordering ? "given" : ordering_name(c->method[c->selected].ordering);
   stats.nnz_L = static_cast<std::int64_t>(c->lnz);
   stats.flops = c->fl;
   stats.kind = kind;

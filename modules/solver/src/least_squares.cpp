@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "checks.h"
+#include "lapis/solver/ordering.h"
 #include "normal_equations.h"
 
 namespace lapis::solver {
@@ -18,6 +19,7 @@ struct LeastSquares::Impl {
   int n = 0;
   std::vector<Block> blocks;
   std::vector<int> fixed, free;
+  SparseMatrix skeleton;  // empty: CHOLMOD orders
   Cholesky chol;
   std::vector<SparseMatrix> weighted_free_t;  // w_b A_b(:, free)'   (#free by m_b)
   SparseMatrix free_fixed;                    // Σ w_b A_b(:, free)' A_b(:, fixed)
@@ -81,6 +83,37 @@ void LeastSquares::set_fixed(std::vector<int> indices) {
   impl_->precomputed = false;
 }
 
+void LeastSquares::set_ordering_skeleton(SparseMatrix skeleton) {
+  constexpr const char* fn = "solver::LeastSquares::set_ordering_skeleton()";
+  const int n = impl_->n;
+  if (skeleton.size() > 0 && (skeleton.rows() != n || skeleton.cols() != n))
+    throw InvalidArgument(std::string(fn) + ": skeleton is " + detail::dims(skeleton.rows(), skeleton.cols()) +
+                          ", expected " + detail::dims(n, n));
+  skeleton.makeCompressed();
+  impl_->skeleton = std::move(skeleton);
+  impl_->precomputed = false;
+}
+
+namespace {
+
+// S(free, free): the skeleton's pattern among the free unknowns, renumbered.
+SparseMatrix restrict_to(const SparseMatrix& S, const std::vector<int>& free, int n) {
+  std::vector<int> index(static_cast<size_t>(n), -1);
+  for (size_t j = 0; j < free.size(); ++j) index[static_cast<size_t>(free[j])] = static_cast<int>(j);
+  const int nf = static_cast<int>(free.size());
+  SparseMatrix R(nf, nf);
+  R.reserve(S.nonZeros());
+  for (int j = 0; j < nf; ++j) {
+    R.startVec(j);
+    for (SparseMatrix::InnerIterator e(S, free[static_cast<size_t>(j)]); e; ++e)
+      if (const int i = index[static_cast<size_t>(e.row())]; i >= 0) R.insertBackByOuterInnerUnordered(j, i) = 1.0;
+  }
+  R.finalize();
+  return R;
+}
+
+}  // namespace
+
 void LeastSquares::precompute() {
   constexpr const char* fn = "solver::LeastSquares::precompute()";
   Impl& m = *impl_;
@@ -93,7 +126,11 @@ void LeastSquares::precompute() {
   m.free_fixed = std::move(normal.free_fixed);
   m.weighted_free_t = std::move(normal.weighted_free_t);
   try {
-    m.chol.compute(N);
+    if (m.skeleton.size() > 0)
+      m.chol.analyze(N, skeleton_nested_dissection(N, restrict_to(m.skeleton, m.free, m.n)));
+    else
+      m.chol.analyze(N);
+    m.chol.factorize(N);
   } catch (const NotPositiveDefinite& e) {
     throw NotPositiveDefinite(std::string(fn) +
                                   ": the free unknowns are not determined by the blocks "

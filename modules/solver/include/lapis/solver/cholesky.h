@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "lapis/solver/types.h"
 
@@ -32,6 +33,11 @@ class Cholesky {
   // Symbolic analysis: chooses the fill-reducing ordering. Throws InvalidArgument if A is
   // not square, SolverFailure if the backend fails.
   void analyze(const SparseMatrix& A);
+  // The same with a given fill-reducing ordering (ordering[k]: the unknown eliminated k-th),
+  // e.g. skeleton_nested_dissection() (ordering.h). The Eigen backend orders by its own AMD
+  // (it is the reference, not a fast path). Throws InvalidArgument if `ordering` is not a
+  // permutation of 0..n-1.
+  void analyze(const SparseMatrix& A, const std::vector<int>& ordering);
   // Numeric factorization. Re-analyzes first if A's pattern differs from the analyzed one.
   // Throws NotPositiveDefinite (naming the column) if A is not positive definite; the
   // object then holds no factor until the next successful factorize().
@@ -48,6 +54,7 @@ class Cholesky {
   const FactorStats& stats() const;
 
  private:
+  void analyze_with(const SparseMatrix& A, const std::vector<int>* ordering);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -33,6 +33,14 @@ class LeastSquares {
   // Unknowns held at given values (eliminated, not penalized). Invalidates the precomputation.
   void set_fixed(std::vector<int> indices);
 
+  // A sparse graph over the n unknowns (pattern of an n by n matrix) whose nested dissection,
+  // widened to the normal matrix's couplings, orders the factorization instead of CHOLMOD's
+  // own choice (skeleton_nested_dissection, ordering.h): for blocks with wide stencils, whose
+  // normal matrix is far denser than the mesh (the implicit Laplacian's Eq. 2.8). An empty
+  // matrix restores CHOLMOD's choice. Invalidates the precomputation. Throws InvalidArgument
+  // if it is not n by n.
+  void set_ordering_skeleton(SparseMatrix skeleton);
+
   // Assembles Σ w_b A_bᵀ A_b over the free unknowns and factorizes it. Throws
   // NotPositiveDefinite when the free unknowns are under-determined.
   void precompute();
