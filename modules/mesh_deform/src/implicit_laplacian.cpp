@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <optional>
 
 #include "implicit_rest.h"
 #include "lapis/geometry/polar.h"
+#include "lapis/solver/blas_threads.h"
 #include "lapis/solver/least_squares.h"
 #include "rotation_fit.h"
 #include "rotation_guide.h"
@@ -54,6 +56,20 @@ solver::SparseMatrix pair_graph_laplacian(int slots, const std::vector<std::pair
   }
   outer[3 * slots] = static_cast<int>(at);
   return M;
+}
+
+// The mesh's edges as an n by n pattern: the skeleton on which Eq. 2.8's normal matrix is
+// ordered (solver/ordering.h). Its columns couple vertices four rings apart, and METIS on
+// that graph took most of a one-off merge; the mesh's separators, widened, do as well.
+solver::SparseMatrix edge_graph(const detail::Stencil& s) {
+  const int n = s.size();
+  solver::SparseMatrix E(n, n);
+  E.resizeNonZeros(static_cast<Eigen::Index>(s.nbr.size()));
+  std::copy(s.offsets.begin(), s.offsets.end(), E.outerIndexPtr());
+  std::copy(s.nbr.begin(), s.nbr.end(), E.innerIndexPtr());
+  for (int v = 0; v < n; ++v) std::sort(E.innerIndexPtr() + s.offsets[v], E.innerIndexPtr() + s.offsets[v + 1]);
+  std::fill(E.valuePtr(), E.valuePtr() + E.nonZeros(), 1.0);
+  return E;
 }
 
 // Guide bands between the fixed region and a guided handle: 8 bands split the accumulated
@@ -337,6 +353,7 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
   if (A_B.rows() > 0) m->first.add_block(A_B, blend_weight_, "E_T (§3.3.3)");
   m->first.set_fixed(m->constrained);
+  m->first.set_ordering_skeleton(edge_graph(s));
   m->stencil = s;
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
   m->has_coherence = A_R.rows() > 0;
@@ -344,9 +361,13 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   m->blend_rest = A_B * solver::DenseMatrix(P);
 
   // Eq. 2.10/2.11 is factorized on a second thread while Eq. 2.8's is: the first system's
-  // ordering (METIS on a dense graph) runs on one core and would leave the other idle.
+  // ordering (nested dissection, CAMD) runs on one core and would leave the other idle.
   std::future<void> second_done;
+  // Two factorizations at once: one BLAS thread each (blas_threads.h), else OpenBLAS' idle
+  // threads busy-wait on the cores the other factorization needs.
+  std::optional<solver::ScopedBlasThreads> one_blas_thread;
   if (options_.shearing != ShearingRemoval::None) {
+    one_blas_thread.emplace(1);
     // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
     // Laplacian the details.
     const detail::Stencil s0 = detail::make_stencil(w.mesh.V, w.mesh.F, options_.weights);
@@ -428,6 +449,7 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
   if (m.A_B.rows() > 0) m.guided->add_block(m.A_B, blend_weight_, "E_T (§3.3.3)");
   m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);
+  m.guided->set_ordering_skeleton(edge_graph(m.stencil));
   m.guided->precompute();
   m.guide_rest = A_G * solver::DenseMatrix(w.displaced);
   m.guided_for = handles;
