@@ -258,7 +258,8 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
 
   // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
   // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
-  const detail::Stencil s = detail::make_stencil(P, w.mesh.F, options_.weights);
+  detail::Stencil s = w.stencil;
+  detail::reweight(s, P, w.mesh.F, options_.weights);
   const Vertices deltaP = detail::laplacian_coordinates(s, P);
   m->G = detail::gradient_stencils(s, P, w.active);
   const detail::GradientStencils& G = m->G;
@@ -370,7 +371,8 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
     one_blas_thread.emplace(1);
     // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
     // Laplacian the details.
-    const detail::Stencil s0 = detail::make_stencil(w.mesh.V, w.mesh.F, options_.weights);
+    detail::Stencil s0 = w.stencil;
+    detail::reweight(s0, w.mesh.V, w.mesh.F, options_.weights);
     SparseRows D(n);
     for (int i : m->free) {
       detail::add_laplacian_row(D, s0, i);

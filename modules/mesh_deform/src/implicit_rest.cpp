@@ -184,6 +184,7 @@ WorkMesh build_work_mesh(const TriMesh& rest, const Layout& layout, const Implic
   }
   for (int v = 0; v < s.size(); ++v)
     if (moved[v]) w.moved.push_back(v);
+  w.stencil = std::move(s);
   return w;
 }
 

@@ -24,6 +24,7 @@ struct WorkMesh {
   Vertices displaced;        // positions with degenerate vertices displaced (v'_i of Eq. 2.9)
   std::vector<int> moved;    // vertices whose displaced position differs from the rest one
   int degenerate = 0;        // vertices found degenerate (§2.4.3)
+  Stencil stencil;           // mesh's 1-rings (uniform weights): reweight() a copy for others
 };
 
 WorkMesh build_work_mesh(const TriMesh& rest, const Layout& layout, const ImplicitOptions& options);
