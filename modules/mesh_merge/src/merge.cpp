@@ -76,17 +76,20 @@ struct Merger::Impl {
   int roi_vertices = 0;
   std::vector<int> handle_of;  // rest vertex -> region handle index, -1 for non-boundary vertices
   std::unique_ptr<mesh_deform::ImplicitLaplacianDeformer> deformer;
-  Impl(const TriMesh& source, TriMesh refined, int levels)
-      : conn_in(source), rest(std::move(refined)), conn(rest), refine_levels(levels) {}
+  // Refinement (levels > 0) changes the connectivity; otherwise the source's is the rest's.
+  Impl(Connectivity source_conn, TriMesh refined, int levels)
+      : conn_in(std::move(source_conn)), rest(std::move(refined)), conn(levels > 0 ? Connectivity(rest) : conn_in),
+        refine_levels(levels) {}
 };
 
 Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)), options_(std::move(options)) {
   const auto t0 = std::chrono::steady_clock::now();
   check_options(source_, options_);
-  check_merge_source(source_, Connectivity(source_));
+  Connectivity source_conn(source_);
+  check_merge_source(source_, source_conn);
   if (options_.mode == MergeMode::Transition) {
     // Nothing to prefactorize: the system couples the source with the target's band.
-    impl_ = std::make_unique<Impl>(source_, source_, 0);
+    impl_ = std::make_unique<Impl>(std::move(source_conn), source_, 0);
     precompute_ms_ = ms_since(t0);
     return;
   }
@@ -94,7 +97,7 @@ Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)
   int levels = 0;
   if (options_.mode == MergeMode::Independent)
     levels = refine_short_boundary(refined, options_.refine_ratio, options_.refine_levels);
-  impl_ = std::make_unique<Impl>(source_, std::move(refined), levels);
+  impl_ = std::make_unique<Impl>(std::move(source_conn), std::move(refined), levels);
   Impl& m = *impl_;
   mesh_deform::Selection sel;
   if (options_.mode == MergeMode::Dependent) {
