@@ -168,6 +168,16 @@ TEST_CASE("solver: least squares ordered on a skeleton solves as CHOLMOD's order
   // Another elimination order rounds differently, and a bi-Laplacian held on one side is
   // ill-conditioned: 1e-8 (the brief's bar for "equals a fresh factorization"), not round-off.
   CHECK((X[1] - X[0]).norm() / X[0].norm() <= 1e-8);
+
+  // The Eigen reference backend takes the skeleton and orders by its own AMD.
+  LeastSquares reference(n, CholeskyOptions{Backend::Eigen, FactorKind::Simplicial});
+  reference.add_block(L2, 1.0, "bi-Laplacian");
+  reference.add_block(L, 0.5, "Laplacian");
+  reference.set_fixed(fixed);
+  reference.set_ordering_skeleton(edges);
+  reference.precompute();
+  CHECK(reference.factor().stats().ordering == "AMD (Eigen)");
+  CHECK((reference.solve({r, DenseMatrix()}, c) - X[1]).norm() / X[1].norm() <= 1e-8);
 }
 
 TEST_CASE("solver: a BLAS thread guard sets OpenBLAS' count and restores it") {
