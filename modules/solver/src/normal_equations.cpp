@@ -186,21 +186,6 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
   // the fixed unknowns coupled to free unknown j, i.e. row j of free_fixed. Build it as
   // #fixed by #free and transpose.
   NormalMatrices out;
-  // w_b A_b(:, free)ᵀ W_b = (w_b W_b A_b(:, free))ᵀ: column r is row r of W_b A_b, free unknowns
-  // renumbered (ascending, as free is).
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    const RowMajor& R = rows[b];
-    SparseMatrix T(nf, static_cast<int>(R.rows()));
-    T.reserve(R.nonZeros());
-    for (int r = 0; r < R.rows(); ++r) {
-      T.startVec(r);
-      for (RowMajor::InnerIterator e(R, r); e; ++e)
-        if (role[static_cast<size_t>(e.col())] >= 0)
-          T.insertBack(role[static_cast<size_t>(e.col())], r) = blocks[b].weight * e.value();
-    }
-    T.finalize();
-    out.weighted_free_t.push_back(std::move(T));
-  }
   out.free_free = assemble(nf, nf, runs, false);
   const SparseMatrix fixed_free = assemble(static_cast<int>(fixed.size()), nf, runs, true);
   out.free_fixed = fixed_free.transpose();

@@ -24,7 +24,6 @@ struct WeightedBlock {
 struct NormalMatrices {
   SparseMatrix free_free;   // #free by #free, both triangles, sorted columns
   SparseMatrix free_fixed;  // #free by #fixed
-  std::vector<SparseMatrix> weighted_free_t;  // per block: w_b A_b(:, free)ᵀ W_b, #free by m_b
 };
 
 // free[j], fixed[j]: the unknowns in each role, together a partition of [0, n); free ascending.
