@@ -1,9 +1,9 @@
 // The BLAS library's own thread count, for code that runs two factorizations side by side.
 // CHOLMOD's supernodal factorization calls BLAS, and OpenBLAS (pthread build) runs one thread
 // per core that busy-waits with sched_yield between calls. Two factorizations at once, each
-// with its BLAS threads, then fight over the cores: a 16K-vertex merge's setup (both implicit
-// Laplacian systems factorized together) took 1.2 s with OpenBLAS' default and 0.85 s with
-// one BLAS thread each. One factorization alone gains under 10% from a second BLAS thread.
+// with its BLAS threads, then fight over the cores: a 16K-vertex merge (both implicit Laplacian
+// systems factorized together) took 1.2 s with OpenBLAS' default and 0.85 s with one BLAS
+// thread each. One factorization alone gains under 10% from a second BLAS thread.
 #pragma once
 
 namespace lapis::solver {

@@ -2,11 +2,11 @@
 //
 // The implicit Laplacian's normal matrix (thesis Eq. 2.8) couples mesh vertices up to four
 // rings apart (its 2-ring coherence pairs, §2.4.2, join two 1-ring stencils): ~60 entries per
-// column. METIS on that graph spends most of a one-off merge coarsening it (1.1 s of 4.3 s at
-// 50K vertices). The separators it finds are bands a few rings wide across the mesh, and such
+// column. METIS on that graph spent a quarter of a one-off merge coarsening it (1.1 s of 4.3 s
+// at 50K vertices). The separators it finds are bands a few rings wide across the mesh, and such
 // bands can be found on the mesh's own 1-ring graph (the skeleton, ~7 entries per column) and
-// widened until they also separate the dense graph: the factor comes out within a few percent
-// of METIS's, in a fraction of the ordering time (solver section of the README).
+// widened until they also separate the dense graph: the factor comes out 4–8% larger than
+// METIS's, in about a third of the ordering time (solver section of the README).
 #pragma once
 
 #include <vector>
