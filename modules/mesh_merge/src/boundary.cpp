@@ -1,5 +1,7 @@
 #include "lapis/mesh_merge/boundary.h"
 
+#include "boundary_checked.h"
+
 #include <algorithm>
 #include <numeric>
 #include <string>
@@ -53,9 +55,14 @@ void check_merge_source(const TriMesh& source, const Connectivity& source_conn) 
 
 void check_merge_input(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
                        const Connectivity& target_conn, const std::vector<LoopPair>& pairs) {
+  check_merge_source(source, source_conn);
+  check_merge_pairs(source, source_conn, target, target_conn, pairs);
+}
+
+void check_merge_pairs(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
+                       const Connectivity& target_conn, const std::vector<LoopPair>& pairs) {
   const auto& sloops = source_conn.boundary_loops();
   const auto& tloops = target_conn.boundary_loops();
-  check_merge_source(source, source_conn);
   if (tloops.empty()) fail("the target is closed (no boundary loop), expected an open merging boundary");
   require_manifold(target, "the target");
   if (pairs.size() != sloops.size())
@@ -108,6 +115,14 @@ std::vector<BoundaryCorrespondence> correspond_boundaries(const TriMesh& source,
                                                           const TriMesh& target, const Connectivity& target_conn,
                                                           const std::vector<LoopPair>& pairs) {
   check_merge_input(source, source_conn, target, target_conn, pairs);
+  return detail::correspond_checked_boundaries(source, source_conn, target, target_conn, pairs);
+}
+
+namespace detail {
+
+std::vector<BoundaryCorrespondence> correspond_checked_boundaries(const TriMesh& source, const Connectivity& source_conn,
+                                                                  const TriMesh& target, const Connectivity& target_conn,
+                                                                  const std::vector<LoopPair>& pairs) {
   const LoopIndex sidx(source_conn), tidx(target_conn);
   std::vector<BoundaryCorrespondence> out;
   for (const LoopPair& pair : pairs) {
@@ -152,4 +167,5 @@ std::vector<BoundaryCorrespondence> correspond_boundaries(const TriMesh& source,
   return out;
 }
 
+}  // namespace detail
 }  // namespace lapis::mesh_merge

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "boundary_checked.h"
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/mesh_merge/constraints.h"
 #include "lapis/mesh_merge/refine.h"
@@ -140,9 +141,11 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
   MergeResult r;
   const Connectivity tconn(target);
   // Checked on the source as given, so errors name the user's indices; refinement only
-  // appended vertices, so the keys mean the same on the refined source.
-  check_merge_input(source_, m.conn_in, target, tconn, pairs);
-  const std::vector<BoundaryCorrespondence> corr = correspond_boundaries(m.rest, m.conn, target, tconn, pairs);
+  // appended vertices (splitting boundary edges), so the keys mean the same on the refined
+  // source and its checks still hold. The source itself was checked by the constructor.
+  check_merge_pairs(source_, m.conn_in, target, tconn, pairs);
+  const std::vector<BoundaryCorrespondence> corr =
+      detail::correspond_checked_boundaries(m.rest, m.conn, target, tconn, pairs);
   const std::vector<BoundaryConstraint> cons =
       boundary_constraints(m.rest, target, corr, options_.mode == MergeMode::Dependent);
   mesh_deform::Selection order;

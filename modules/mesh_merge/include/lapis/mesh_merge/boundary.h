@@ -56,6 +56,11 @@ void check_merge_input(const TriMesh& source, const Connectivity& source_conn, c
 // The part of check_merge_input() that needs the source only (closed, non-manifold), with
 // the same messages.
 void check_merge_source(const TriMesh& source, const Connectivity& source_conn);
+// The rest of check_merge_input(): the target and the pairs, for a source that passed
+// check_merge_source() (Merger checks its source once and each target and pairs per merge:
+// validating a 50K-vertex source again on every re-merge cost more than the merge's solves).
+void check_merge_pairs(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
+                       const Connectivity& target_conn, const std::vector<LoopPair>& pairs);
 
 // Arc-length curve parameterization between consecutive keys (thesis §3.3.1): a source vertex
 // a fraction f along the source arc from key k to key k+1 goes to the point a fraction f
