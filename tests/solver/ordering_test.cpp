@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -193,5 +194,13 @@ TEST_CASE("solver: a BLAS thread guard sets OpenBLAS' count and restores it") {
     ScopedBlasThreads one(1);
     CHECK(ScopedBlasThreads::current() == 1);
   }
+  CHECK(ScopedBlasThreads::current() == before);
+  // Overlapping guards, not nested (as two deformers' setups on two threads): the count
+  // before the first comes back when the last ends, not the first one's 1.
+  auto first = std::make_unique<ScopedBlasThreads>(1);
+  auto second = std::make_unique<ScopedBlasThreads>(1);
+  first.reset();
+  CHECK(ScopedBlasThreads::current() == 1);
+  second.reset();
   CHECK(ScopedBlasThreads::current() == before);
 }

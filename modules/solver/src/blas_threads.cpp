@@ -2,6 +2,8 @@
 
 #include <dlfcn.h>
 
+#include <mutex>
+
 namespace lapis::solver {
 namespace {
 
@@ -26,15 +28,25 @@ const OpenBlas& openblas() {
 
 }  // namespace
 
+// Guards may overlap (two deformers set up on two threads): the first saves the count, the
+// last restores it, so overlapping guards cannot leave the process at one thread.
+std::mutex guard_mutex;
+int open_guards = 0;
+int saved_threads = 0;
+
 ScopedBlasThreads::ScopedBlasThreads(int threads) {
   const OpenBlas& b = openblas();
   if (!b.set || threads < 1) return;
-  previous_ = b.get();
+  const std::lock_guard lock(guard_mutex);
+  if (open_guards++ == 0) saved_threads = b.get();
   b.set(threads);
+  active_ = true;
 }
 
 ScopedBlasThreads::~ScopedBlasThreads() {
-  if (previous_ > 0) openblas().set(previous_);
+  if (!active_) return;
+  const std::lock_guard lock(guard_mutex);
+  if (--open_guards == 0) openblas().set(saved_threads);
 }
 
 bool ScopedBlasThreads::available() { return openblas().set != nullptr; }

@@ -10,7 +10,8 @@ namespace lapis::solver {
 
 // Sets the BLAS thread count for the guard's lifetime and restores it after. OpenBLAS is
 // found at run time (openblas_set_num_threads); with another BLAS it does nothing. The count
-// is process-wide: BLAS calls on other threads meanwhile run with it too.
+// is process-wide: BLAS calls on other threads meanwhile run with it too. Guards may overlap
+// (on several threads too); the count before the first is restored when the last ends.
 class ScopedBlasThreads {
  public:
   explicit ScopedBlasThreads(int threads);
@@ -24,7 +25,7 @@ class ScopedBlasThreads {
   static int current();
 
  private:
-  int previous_ = 0;
+  bool active_ = false;
 };
 
 }  // namespace lapis::solver
