@@ -16,7 +16,7 @@ namespace lapis::mesh_deform::detail {
 using geometry::TriMesh;
 using geometry::Vertices;
 
-// Neighbours of vertex i: nbr[offsets[i] .. offsets[i+1]), weight w_ij alongside, so that the
+// Neighbours of vertex i: nbr[offsets[i] .. offsets[i+1]), ascending, weight w_ij alongside, so that the
 // Laplacian coordinate is δ_i = Σ_j w_ij (v_j − v_i) (thesis §2.3).
 struct Stencil {
   std::vector<int> offsets;
