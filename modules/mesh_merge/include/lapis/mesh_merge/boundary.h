@@ -58,7 +58,8 @@ void check_merge_input(const TriMesh& source, const Connectivity& source_conn, c
 void check_merge_source(const TriMesh& source, const Connectivity& source_conn);
 // The rest of check_merge_input(): the target and the pairs, for a source that passed
 // check_merge_source() (Merger checks its source once and each target and pairs per merge:
-// validating a 50K-vertex source again on every re-merge cost more than the merge's solves).
+// validating a 50K-vertex source twice on every re-merge cost about what the solves did,
+// 84 of 259 ms).
 void check_merge_pairs(const TriMesh& source, const Connectivity& source_conn, const TriMesh& target,
                        const Connectivity& target_conn, const std::vector<LoopPair>& pairs);
 
