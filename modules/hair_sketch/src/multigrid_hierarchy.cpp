@@ -7,6 +7,7 @@
 
 #include "lapis/core/error.h"
 #include "grid_stencil.h"
+#include "grid_transfer.h"
 #include "lapis/hair_sketch/grid_operators.h"
 
 namespace lapis::hair_sketch::detail {
@@ -141,6 +142,15 @@ inline void row_product(const RowSparseF& A, const Real* u, int i, Real s[4]) {
   }
 }
 
+// y += x.
+void add(const FieldF& x, FieldF& y) {
+  const std::ptrdiff_t size = x.size();
+  const Real* xp = x.data();
+  Real* yp = y.data();
+#pragma omp parallel for schedule(static) if (size > 3 * parallel_nodes)
+  for (std::ptrdiff_t f = 0; f < size; ++f) yp[f] += xp[f];
+}
+
 // r = b − A x on a sparse level.
 void sparse_residual(const RowSparseF& A, const Real* x, const Real* b, Real* r) {
   const int n = static_cast<int>(A.rows());
@@ -202,8 +212,11 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     const RowSparseD AP = f.A * f.Pd;
     c.A = RowSparseD(f.Pd.transpose()) * AP;
     c.A.makeCompressed();
-    f.P = f.Pd.cast<Real>();
-    f.R = RowSparseF(f.P.transpose());
+    // The finest level's linear transfers are applied matrix-free (grid_transfer.h).
+    if (levels_.size() > 1 || opt_.cubic) {
+      f.P = f.Pd.cast<Real>();
+      f.R = RowSparseF(f.P.transpose());
+    }
     levels_.push_back(std::move(c));
   }
   Level& f0 = levels_[0];
@@ -225,6 +238,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     L.r.setZero(n, 3);
     L.d.setZero(n, 3);
     if (!L.matrix_free) L.d2.setZero(n, 3);
+    if (&L != &levels_.front()) L.b0.setZero(n, 3), L.e.setZero(n, 3);
     L.base_diag = L.A.diagonal();
   }
   factor_coarsest();
@@ -271,7 +285,7 @@ void MultigridHierarchy::add_to_diagonal(const std::vector<std::pair<int, double
     const bool pinned = fine_weights_[node] > 0;
     if (pinned == static_cast<bool>(pinned_[node])) continue;
     free_set_change(node, pinned ? -1.0 : 1.0, acc);
-    set_prolongation_row(node, !pinned);
+    if (opt_.cubic) set_prolongation_row(node, !pinned);
     pinned_[node] = pinned;
   }
   for (size_t l = 1; l < levels_.size(); ++l) {
@@ -350,9 +364,15 @@ void MultigridHierarchy::residual(Level& L) {
   const Real* b = L.b.data();
   Real* r = L.r.data();
   if (L.matrix_free) {
+    // Zero at the pinned nodes: the residual only goes to the restriction, whose columns
+    // there are zero (grid_transfer.h relies on it).
+    const char* pinned = pinned_.data();
     normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.scratch.data(), L.buffers,
                           [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
                             for (std::ptrdiff_t f = 0; f < len; ++f) r[f0 + f] = b[f0 + f] - v[f];
+                            const char* pin = pinned + f0 / 3;
+                            for (std::ptrdiff_t i = 0; i < len / 3; ++i)
+                              if (pin[i]) r[f0 + 3 * i] = r[f0 + 3 * i + 1] = r[f0 + 3 * i + 2] = 0;
                           });
   } else {
     sparse_residual(L.Af, L.x.data(), L.b.data(), L.r.data());
@@ -449,20 +469,47 @@ void MultigridHierarchy::cycle(int l) {
   }
   Level& C = levels_[l + 1];
   smooth(L, true);
-  const int corrections = l == 0 ? opt_.cycle_index : opt_.coarse_cycle_index;
-  for (int g = 0; g < corrections; ++g) {
-    residual(L);
+  // The finest level's transfers are matrix-free (grid_transfer.h) unless cubic.
+  const bool transfer_free = L.matrix_free && !opt_.cubic;
+  residual(L);
+  if (transfer_free)
+    restrict_to_coarse(L.dims, C.dims, L.r.data(), C.b.data());
+  else
     spmv(L.R, L.r, C.b, Mode::Assign);
-    cycle(l + 1);
-    spmv(L.P, C.x, L.x, Mode::Add);
+  cycle(l + 1);
+  // Further corrections (W-cycle) solve the same coarse problem again, for what the first
+  // left. With Galerkin operators the restricted residual after x += P e is
+  // Pᵀ(r − A P e) = b_c − A_c e, so they run on the coarse level alone: one coarse product
+  // instead of a residual, a restriction and a prolongation on this level (which cost
+  // 8× more). Above the coarsest level the first correction is already exact.
+  const bool exact = l + 2 == static_cast<int>(levels_.size());
+  const int corrections = exact ? 1 : (l == 0 ? opt_.cycle_index : opt_.coarse_cycle_index);
+  if (corrections > 1) {
+    C.b0.swap(C.b);  // the coarse right-hand side, kept
+    C.e.swap(C.x);   // the corrections so far
+    for (int g = 1; g < corrections; ++g) {
+      sparse_residual(C.Af, C.e.data(), C.b0.data(), C.b.data());
+      cycle(l + 1);
+      add(C.x, C.e);
+    }
+    C.e.swap(C.x);
+    C.b0.swap(C.b);
   }
+  if (transfer_free)
+    prolong_add(L.dims, C.dims, pinned_.data(), C.x.data(), L.x.data());
+  else
+    spmv(L.P, C.x, L.x, Mode::Add);
   smooth(L, false);
 }
 
-void MultigridHierarchy::apply(const FieldF& r, FieldF& z) {
-  levels_[0].b = r;
+void MultigridHierarchy::apply(FieldF& r, FieldF& z) {
+  // The caller's vectors become the finest level's for the cycle (swaps, not 3n copies;
+  // the cycle only reads b).
+  Level& F = levels_[0];
+  F.b.swap(r);
   cycle(0);
-  z = levels_[0].x;
+  F.b.swap(r);
+  z.swap(F.x);
 }
 
 std::int64_t MultigridHierarchy::operator_nonzeros() const {

@@ -38,7 +38,7 @@ using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 struct MultigridOptions {
   int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
   int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
-  int coarse_cycle_index = 2;    // ... and per visit of each coarser level (2: W-cycle)
+  int coarse_cycle_index = 4;    // ... and per visit of each coarser level (1: V-cycle)
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
@@ -54,7 +54,8 @@ class MultigridHierarchy {
   void add_to_diagonal(const std::vector<std::pair<int, double>>& changes);
 
   // z ≈ A⁻¹ r by one cycle from zero (a symmetric positive definite preconditioner).
-  void apply(const FieldF& r, FieldF& z);
+  // r and z are n × 3; r is left as it was, z's storage is exchanged with the cycle's.
+  void apply(FieldF& r, FieldF& z);
 
   int levels() const { return static_cast<int>(levels_.size()); }
   int coarse_cycle_index() const { return opt_.coarse_cycle_index; }
@@ -66,7 +67,8 @@ class MultigridHierarchy {
     std::array<int, 3> dims{};
     RowSparseD A;       // double master, accumulates edits exactly
     RowSparseF Af;      // float copy used by the cycle (same pattern as A; empty if matrix_free)
-    RowSparseF P;       // prolongation from the next coarser level (n × n_coarse)
+    RowSparseF P;       // prolongation from the next coarser level (n × n_coarse); empty
+                        // on the finest level unless cubic (grid_transfer.h applies it)
     RowSparseF R;       // Pᵀ, row-major for a gather-style restriction
     RowSparseD Pd;      // P in double, to push edits down
     VectorR inv_diag;
@@ -74,6 +76,8 @@ class MultigridHierarchy {
     Real lambda_max = 0;
     FieldF x, b, r, d;  // work vectors
     FieldF d2;          // sparse levels: the next Chebyshev direction while d is still read
+    FieldF b0, e;       // coarse levels in a W-cycle: the right-hand side and the sum of
+                        // the corrections while a further correction is solved
     // The finest level applies A matrix-free (grid_stencil.h) with these weights (ω² at
     // constrained nodes).
     bool matrix_free = false;

@@ -25,17 +25,18 @@ struct MultigridFieldOptions {
   double tolerance = 5e-7;
   int max_iterations = 200;
   // The cycle: Chebyshev smoothing of degree 2 before and after each coarse correction, one
-  // coarse correction per cycle on the finest level and two on each coarser one (a W-cycle
-  // below the finest level). The V-cycle's coarse correction weakens with depth, and a strong
-  // one lets the costly fine level smooth less. Measured on the bundled head after a stroke
-  // (field solve ms, iterations), against the V-cycle with degree 3 used before: 50K 68–76 /
-  // 12 against 90–107 / 13.5; 250K 366–482 / 15 against 585 / 22 (W below the finest with
-  // degree 3: 14 iterations, ~510 ms); 1M 2.35 s / 19 against ~4.1 s / 27 (degree 3: 17,
-  // 3.06 s). Degree 1 needs 17.5 iterations at 50K; a W-cycle on the finest level too
-  // (9–11 iterations) doubles the costliest products and is slower everywhere.
+  // coarse correction per cycle on the finest level and four per visit of each coarser one.
+  // The V-cycle's coarse correction weakens with depth, and a strong one lets the costly fine
+  // level smooth less. The corrections after the first cost one product on the coarser level
+  // only (multigrid_hierarchy.cpp), so four are cheap: field solve after a stroke on the
+  // bundled head, one driver, solvers taking turns (iterations, median ms): 250K 15 / 422
+  // with two corrections, 13 / 389 with three, 12 / 374 with four; 1M 18 / 2117 with two,
+  // 14 / 1923 with four; 50K 12 iterations either way. Degree 1 needs 17.5 iterations at
+  // 50K; a W-cycle on the finest level too (9–11 iterations) doubles the costliest products
+  // and is slower everywhere.
   int smoothing_degree = 2;       // Chebyshev degree per pre/post smoothing
   int cycle_index = 1;            // coarse corrections per cycle on the finest level
-  int coarse_cycle_index = 2;     // ... per visit of each coarser level (1: V-cycle)
+  int coarse_cycle_index = 4;     // ... per visit of each coarser level (1: V-cycle)
   int coarsest_nodes = 500;       // dense LDLᵀ at or below this many nodes
   bool cubic_prolongation = false;  // cubic measured worse (70 vs 41 iterations)
   double smoothing_range = 0.12;  // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
