@@ -195,7 +195,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     : opt_(options) {
   opt_.smoothing_degree = std::max(1, opt_.smoothing_degree);
   opt_.cycle_index = std::max(1, opt_.cycle_index);
-  opt_.coarse_cycle_index = std::max(1, opt_.coarse_cycle_index);
+
   // The hierarchy of the unconstrained operator DᵀD first; the weights then arrive as an
   // edit, exactly as later constraint changes do.
   Level fine;
@@ -219,6 +219,9 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     }
     levels_.push_back(std::move(c));
   }
+  // Automatic: more corrections pay once the hierarchy is deep enough for the V-cycle's
+  // weakening with depth to cost iterations (multigrid_field_solver.h has the figures).
+  if (opt_.coarse_cycle_index <= 0) opt_.coarse_cycle_index = levels_.size() >= 5 ? 4 : 2;
   Level& f0 = levels_[0];
   f0.matrix_free = true;
   f0.weights.setZero(f0.A.rows());

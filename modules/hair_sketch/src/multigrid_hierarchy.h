@@ -38,7 +38,8 @@ using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 struct MultigridOptions {
   int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
   int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
-  int coarse_cycle_index = 4;    // ... and per visit of each coarser level (1: V-cycle)
+  int coarse_cycle_index = 0;    // ... and per visit of each coarser level (1: V-cycle;
+                                 // 0: 4 on hierarchies of 5 or more levels, else 2)
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation

@@ -25,18 +25,20 @@ struct MultigridFieldOptions {
   double tolerance = 5e-7;
   int max_iterations = 200;
   // The cycle: Chebyshev smoothing of degree 2 before and after each coarse correction, one
-  // coarse correction per cycle on the finest level and four per visit of each coarser one.
-  // The V-cycle's coarse correction weakens with depth, and a strong one lets the costly fine
-  // level smooth less. The corrections after the first cost one product on the coarser level
-  // only (multigrid_hierarchy.cpp), so four are cheap: field solve after a stroke on the
-  // bundled head, one driver, solvers taking turns (iterations, median ms): 250K 15 / 422
-  // with two corrections, 13 / 389 with three, 12 / 374 with four; 1M 18 / 2117 with two,
-  // 14 / 1923 with four; 50K 12 iterations either way. Degree 1 needs 17.5 iterations at
-  // 50K; a W-cycle on the finest level too (9–11 iterations) doubles the costliest products
-  // and is slower everywhere.
+  // coarse correction per cycle on the finest level and several per visit of each coarser
+  // one. The V-cycle's coarse correction weakens with depth, and a strong one lets the costly
+  // fine level smooth less. The corrections after the first cost one product on the coarser
+  // level only (multigrid_hierarchy.cpp), so four are cheap where the hierarchy is deep.
+  // Field solve after a stroke on the bundled head, one driver, solvers taking turns
+  // (iterations, median ms): 250K (5 levels) 15 / 422 with two corrections, 13 / 389 with
+  // three, 12 / 374 with four; 1M (5 levels) 18 / 2117 with two, 14 / 1923 with four; 50K
+  // (4 levels) 12 iterations either way, 56 ms with two and 63 with four, hence the automatic
+  // choice. Degree 1 needs 17.5 iterations at 50K; a W-cycle on the finest level too (9–11
+  // iterations) doubles the costliest products and is slower everywhere.
   int smoothing_degree = 2;       // Chebyshev degree per pre/post smoothing
   int cycle_index = 1;            // coarse corrections per cycle on the finest level
-  int coarse_cycle_index = 4;     // ... per visit of each coarser level (1: V-cycle)
+  int coarse_cycle_index = 0;     // ... per visit of each coarser level (1: V-cycle; 0: 4 if
+                                  // the hierarchy has 5 or more levels, else 2)
   int coarsest_nodes = 500;       // dense LDLᵀ at or below this many nodes
   bool cubic_prolongation = false;  // cubic measured worse (70 vs 41 iterations)
   double smoothing_range = 0.12;  // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
