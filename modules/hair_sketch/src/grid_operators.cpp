@@ -56,11 +56,9 @@ SparseMatrix normal_matrix(const Grid& grid, const Eigen::VectorXd& weights) {
 
 void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const Field& X,
                            Field& Y) {
-  Field scratch(X.rows(), 3);
   Y.resize(X.rows(), 3);
   detail::StencilScratch<double> buffers;
-  detail::normal_operator(g.dims, weights.data(), X.data(), scratch.data(), Y.data(), false,
-                          buffers);
+  detail::normal_operator(g.dims, weights.data(), X.data(), Y.data(), false, buffers);
 }
 
 }  // namespace lapis::hair_sketch

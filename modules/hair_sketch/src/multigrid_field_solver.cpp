@@ -17,13 +17,13 @@ namespace lapis::hair_sketch {
 // The iteration's vectors, allocated with the solver: an iteration allocates nothing (a
 // fresh 50K×3 temporary per vector operation cost page faults in every iteration).
 struct MultigridFieldSolver::Work {
-  Field x, r, p, q, scratch;
+  Field x, r, p, q;
   detail::FieldF rf, zf;  // the cycle's residual and correction, in its precision
   detail::StencilScratch<double> buffers;
   std::vector<double> line_dots;  // per thread: p·q's three column sums, 8 doubles apart
 
   explicit Work(int n)
-      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), scratch(n, 3), rf(n, 3), zf(n, 3) {}
+      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3) {}
 };
 
 namespace {
@@ -106,7 +106,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
 
   // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
   wk.x = field_;
-  detail::normal_operator_visit(grid_.dims, wt, x, wk.scratch.data(), wk.buffers,
+  detail::normal_operator_visit(grid_.dims, wt, x, wk.buffers,
                                 [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
                                   for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
                                     r[f] = wt[f / 3] * tg[f] - v[f - f0];
@@ -147,7 +147,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     // q = A p, and the column dots p·q on each line as it is written (per-thread partial
     // sums, a cache line apart).
     wk.line_dots.assign(8 * static_cast<size_t>(std::max(1, omp_get_max_threads())), 0.0);
-    detail::normal_operator_visit(grid_.dims, wt, p, wk.scratch.data(), wk.buffers,
+    detail::normal_operator_visit(grid_.dims, wt, p, wk.buffers,
                                   [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
                                     double* dots = wk.line_dots.data() + 8 * omp_get_thread_num();
                                     double* ql = q + f0;

@@ -225,7 +225,6 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
   Level& f0 = levels_[0];
   f0.matrix_free = true;
   f0.weights.setZero(f0.A.rows());
-  f0.scratch.setZero(f0.A.rows(), 3);
   fine_weights_.setZero(f0.A.rows());
   pinned_.assign(f0.A.rows(), 0);
   for (Level& L : levels_) {
@@ -370,7 +369,7 @@ void MultigridHierarchy::residual(Level& L) {
     // Zero at the pinned nodes: the residual only goes to the restriction, whose columns
     // there are zero (grid_transfer.h relies on it).
     const char* pinned = pinned_.data();
-    normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.scratch.data(), L.buffers,
+    normal_operator_visit(L.dims, L.weights.data(), L.x.data(), L.buffers,
                           [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
                             for (std::ptrdiff_t f = 0; f < len; ++f) r[f0 + f] = b[f0 + f] - v[f];
                             const char* pin = pinned + f0 / 3;
@@ -391,7 +390,7 @@ void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, co
     Real* x = L.x.data();
     Real* d = L.d.data();
     const Real* inv = L.inv_diag3.data();
-    normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.scratch.data(), L.buffers,
+    normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.buffers,
                           [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
                             Real* xl = x + f0;
                             Real* dl = d + f0;

@@ -83,7 +83,6 @@ class MultigridHierarchy {
     // constrained nodes).
     bool matrix_free = false;
     VectorR weights;
-    FieldF scratch;
     VectorR inv_diag3;  // inv_diag repeated per entry (x y z), for per-entry loops
     StencilScratch<Real> buffers;
     Eigen::VectorXd base_diag;  // diagonal without constraints
