@@ -99,6 +99,19 @@ TEST_CASE("hair_sketch: multigrid field within 1e-6 of the exact minimizer over 
   CHECK(max_iter > 0);
 }
 
+TEST_CASE("hair_sketch: multigrid on a grid of one level (the dense solve alone) matches the exact field") {
+  // No smoothing step runs, so the CG's dot products come from the cycle's fallback.
+  const Grid g = cube_grid(6);
+  MultigridFieldSolver mg(g);
+  CHECK(mg.levels() == 1);
+  std::mt19937 rng(23);
+  const std::vector<std::vector<Constraint>> curves{random_curve(g, rng, 8)};
+  const ConstraintSet cur = ConstraintSet::merge(curves);
+  mg.apply(diff(ConstraintSet{}, cur), cur);
+  const Field ref = exact_field(g, cur);
+  CHECK((mg.field() - ref).norm() <= 1e-6 * ref.norm());
+}
+
 TEST_CASE("hair_sketch: multigrid within 1e-6 of a direct solve on an 18K grid after a stroke and an edit") {
   // Closer to the interactive setting than the small grids above: a style of eight curves,
   // then a stroke added, then that stroke replaced, each against a supernodal factorization;

@@ -121,25 +121,13 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     rf[i] = static_cast<detail::Real>(r[i]);
     rnorm2 += r[i] * r[i];
   }
-  // The column dots of r and z = the cycle's output widened to double (z is never stored),
-  // and `also(f)` for each node's first entry f in the same pass.
-  auto dots_rz = [&](auto&& also) {
-    double s0 = 0, s1 = 0, s2 = 0;
-#pragma omp parallel for schedule(static) reduction(+ : s0, s1, s2) if (n > parallel_nodes)
-    for (int i = 0; i < n; ++i) {
-      const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i);
-      s0 += r[f] * static_cast<double>(zf[f]);
-      s1 += r[f + 1] * static_cast<double>(zf[f + 1]);
-      s2 += r[f + 2] * static_cast<double>(zf[f + 2]);
-      also(f);
-    }
-    return Eigen::RowVector3d(s0, s1, s2);
-  };
-  mg_->apply(wk.rf, wk.zf);
+  // The column dots r·z come from the cycle itself, formed as its last step writes z.
+  double dots[3];
+  mg_->apply(wk.rf, wk.zf, r, dots);
   zf = wk.zf.data();
-  Eigen::RowVector3d rz = dots_rz([&](std::ptrdiff_t f) {
-    for (std::ptrdiff_t k = f; k < f + 3; ++k) p[k] = static_cast<double>(zf[k]);
-  });
+  Eigen::RowVector3d rz(dots[0], dots[1], dots[2]);
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+  for (int i = 0; i < 3 * n; ++i) p[i] = static_cast<double>(zf[i]);
   double prev_step = 0, est = 0;
   int it = 0;
   bool converged = std::sqrt(rnorm2) <= 1e-15 * std::max(bnorm, 1e-300);
@@ -191,9 +179,9 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
       ++it;
       break;
     }
-    mg_->apply(wk.rf, wk.zf);
+    mg_->apply(wk.rf, wk.zf, r, dots);
     zf = wk.zf.data();
-    const Eigen::RowVector3d rz_new = dots_rz([](std::ptrdiff_t) {});
+    const Eigen::RowVector3d rz_new(dots[0], dots[1], dots[2]);
     double beta[3];
     for (int c = 0; c < 3; ++c) beta[c] = rz[c] > 0 ? rz_new[c] / rz[c] : 0.0;
 #pragma omp parallel for schedule(static) if (n > parallel_nodes)

@@ -1,5 +1,7 @@
 #include "multigrid_hierarchy.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -286,8 +288,9 @@ void MultigridHierarchy::add_to_diagonal(const std::vector<std::pair<int, double
   for (const auto& [node, delta] : changes) {
     const bool pinned = fine_weights_[node] > 0;
     if (pinned == static_cast<bool>(pinned_[node])) continue;
-    free_set_change(node, pinned ? -1.0 : 1.0, acc);
-    if (opt_.cubic) set_prolongation_row(node, !pinned);
+    // (A single-level hierarchy has no prolongation: the dense solve is all of it.)
+    if (levels_.size() > 1) free_set_change(node, pinned ? -1.0 : 1.0, acc);
+    if (opt_.cubic && levels_.size() > 1) set_prolongation_row(node, !pinned);
     pinned_[node] = pinned;
   }
   for (size_t l = 1; l < levels_.size(); ++l) {
@@ -382,14 +385,18 @@ void MultigridHierarchy::residual(Level& L) {
 }
 
 void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in,
-                                        Real a, Real c) {
+                                        Real a, Real c, bool last, bool post) {
   Real* r = L.r.data();
   if (L.matrix_free) {
     // The matrix-free apply's second pass reads its operand only on the line it visits, so
-    // the step updates d (or x) in place, a line at a time.
+    // the step updates d (or x) in place, a line at a time. The last step of a smoothing
+    // stores neither r nor d, which nothing reads before they are next written; the last
+    // step of the cycle also forms the caller's dot products with z (apply()).
     Real* x = L.x.data();
     Real* d = L.d.data();
     const Real* inv = L.inv_diag3.data();
+    const bool dot = last && post && dot_with_ != nullptr && &L == &levels_.front();
+    if (dot) dot_done_ = true;
     normal_operator_visit(L.dims, L.weights.data(), from_x ? x : d, L.buffers,
                           [&](std::ptrdiff_t f0, std::ptrdiff_t len, const Real* v) {
                             Real* xl = x + f0;
@@ -397,7 +404,18 @@ void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, co
                             Real* rl = r + f0;
                             const Real* rin = r_in + f0;
                             const Real* il = inv + f0;
-                            if (from_x) {
+                            if (last) {
+                              const Real da = from_x ? Real(0) : a;
+                              for (std::ptrdiff_t f = 0; f < len; ++f)
+                                xl[f] += da * dl[f] + c * il[f] * (rin[f] - v[f]);
+                              if (dot) {
+                                const double* wl = dot_with_ + f0;
+                                double* acc = dot_partials_.data() + 8 * omp_get_thread_num();
+                                for (std::ptrdiff_t f = 0; f < len; f += 3)
+                                  for (int k = 0; k < 3; ++k)
+                                    acc[k] += wl[f + k] * static_cast<double>(xl[f + k]);
+                              }
+                            } else if (from_x) {
                               for (std::ptrdiff_t f = 0; f < len; ++f) {
                                 rl[f] = rin[f] - v[f];
                                 dl[f] = c * il[f] * rl[f];
@@ -449,12 +467,13 @@ void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
         x[f] = d[f] = ci * b[f];
     }
   } else {
-    chebyshev_step(L, true, pending, r_in, 0, 1 / theta);
+    chebyshev_step(L, true, pending, r_in, 0, 1 / theta, opt_.smoothing_degree == 1, true);
     r_in = L.r.data();
   }
   for (int it = 1; it < opt_.smoothing_degree; ++it) {
     const Real rho_new = Real(1) / (Real(2) * sigma - rho);
-    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta);
+    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta,
+                   it + 1 == opt_.smoothing_degree, !zero_initial);
     r_in = L.r.data();
     rho = rho_new;
   }
@@ -504,14 +523,28 @@ void MultigridHierarchy::cycle(int l) {
   smooth(L, false);
 }
 
-void MultigridHierarchy::apply(FieldF& r, FieldF& z) {
+void MultigridHierarchy::apply(FieldF& r, FieldF& z, const double* dot_with, double dots[3]) {
   // The caller's vectors become the finest level's for the cycle (swaps, not 3n copies;
   // the cycle only reads b).
   Level& F = levels_[0];
+  dot_with_ = dots ? dot_with : nullptr;
+  dot_done_ = false;
+  dot_partials_.assign(8 * static_cast<size_t>(std::max(1, omp_get_max_threads())), 0.0);
   F.b.swap(r);
   cycle(0);
   F.b.swap(r);
   z.swap(F.x);
+  dot_with_ = nullptr;
+  if (!dots) return;
+  dots[0] = dots[1] = dots[2] = 0;
+  if (dot_done_) {
+    for (size_t t = 0; t < dot_partials_.size(); t += 8)
+      for (int k = 0; k < 3; ++k) dots[k] += dot_partials_[t + k];
+    return;
+  }
+  // A single-level hierarchy ends with the dense solve, not a smoothing step.
+  const Real* zp = z.data();
+  for (std::ptrdiff_t f = 0; f < z.size(); ++f) dots[f % 3] += dot_with[f] * static_cast<double>(zp[f]);
 }
 
 std::int64_t MultigridHierarchy::operator_nonzeros() const {

@@ -56,7 +56,9 @@ class MultigridHierarchy {
 
   // z ≈ A⁻¹ r by one cycle from zero (a symmetric positive definite preconditioner).
   // r and z are n × 3; r is left as it was, z's storage is exchanged with the cycle's.
-  void apply(FieldF& r, FieldF& z);
+  // With `dots`, also dots[c] = Σ_i dot_with[3i + c] z[3i + c] (dot_with 3n, node-major),
+  // formed as the cycle's last step writes z instead of in a pass of its own.
+  void apply(FieldF& r, FieldF& z, const double* dot_with = nullptr, double dots[3] = nullptr);
 
   int levels() const { return static_cast<int>(levels_.size()); }
   int coarse_cycle_index() const { return opt_.coarse_cycle_index; }
@@ -97,7 +99,9 @@ class MultigridHierarchy {
   void cycle(int l);
   void residual(Level& L);  // r = b − A x
   // One Chebyshev step of smooth(): from_x for the first step from a non-zero x.
-  void chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c);
+  // last: the smoothing's last step; post: of a post-smoothing.
+  void chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c,
+                      bool last, bool post);
   void smooth(Level& L, bool zero_initial);
   void refresh_row(Level& L, int row);
   void factor_coarsest();
@@ -108,6 +112,9 @@ class MultigridHierarchy {
   Eigen::MatrixXd coarse_rhs_;  // the coarsest solve's right-hand side, solved in place
   Eigen::VectorXd fine_weights_;  // the weights on the fine diagonal, exact
   std::vector<char> pinned_;      // fine nodes with a weight: their prolongation row is zero
+  const double* dot_with_ = nullptr;  // apply()'s dot products, formed in the last step
+  bool dot_done_ = false;
+  std::vector<double> dot_partials_;  // per thread, 8 doubles apart
 };
 
 }  // namespace lapis::hair_sketch::detail
