@@ -117,13 +117,12 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
             [&](std::ptrdiff_t f, T s) { sl[f] = inv_end * (inv_end * s - xl[f]); });
       }
     };
-    auto early = [&](int p) { return p == k0 - 1 || p == k0 || p == k1 - 1 || p == k1; };
     if (k0 < k1)
       for (int p : {k0 - 1, k0, k1 - 1, k1})  // k0 = k1 − 1 forms it twice, in the same buffer
         if (p >= 0 && p < nz) first_pass(p);
 #pragma omp barrier
     for (int k = k0; k < k1; ++k) {
-      if (k + 1 < nz && !early(k + 1)) first_pass(k + 1);
+      if (k + 1 < k1 - 1) first_pass(k + 1);  // k1 − 1 and k1 were formed before the barrier
       const T* S = buffer_of(k);
       const T* Sm = k > 0 ? buffer_of(k - 1) : nullptr;
       const T* Sp = k + 1 < nz ? buffer_of(k + 1) : nullptr;
