@@ -199,10 +199,16 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   field_.swap(wk.x);
   rep.iterations = it;
   rep.error_estimate = est;
+  // The W-cycle's corrections per visit of levels 1, 2, ... (those above the coarsest but
+  // one, which always make one), e.g. "(corrections per coarse visit: 4, 2)".
+  std::string corrections;
+  bool w_cycle = false;
+  for (int l = 1; l + 2 < mg_->levels(); ++l) {
+    corrections += (l > 1 ? ", " : "") + std::to_string(mg_->corrections(l));
+    w_cycle = w_cycle || mg_->corrections(l) > 1;
+  }
   rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels" +
-               (mg_->coarse_cycle_index() > 1
-                    ? " (" + std::to_string(mg_->coarse_cycle_index()) + " corrections per coarse visit)"
-                    : "") + ", " +
+               (w_cycle ? " (corrections per coarse visit: " + corrections + ")" : "") + ", " +
                std::to_string(it) + " iterations";
   rep.solve_ms = detail::ms_since(t1);
   rep.total_ms = detail::ms_since(t0);

@@ -221,9 +221,23 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     }
     levels_.push_back(std::move(c));
   }
+  // Corrections per visit of each level: one on the finest unless asked otherwise, one where
+  // the next level is the coarsest (its solve is exact), else coarse_cycle_index.
   // Automatic: more corrections pay once the hierarchy is deep enough for the V-cycle's
-  // weakening with depth to cost iterations (multigrid_field_solver.h has the figures).
-  if (opt_.coarse_cycle_index <= 0) opt_.coarse_cycle_index = levels_.size() >= 5 ? 4 : 2;
+  // weakening with depth to cost iterations (multigrid_field_solver.h has the figures), but
+  // at most two into a level small enough for its products to run on one thread: there the
+  // other thread waits, so each correction costs twice its share, and the visits multiply
+  // down the tree (250K: 12 and 13 iterations after a stroke and an edit either way, the
+  // level 3 below it visited 8 times a cycle instead of 16).
+  const bool automatic = opt_.coarse_cycle_index <= 0;
+  if (automatic) opt_.coarse_cycle_index = levels_.size() >= 5 ? 4 : 2;
+  corrections_.assign(levels_.size(), 1);
+  for (size_t l = 0; l + 2 < levels_.size(); ++l) {
+    const bool serial = levels_[l + 1].A.nonZeros() <= parallel_nonzeros;
+    corrections_[l] = l == 0 ? opt_.cycle_index
+                      : automatic && serial ? std::min(2, opt_.coarse_cycle_index)
+                                            : opt_.coarse_cycle_index;
+  }
   Level& f0 = levels_[0];
   f0.matrix_free = true;
   f0.weights.setZero(f0.A.rows());
@@ -503,8 +517,7 @@ void MultigridHierarchy::cycle(int l) {
   // Pᵀ(r − A P e) = b_c − A_c e, so they run on the coarse level alone: one coarse product
   // instead of a residual, a restriction and a prolongation on this level (which cost
   // 8× more). Above the coarsest level the first correction is already exact.
-  const bool exact = l + 2 == static_cast<int>(levels_.size());
-  const int corrections = exact ? 1 : (l == 0 ? opt_.cycle_index : opt_.coarse_cycle_index);
+  const int corrections = corrections_[l];
   if (corrections > 1) {
     C.b0.swap(C.b);  // the coarse right-hand side, kept
     C.e.swap(C.x);   // the corrections so far

@@ -39,7 +39,8 @@ struct MultigridOptions {
   int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
   int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
   int coarse_cycle_index = 0;    // ... and per visit of each coarser level (1: V-cycle;
-                                 // 0: 4 on hierarchies of 5 or more levels, else 2)
+                                 // 0: 4 on hierarchies of 5 or more levels, else 2, and
+                                 // at most 2 into a level whose products run on one thread)
   double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
   int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
@@ -61,7 +62,8 @@ class MultigridHierarchy {
   void apply(FieldF& r, FieldF& z, const double* dot_with = nullptr, double dots[3] = nullptr);
 
   int levels() const { return static_cast<int>(levels_.size()); }
-  int coarse_cycle_index() const { return opt_.coarse_cycle_index; }
+  // Coarse corrections per visit of level l (1 on the level above the coarsest).
+  int corrections(int l) const { return corrections_[l]; }
   std::array<int, 3> dims(int level) const { return levels_[level].dims; }
   std::int64_t operator_nonzeros() const;
 
@@ -108,6 +110,7 @@ class MultigridHierarchy {
 
   MultigridOptions opt_;
   std::vector<Level> levels_;
+  std::vector<int> corrections_;  // per level, see corrections()
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
   Eigen::MatrixXd coarse_rhs_;  // the coarsest solve's right-hand side, solved in place
   Eigen::VectorXd fine_weights_;  // the weights on the fine diagonal, exact
