@@ -97,17 +97,21 @@ TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth int
   const GrowthOptions opt;
   const Strands grown = grow_strands(field, roots, opt);
   REQUIRE(grown.count() == static_cast<int>(roots.size()));
-  // The reference: one strand at a time through the public scalar lookup, p += l·v(p) until
+  // The reference: one strand at a time through the public scalar lookup, in grid
+  // coordinates q += 0.5·v(q), p = origin + d·q (so p += l·v with l = 0.5 d), until
   // |v| < 0.05, the box is left (v = 0 there) or the length cap. The kernel (eight strands
   // side by side, vector lerps) must give exactly these floats.
-  const float l = static_cast<float>(opt.step * g.spacing);
+  const float step = static_cast<float>(opt.step), d = static_cast<float>(g.spacing);
+  const Eigen::Vector3f origin = g.origin.cast<float>();
   const int max_steps = static_cast<int>(opt.max_length / opt.step);
   for (int i = 0; i < grown.count(); i += 7) {
     std::vector<Eigen::Vector3f> ref{roots[i].cast<float>()};
+    Eigen::Vector3f q = (ref[0] - origin) * static_cast<float>(1.0 / g.spacing);
     for (int it = 0; it < max_steps; ++it) {
-      const Eigen::Vector3f v = field(ref.back());
+      const Eigen::Vector3f v = field.at_grid(q);
       if (v.squaredNorm() < static_cast<float>(opt.min_magnitude * opt.min_magnitude)) break;
-      ref.push_back(ref.back() + l * v);
+      q += step * v;
+      ref.push_back(origin + d * q);
     }
     REQUIRE(grown.offsets[i + 1] - grown.offsets[i] == static_cast<int>(ref.size()));
     for (size_t k = 0; k < ref.size(); ++k) REQUIRE(grown.points[grown.offsets[i] + k] == ref[k]);

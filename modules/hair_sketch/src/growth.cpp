@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -21,73 +22,82 @@ SampledField::SampledField(const Grid& grid, const Field& field)
 
 namespace {
 
-// Trilinear interpolation at grid coordinates q (in spacings from the origin), which must
-// lie inside the grid: the cell's first corner and its fractions.
-struct Cell {
-  const float* e00;  // x y z of corner (i, j, k); (i+1, j, k) follows
-  std::ptrdiff_t sy, sz;
-  float fx, fy, fz;
+// Four floats as one SIMD register (GCC/Clang vector extensions: SSE on x86-64, NEON on
+// ARM, scalar code elsewhere). A position is x y z in lanes 0–2, in grid coordinates
+// (spacings from the origin), so that a step needs no conversion from world coordinates.
+typedef float Float4 __attribute__((vector_size(4 * sizeof(float))));
+typedef int Int4 __attribute__((vector_size(4 * sizeof(int))));
+
+inline Float4 load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline Float4 splat(float x) { return Float4{x, x, x, x}; }
+
+// What a lookup needs of the field.
+struct Lookup {
+  const float* data;      // x y z per node, node-major, padded (SampledField)
+  std::ptrdiff_t sy, sz;  // float offsets of the next node along y and z
+  Float4 far_corner;      // dims − 1
+  Float4 last_cell;       // dims − 2: the first corner of the last cell per axis
 };
 
-inline Cell locate(const float* data, const std::array<int, 3>& dims, float qx, float qy,
-                   float qz) {
-  const int i = std::min(static_cast<int>(qx), dims[0] - 2);
-  const int j = std::min(static_cast<int>(qy), dims[1] - 2);
-  const int k = std::min(static_cast<int>(qz), dims[2] - 2);
-  const std::ptrdiff_t sy = 3 * static_cast<std::ptrdiff_t>(dims[0]), sz = sy * dims[1];
-  return {data + 3 * static_cast<std::ptrdiff_t>(i) + sy * j + sz * k, sy, sz, qx - i, qy - j,
-          qz - k};
+Lookup lookup_of(const SampledField& field) {
+  const std::array<int, 3>& d = field.grid().dims;
+  const std::ptrdiff_t sy = 3 * static_cast<std::ptrdiff_t>(d[0]);
+  return {field.data(), sy, sy * d[1],
+          Float4{float(d[0] - 1), float(d[1] - 1), float(d[2] - 1), 0.f},
+          Float4{float(d[0] - 2), float(d[1] - 2), float(d[2] - 2), 0.f}};
 }
 
-// The four x-edges of the cell, then lerps along x, y, z: a dependency chain three
-// multiply-adds deep instead of a sum over the eight corners.
-inline void trilinear(const Cell& c, float v[3]) {
-  const float *e00 = c.e00, *e10 = e00 + c.sy, *e01 = e00 + c.sz, *e11 = e01 + c.sy;
-  auto lerp = [](float a, float b, float t) { return a + t * (b - a); };
-  for (int d = 0; d < 3; ++d) {
-    const float c00 = lerp(e00[d], e00[3 + d], c.fx), c10 = lerp(e10[d], e10[3 + d], c.fx);
-    const float c01 = lerp(e01[d], e01[3 + d], c.fx), c11 = lerp(e11[d], e11[3 + d], c.fx);
-    v[d] = lerp(lerp(c00, c10, c.fy), lerp(c01, c11, c.fy), c.fz);
-  }
-}
-
+// Inside the grid, where the field is defined (a NaN position is not).
+inline bool inside(const Lookup& f, Float4 q) {
+  const Int4 in = (q >= Float4{}) & (q <= f.far_corner);
 #if defined(__SSE2__)
-// The same lerps on x y z at once (lane 3 is ignored): an x-edge is six consecutive floats,
-// read as two overlapping 4-float loads, so each lerp is one vector subtract, multiply and
-// add. The operations and their order per component are those of trilinear(), so the
-// result is bit for bit the same (the project's portable x86-64 build has no fused
-// multiply-add for the compiler to contract either into; a -march=native build may).
-inline void trilinear_sse(const Cell& c, float v[4]) {
-  const __m128 fx = _mm_set1_ps(c.fx), fy = _mm_set1_ps(c.fy), fz = _mm_set1_ps(c.fz);
-  auto lerp = [](__m128 a, __m128 b, __m128 t) { return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a))); };
-  auto edge = [&](const float* e) { return lerp(_mm_loadu_ps(e), _mm_loadu_ps(e + 3), fx); };
-  const __m128 c00 = edge(c.e00), c10 = edge(c.e00 + c.sy);
-  const __m128 c01 = edge(c.e00 + c.sz), c11 = edge(c.e00 + c.sz + c.sy);
-  _mm_storeu_ps(v, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
-}
-#endif
-
-inline void field_at(const Cell& c, float v[4]) {
-#if defined(__SSE2__)
-  trilinear_sse(c, v);
+  return (_mm_movemask_ps(reinterpret_cast<__m128>(in)) & 7) == 7;
 #else
-  trilinear(c, v);
+  return in[0] && in[1] && in[2];
 #endif
 }
 
-inline bool inside(const std::array<int, 3>& dims, float qx, float qy, float qz) {
-  return qx >= 0 && qy >= 0 && qz >= 0 && qx <= dims[0] - 1 && qy <= dims[1] - 1 &&
-         qz <= dims[2] - 1;
+// Trilinear interpolation at q, which must be inside the grid; lane 3 of the result is
+// meaningless. The cell's four x-edges, then lerps along x, y and z: a dependency chain
+// three multiply-adds deep instead of a sum over the eight corners. An x-edge is six
+// consecutive floats, read as two overlapping 4-float loads, so each lerp is one vector
+// subtract, multiply and add on x y z at once.
+inline Float4 interpolate(const Lookup& f, Float4 q) {
+  const Int4 cell = __builtin_convertvector(q < f.last_cell ? q : f.last_cell, Int4);
+  const Float4 t = q - __builtin_convertvector(cell, Float4);
+  const float* e00 =
+      f.data + 3 * static_cast<std::ptrdiff_t>(cell[0]) + f.sy * cell[1] + f.sz * cell[2];
+  const Float4 tx = splat(t[0]), ty = splat(t[1]), tz = splat(t[2]);
+  auto lerp = [](Float4 a, Float4 b, Float4 w) { return a + w * (b - a); };
+  auto edge = [&](const float* e) { return lerp(load4(e), load4(e + 3), tx); };
+  return lerp(lerp(edge(e00), edge(e00 + f.sy), ty),
+              lerp(edge(e00 + f.sz), edge(e00 + f.sz + f.sy), ty), tz);
+}
+
+inline Float4 to_grid(const SampledField& field, const Eigen::Vector3f& p) {
+  const Eigen::Vector3f q = (p - field.grid().origin.cast<float>()) *
+                            static_cast<float>(1.0 / field.grid().spacing);
+  return Float4{q.x(), q.y(), q.z(), 0.f};
 }
 
 }  // namespace
 
 Eigen::Vector3f SampledField::operator()(const Eigen::Vector3f& p) const {
-  const Eigen::Vector3f q = (p - origin_) * inv_spacing_;
-  Eigen::Vector3f v = Eigen::Vector3f::Zero();
-  if (inside(grid_.dims, q.x(), q.y(), q.z()))
-    trilinear(locate(data_.data(), grid_.dims, q.x(), q.y(), q.z()), v.data());
-  return v;
+  const Float4 q = to_grid(*this, p);
+  return at_grid({q[0], q[1], q[2]});
+}
+
+Eigen::Vector3f SampledField::at_grid(const Eigen::Vector3f& q) const {
+  const Lookup f = lookup_of(*this);
+  const Float4 g{q.x(), q.y(), q.z(), 0.f};
+  if (!inside(f, g)) return Eigen::Vector3f::Zero();
+  const Float4 v = interpolate(f, g);
+  return {v[0], v[1], v[2]};
 }
 
 namespace {
@@ -99,14 +109,16 @@ constexpr int kLanes = 8;
 
 // Strands [first, last) grown into one block, kLanes at a time: each lane appends its points
 // to its own buffer, and finished groups go to the block in strand order.
+// `step` is the segment length per unit of field in grid spacings.
 void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
-                int last, float l, int max_steps, float vmin, std::vector<Eigen::Vector3f>& points,
+                int last, float step, int max_steps, float vmin, std::vector<Eigen::Vector3f>& points,
                 std::vector<int>& counts) {
   const float vmin2 = vmin * vmin;
-  const std::array<int, 3>& dims = field.grid().dims;
-  const float* data = field.data();
-  const Eigen::Vector3f o = field.grid().origin.cast<float>();
-  const float inv = static_cast<float>(1.0 / field.grid().spacing);
+  const Lookup f = lookup_of(field);
+  const Eigen::Vector3f origin = field.grid().origin.cast<float>();
+  const Float4 o{origin.x(), origin.y(), origin.z(), 0.f};
+  const Float4 d = splat(static_cast<float>(field.grid().spacing));
+  const Float4 l = splat(step);
   std::array<std::vector<Eigen::Vector3f>, kLanes> lanes;
   const size_t typical = static_cast<size_t>(std::min(max_steps + 1, 256));
   for (auto& lane : lanes) lane.reserve(typical);  // once per block, not per growing strand
@@ -120,25 +132,28 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   for (int s0 = first; s0 < last; s0 += kLanes) {
     const int m = std::min(kLanes, last - s0);
     unsigned growing = 0;
+    Float4 q[kLanes];  // each lane's last point in grid coordinates
     for (int a = 0; a < m; ++a) {
       lanes[a].assign(1, roots[s0 + a].cast<float>());
+      q[a] = to_grid(field, lanes[a][0]);
       growing |= 1u << a;
     }
     for (int it = 0; it < max_steps && growing; ++it)
       for (int a = 0; a < m; ++a) {
         if (!(growing & (1u << a))) continue;
-        const Eigen::Vector3f p = lanes[a].back();
-        const float qx = (p[0] - o.x()) * inv, qy = (p[1] - o.y()) * inv;
-        const float qz = (p[2] - o.z()) * inv;
         // Outside the grid the field is zero, so the strand stops at the box.
-        const bool in = inside(dims, qx, qy, qz);
-        float v[4];
-        if (in) field_at(locate(data, dims, qx, qy, qz), v);
-        if (!in || v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < vmin2) {
+        if (!inside(f, q[a])) {
           growing &= ~(1u << a);
           continue;
         }
-        lanes[a].emplace_back(p[0] + l * v[0], p[1] + l * v[1], p[2] + l * v[2]);
+        const Float4 v = interpolate(f, q[a]);
+        if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < vmin2) {
+          growing &= ~(1u << a);
+          continue;
+        }
+        q[a] += l * v;
+        const Float4 p = o + d * q[a];
+        lanes[a].emplace_back(p[0], p[1], p[2]);
       }
     for (int a = 0; a < m; ++a) {
       points.insert(points.end(), lanes[a].begin(), lanes[a].end());
@@ -152,7 +167,7 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
 void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
                         Strands& out) {
   const int n = static_cast<int>(roots.size());
-  const float l = static_cast<float>(options_.step * field.grid().spacing);
+  const float l = static_cast<float>(options_.step);
   const int max_steps = std::max(1, static_cast<int>(options_.max_length / options_.step));
   const float vmin = static_cast<float>(options_.min_magnitude);
   constexpr int kBlock = 64;

@@ -1,6 +1,7 @@
 // Hair growth along the field (thesis §4.6): from each root, append segments l·v(p) with
 // l = 0.5 d and v the trilinearly interpolated field, until |v| < 0.05, the strand leaves
-// the grid, or reaches its maximum length. Strands grow in parallel (OpenMP) into a
+// the grid, or reaches its maximum length. Strands step in grid coordinates (q += 0.5 v(q),
+// p = origin + d q), which saves a conversion per step. Strands grow in parallel (OpenMP) into a
 // float field copy laid out node-major for cache-friendly lookups; the result does not
 // depend on the thread count.
 #pragma once
@@ -19,8 +20,10 @@ namespace lapis::hair_sketch {
 class SampledField {
  public:
   SampledField(const Grid& grid, const Field& field);
-  // Trilinear interpolation; zero outside the grid.
+  // Trilinear interpolation at a world point; zero outside the grid.
   Eigen::Vector3f operator()(const Eigen::Vector3f& p) const;
+  // The same at grid coordinates q = (p − origin) / spacing, as growth steps them.
+  Eigen::Vector3f at_grid(const Eigen::Vector3f& q) const;
   const Grid& grid() const { return grid_; }
   const float* data() const { return data_.data(); }  // x y z per node, node-major
 
