@@ -12,11 +12,8 @@
 namespace lapis::hair_sketch {
 
 SampledField::SampledField(const Grid& grid, const Field& field)
-    : grid_(grid),
-      origin_(grid.origin.cast<float>()),
-      inv_spacing_(static_cast<float>(1.0 / grid.spacing)),
-      data_(field.data(), field.data() + field.size()) {
-  // Padding: the vector lookup reads a node's x y z as four floats (trilinear_sse).
+    : grid_(grid), data_(field.data(), field.data() + field.size()) {
+  // Padding: the vector lookup reads a node's x y z as four floats (interpolate()).
   data_.resize(data_.size() + 4, 0.0f);
 }
 
@@ -118,7 +115,7 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
   const Eigen::Vector3f origin = field.grid().origin.cast<float>();
   const Float4 o{origin.x(), origin.y(), origin.z(), 0.f};
   const Float4 d = splat(static_cast<float>(field.grid().spacing));
-  const Float4 l = splat(step);
+  const Float4 l{step, step, step, 0.f};  // lane 3 of a position stays 0
   std::array<std::vector<Eigen::Vector3f>, kLanes> lanes;
   const size_t typical = static_cast<size_t>(std::min(max_steps + 1, 256));
   for (auto& lane : lanes) lane.reserve(typical);  // once per block, not per growing strand

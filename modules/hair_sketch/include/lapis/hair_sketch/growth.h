@@ -29,8 +29,6 @@ class SampledField {
 
  private:
   Grid grid_;
-  Eigen::Vector3f origin_;
-  float inv_spacing_;
   std::vector<float> data_;  // 3 per node
 };
 
