@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <omp.h>
 
 #include "fixture.h"
@@ -128,6 +129,42 @@ TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth int
   grower.grow(field, roots, reused);
   REQUIRE(reused.offsets == grown.offsets);
   CHECK(reused.points == grown.points);
+}
+
+TEST_CASE("hair_sketch: growth from a root outside the grid stops at once; bad roots and "
+          "options are rejected by name") {
+  const SampledField field = stream_curve_field();
+  const Grid& g = field.grid();
+  std::vector<Eigen::Vector3d> roots = scalp_roots(20);
+  const Eigen::Vector3d far = g.origin - Eigen::Vector3d::Constant(10 * g.spacing);
+  roots[3] = far;  // outside the box, where the field is zero
+  const Strands s = grow_strands(field, roots);
+  REQUIRE(s.count() == static_cast<int>(roots.size()));
+  CHECK(s.offsets[4] - s.offsets[3] == 1);  // the root alone
+  CHECK(s.points[s.offsets[3]] == far.cast<float>());
+  CHECK(s.offsets[5] - s.offsets[4] > 1);  // its neighbours grow as usual
+
+  auto message = [&](std::vector<Eigen::Vector3d> r, GrowthOptions o) -> std::string {
+    try {
+      grow_strands(field, r, o);
+    } catch (const lapis::InvalidArgument& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  roots[7].y() = std::numeric_limits<double>::quiet_NaN();
+  CHECK(message(roots, {}).find("root 7 is not finite") != std::string::npos);
+  roots[7] = roots[6];
+  GrowthOptions o;
+  o.step = 0;
+  CHECK(message(roots, o).find("step must be positive") != std::string::npos);
+  o = {};
+  o.max_length = std::numeric_limits<double>::infinity();
+  CHECK(message(roots, o).find("max_length must be non-negative") != std::string::npos);
+  o = {};
+  o.min_magnitude = -1;
+  CHECK(message(roots, o).find("min_magnitude must be non-negative") != std::string::npos);
+  CHECK(message(roots, {}) == "no error");
 }
 
 TEST_CASE("hair_sketch: malformed head and scalp files give clear errors") {

@@ -4,6 +4,10 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <string>
+
+#include "lapis/core/error.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -163,9 +167,26 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
 
 void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
                         Strands& out) {
+  constexpr const char* fn = "hair_sketch::StrandGrower::grow()";
+  const GrowthOptions& o = options_;
+  if (!(std::isfinite(o.step) && o.step > 0))
+    throw InvalidArgument(std::string(fn) + ": step must be positive, got " + std::to_string(o.step));
+  if (!(std::isfinite(o.max_length) && o.max_length >= 0))
+    throw InvalidArgument(std::string(fn) + ": max_length must be non-negative, got " +
+                          std::to_string(o.max_length));
+  if (!(std::isfinite(o.min_magnitude) && o.min_magnitude >= 0))
+    throw InvalidArgument(std::string(fn) + ": min_magnitude must be non-negative, got " +
+                          std::to_string(o.min_magnitude));
+  if (roots.size() > static_cast<size_t>(std::numeric_limits<int>::max() / 2))
+    throw InvalidArgument(std::string(fn) + ": " + std::to_string(roots.size()) + " roots are too many");
+  for (size_t i = 0; i < roots.size(); ++i)
+    if (!roots[i].allFinite())
+      throw InvalidArgument(std::string(fn) + ": root " + std::to_string(i) + " is not finite");
   const int n = static_cast<int>(roots.size());
   const float l = static_cast<float>(options_.step);
-  const int max_steps = std::max(1, static_cast<int>(options_.max_length / options_.step));
+  // At least one step (a zero length grows one segment, as sessions allow); capped so that a
+  // huge maximum length cannot overflow the step count.
+  const int max_steps = static_cast<int>(std::clamp(o.max_length / o.step, 1.0, 1e8));
   const float vmin = static_cast<float>(options_.min_magnitude);
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
