@@ -183,11 +183,11 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
     if (!roots[i].allFinite())
       throw InvalidArgument(std::string(fn) + ": root " + std::to_string(i) + " is not finite");
   const int n = static_cast<int>(roots.size());
-  const float l = static_cast<float>(options_.step);
+  const float l = static_cast<float>(o.step);
   // At least one step (a zero length grows one segment, as sessions allow); capped so that a
   // huge maximum length cannot overflow the step count.
   const int max_steps = static_cast<int>(std::clamp(o.max_length / o.step, 1.0, 1e8));
-  const float vmin = static_cast<float>(options_.min_magnitude);
+  const float vmin = static_cast<float>(o.min_magnitude);
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
   if (static_cast<int>(blocks_.size()) < blocks) blocks_.resize(blocks);

@@ -197,7 +197,6 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
     : opt_(options) {
   opt_.smoothing_degree = std::max(1, opt_.smoothing_degree);
   opt_.cycle_index = std::max(1, opt_.cycle_index);
-
   // The hierarchy of the unconstrained operator DᵀD first; the weights then arrive as an
   // edit, exactly as later constraint changes do.
   Level fine;
