@@ -10,6 +10,7 @@
 #include "field_report.h"
 #include "lapis/core/error.h"
 #include "grid_stencil.h"
+#include "local_relaxation.h"
 #include "multigrid_hierarchy.h"
 
 namespace lapis::hair_sketch {
@@ -21,9 +22,10 @@ struct MultigridFieldSolver::Work {
   detail::FieldF rf, zf;  // the cycle's residual and correction, in its precision
   detail::StencilScratch<double> buffers;
   std::vector<double> line_dots;  // per thread: p·q's three column sums, 8 doubles apart
+  std::vector<char> mark;         // nodes_near()'s scratch, one per node
 
   explicit Work(int n)
-      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3) {}
+      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3), mark(static_cast<size_t>(n), 0) {}
 };
 
 namespace {
@@ -56,6 +58,23 @@ MultigridFieldSolver::MultigridFieldSolver(const Grid& grid, MultigridFieldOptio
 MultigridFieldSolver::~MultigridFieldSolver() = default;
 
 int MultigridFieldSolver::levels() const { return mg_->levels(); }
+
+int MultigridFieldSolver::relax_near_edit(const ConstraintDiff& diff) {
+  if (opt_.relax_sweeps <= 0 || opt_.relax_radius < 0) return 0;
+  std::vector<int> seeds;
+  seeds.reserve(diff.added.size() + diff.removed.size() + diff.changed.size());
+  for (const Constraint& c : diff.added) seeds.push_back(c.node);
+  seeds.insert(seeds.end(), diff.removed.begin(), diff.removed.end());
+  for (const Constraint& c : diff.changed) seeds.push_back(c.node);
+  if (seeds.empty()) return 0;
+  const std::vector<int> nodes = detail::nodes_near(grid_.dims, seeds, opt_.relax_radius, work_->mark);
+  // Only where it costs a small part of one iteration (a whole new style relaxes nothing).
+  if (static_cast<double>(nodes.size()) * opt_.relax_sweeps > opt_.relax_budget * field_.rows())
+    return 0;
+  detail::gauss_seidel(grid_.dims, weights_.data(), targets_.data(), nodes, opt_.relax_sweeps,
+                       work_->x.data());
+  return static_cast<int>(nodes.size());
+}
 
 FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
                                              const ConstraintSet& current) {
@@ -104,8 +123,10 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   const double* wt = weights_.data();
   const double* tg = targets_.data();
 
-  // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
   wk.x = field_;
+  const int relaxed = relax_near_edit(diff);
+
+  // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
   detail::normal_operator_visit(grid_.dims, wt, x, wk.buffers,
                                 [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
                                   for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
@@ -209,6 +230,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   }
   rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels" +
                (w_cycle ? " (corrections per coarse visit: " + corrections + ")" : "") + ", " +
+               (relaxed > 0 ? std::to_string(relaxed) + " nodes relaxed near the edit, " : "") +
                std::to_string(it) + " iterations";
   rep.solve_ms = detail::ms_since(t1);
   rep.total_ms = detail::ms_since(t0);
