@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <omp.h>
+
 #include <random>
 #include <thread>
 
@@ -162,4 +164,23 @@ TEST_CASE("solver: independent objects factorize and solve on different threads"
   t2.join();
   CHECK(r1 <= 1e-10);
   CHECK(r2 <= 1e-10);
+}
+
+TEST_CASE("solver: a factorization leaves the caller's OpenMP nesting as it found it") {
+  // CHOLMOD's own parallel regions run serial during the factorization (cholmod_factor.cpp);
+  // the limit must not outlive it, on this thread or another.
+  const SparseMatrix A = hair_normal_matrix(12, spread_nodes(1728, 40));
+  const int levels = omp_get_max_active_levels();
+  Cholesky chol;
+  chol.compute(A);
+  CHECK(omp_get_max_active_levels() == levels);
+  int team = 0;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp atomic
+    ++team;
+  }
+  CHECK(team == 2);
+  const DenseMatrix B = random_rhs(1728, 3, 12);
+  CHECK(relative_residual(A, chol.solve(B), B) <= 1e-10);
 }

@@ -14,6 +14,25 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Runs the OpenMP regions opened on this thread with one thread each, for its lifetime.
+// CHOLMOD's supernodal numeric factorization opens parallel regions of a fixed 4 threads
+// (CHOLMOD_OMP_NUM_THREADS) around the copies and zeroing between supernodes — thousands per
+// factorization, most on a few KB. On two cores the hand-offs cost more than the copies:
+// 1.2 s → 1.0 s for the 12.5-GFLOP factor of a 50K-vertex merge, and the same alone or beside
+// a second factorization. The BLAS, which does the flops, has its own threads
+// (blas_threads.h). max-active-levels is per thread in libgomp (OpenMP 5), so other threads
+// keep their parallelism.
+class SerialOpenMP {
+ public:
+  SerialOpenMP() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
+  ~SerialOpenMP() { omp_set_max_active_levels(levels_); }
+  SerialOpenMP(const SerialOpenMP&) = delete;
+  SerialOpenMP& operator=(const SerialOpenMP&) = delete;
+
+ private:
+  int levels_;
+};
+
 }  // namespace
 
 CholmodFactor::~CholmodFactor() {
@@ -86,7 +105,10 @@ void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const c
   factorized_ = false;
   const auto t0 = std::chrono::steady_clock::now();
   cholmod_sparse a = sparse_view(A, -1);
-  cholmod_factorize(&a, L_, c);
+  {
+    const SerialOpenMP serial;
+    cholmod_factorize(&a, L_, c);
+  }
   context_.check(function, "cholmod_factorize");
   stats.factorize_ms = ms_since(t0);
   if (c->status == CHOLMOD_NOT_POSDEF) {
