@@ -256,6 +256,35 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   for (int v = 0; v < n; ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
   m->polar_start.assign(m->free.size(), Eigen::Quaterniond::Identity());
 
+  // Eq. 2.10/2.11's system is built and factorized on a second thread while Eq. 2.8's is built,
+  // ordered and factorized on this one: started before E_L and E_R are assembled, it is done
+  // before the first factorization is, and the first system's ordering (nested dissection,
+  // CAMD) runs on one core and would leave the other idle.
+  std::future<void> second_done;
+  // Two factorizations at once: one BLAS thread each (blas_threads.h), else OpenBLAS' idle
+  // threads busy-wait on the cores the other factorization needs.
+  std::optional<solver::ScopedBlasThreads> one_blas_thread;
+  if (options_.shearing != ShearingRemoval::None) {
+    one_blas_thread.emplace(1);
+    // It reads w, free and constrained, which this thread only reads, and writes only
+    // m->second and m->delta, which this thread reads after joining. On an exception below,
+    // second_done's destructor joins before m is destroyed.
+    second_done = std::async(std::launch::async, [&m = *m, &w, n, weights = options_.weights] {
+      // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
+      // Laplacian the details.
+      detail::Stencil s0 = w.stencil;
+      detail::reweight(s0, w.mesh.V, w.mesh.F, weights);
+      SparseRows D(n);
+      for (int i : m.free) detail::add_laplacian_row(D, s0, i);
+      const solver::SparseMatrix A_D = D.matrix();
+      m.second = solver::LeastSquares(n);
+      m.second.add_block(A_D, 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
+      m.second.set_fixed(m.constrained);
+      m.delta = A_D * solver::DenseMatrix(w.mesh.V);
+      m.second.precompute();
+    });
+  }
+
   // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
   // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
   detail::Stencil s = w.stencil;
@@ -361,29 +390,6 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   m->transform_rest = A_T * solver::DenseMatrix(P);
   m->blend_rest = A_B * solver::DenseMatrix(P);
 
-  // Eq. 2.10/2.11 is factorized on a second thread while Eq. 2.8's is: the first system's
-  // ordering (nested dissection, CAMD) runs on one core and would leave the other idle.
-  std::future<void> second_done;
-  // Two factorizations at once: one BLAS thread each (blas_threads.h), else OpenBLAS' idle
-  // threads busy-wait on the cores the other factorization needs.
-  std::optional<solver::ScopedBlasThreads> one_blas_thread;
-  if (options_.shearing != ShearingRemoval::None) {
-    one_blas_thread.emplace(1);
-    // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
-    // Laplacian the details.
-    detail::Stencil s0 = w.stencil;
-    detail::reweight(s0, w.mesh.V, w.mesh.F, options_.weights);
-    SparseRows D(n);
-    for (int i : m->free) {
-      detail::add_laplacian_row(D, s0, i);
-    }
-    const solver::SparseMatrix A_D = D.matrix();
-    m->second = solver::LeastSquares(n);
-    m->second.add_block(A_D, 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
-    m->second.set_fixed(m->constrained);
-    m->delta = A_D * solver::DenseMatrix(w.mesh.V);
-    second_done = std::async(std::launch::async, [&second = m->second] { second.precompute(); });
-  }
   try {
     m->first.precompute();
   } catch (...) {
