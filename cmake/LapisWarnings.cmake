@@ -6,6 +6,11 @@ if(LAPIS_SANITIZE)
   target_link_options(lapis_build_flags INTERFACE -fsanitize=address,undefined)
 endif()
 
+# Executables also get the allocator (cmake/LapisAllocator.cmake).
 function(lapis_target_defaults target)
   target_link_libraries(${target} PRIVATE lapis_build_flags)
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "EXECUTABLE")
+    lapis_use_allocator(${target})
+  endif()
 endfunction()
