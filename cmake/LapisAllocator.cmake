@@ -20,7 +20,7 @@ if(LAPIS_JEMALLOC)
     add_library(lapis_allocator OBJECT ${CMAKE_CURRENT_LIST_DIR}/../modules/core/allocator/jemalloc_options.cpp)
     target_link_libraries(lapis_allocator INTERFACE ${LAPIS_JEMALLOC_LIBRARY})
     add_library(lapis::allocator ALIAS lapis_allocator)
-    message(STATUS "lapis: executables allocate through ${LAPIS_JEMALLOC_LIBRARY} (thp:always)")
+    message(STATUS "lapis: executables allocate through ${LAPIS_JEMALLOC_LIBRARY} (thp:always, dirty_decay_ms:-1)")
   else()
     message(WARNING "lapis: jemalloc not found (Debian: libjemalloc-dev, installed by scripts/setup); "
                     "executables keep the system allocator and one-off set-ups run slower")
