@@ -17,11 +17,12 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // Runs the OpenMP regions opened on this thread with one thread each, for its lifetime.
 // CHOLMOD's supernodal numeric factorization opens parallel regions of a fixed 4 threads
 // (CHOLMOD_OMP_NUM_THREADS) around the copies and zeroing between supernodes — thousands per
-// factorization, most on a few KB. On two cores the hand-offs cost more than the copies:
-// 1.2 s → 1.0 s for the 12.5-GFLOP factor of a 50K-vertex merge, and the same alone or beside
-// a second factorization. The BLAS, which does the flops, has its own threads
-// (blas_threads.h). max-active-levels is per thread in libgomp (OpenMP 5), so other threads
-// keep their parallelism.
+// factorization, most on a few KB. On two cores the hand-offs cost more than the copies: the
+// 12.5-GFlop factor of a 50K-vertex merge took ~560 instead of ~850 ms (medians of five
+// alternating runs; 1.0 instead of 1.2 s with glibc's malloc), alone or beside a second
+// factorization. The BLAS, which does the flops, has its own threads (blas_threads.h).
+// max-active-levels is per thread in libgomp (OpenMP 5), so other threads keep their
+// parallelism.
 class SerialOpenMP {
  public:
   SerialOpenMP() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
