@@ -12,10 +12,15 @@
 // system grants on request when /sys/kernel/mm/transparent_hugepage/enabled is "madvise", as on
 // Debian: 2 MB per fault instead of 4 KB.
 //
-// dirty_decay_ms:-1 keeps freed pages in the process for reuse instead of purging them over the
-// following seconds: each purged page must be zeroed by the kernel again when reused, and that
-// zeroing was a fifth of a 50K merge's main thread. The cost is that the process's resident
-// memory stays at its peak (a 50K merge: 840 MB instead of 670–700 MB).
+// dirty_decay_ms:-1 keeps freed pages in the process for reuse instead of purging them: each
+// purged page must be zeroed by the kernel again when reused, and that zeroing was a fifth of
+// a 50K merge's main thread. The purging that matters is of blocks over 8 MiB (the factors,
+// the normal matrices): jemalloc serves them from its "huge" arena and purges that one at once
+// on free unless the default decay is -1. Neither oversize_threshold:0 nor keeping pages only
+// during mesh_deform's set-up (per-arena mallctl) recovered the gain: cold 50K merges, medians
+// of six alternating runs, 2.09 and 1.81 s against 1.59 s. The cost is that the process's
+// resident memory stays at its peak (a 50K merge: 840 MB instead of 670–700 MB; a 1M-unknown
+// hair benchmark: 4.0 instead of 2.2 GiB).
 //
 // One merge of the 50K-vertex bench source in a fresh process, same code, three runs each:
 // glibc 3.17–3.24 s; jemalloc with thp:always 2.09–2.29 s; with both options 1.55–1.82 s.
