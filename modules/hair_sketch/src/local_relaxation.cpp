@@ -29,9 +29,8 @@ inline Node node_at(const std::array<int, 3>& d, std::ptrdiff_t v) {
   return n;
 }
 
-// (D x)_u = −x_u + Σ_{j∈N(u)} x_j / |N(u)|, 3 columns.
-inline void laplacian_at(const std::array<int, 3>& d, std::ptrdiff_t u, const double* x, double out[3]) {
-  const Node n = node_at(d, u);
+// (D x)_u = −x_u + Σ_{j∈N(u)} x_j / |N(u)|, 3 columns; n = node_at(d, u).
+inline void laplacian_at(const Node& n, std::ptrdiff_t u, const double* x, double out[3]) {
   double s[3] = {0, 0, 0};
   for (int a = 0; a < n.count; ++a)
     for (int c = 0; c < 3; ++c) s[c] += x[3 * n.nb[a] + c];
@@ -69,14 +68,15 @@ inline double off_diagonal_interior(const std::array<int, 3>& d, std::ptrdiff_t 
 inline double off_diagonal(const std::array<int, 3>& d, std::ptrdiff_t v, const double* x, double sum[3]) {
   const Node n = node_at(d, v);
   double own[3];
-  laplacian_at(d, v, x, own);
+  laplacian_at(n, v, x, own);
   double diag = 1;
   for (int c = 0; c < 3; ++c) sum[c] = -own[c];
   for (int a = 0; a < n.count; ++a) {
     const std::ptrdiff_t u = n.nb[a];
-    const int count = node_at(d, u).count;
+    const Node nu = node_at(d, u);
+    const int count = nu.count;
     double lu[3];
-    laplacian_at(d, u, x, lu);
+    laplacian_at(nu, u, x, lu);
     for (int c = 0; c < 3; ++c) sum[c] += lu[c] / count;
     diag += 1.0 / (static_cast<double>(count) * count);
   }
