@@ -13,13 +13,10 @@ if(LAPIS_JEMALLOC AND LAPIS_SANITIZE)
   set(LAPIS_JEMALLOC OFF)
 endif()
 
+# The target itself, lapis_allocator, is defined by modules/core beside its options file.
 if(LAPIS_JEMALLOC)
   find_library(LAPIS_JEMALLOC_LIBRARY NAMES jemalloc)
   if(LAPIS_JEMALLOC_LIBRARY)
-    # OBJECT, not STATIC: nothing references malloc_conf, so an archive member would be dropped.
-    add_library(lapis_allocator OBJECT ${CMAKE_CURRENT_LIST_DIR}/../modules/core/allocator/jemalloc_options.cpp)
-    target_link_libraries(lapis_allocator INTERFACE ${LAPIS_JEMALLOC_LIBRARY})
-    add_library(lapis::allocator ALIAS lapis_allocator)
     message(STATUS "lapis: executables allocate through ${LAPIS_JEMALLOC_LIBRARY} (thp:always, dirty_decay_ms:-1)")
   else()
     message(WARNING "lapis: jemalloc not found (Debian: libjemalloc-dev, installed by scripts/setup); "
