@@ -7,8 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 #include <thread>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "lapis/viewer/png.h"
 
@@ -28,13 +33,73 @@ inline int run(const std::string& command) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// `command` under a fresh Xvfb server. xvfb-run -a takes the first display number without a
-// lock file from its start number, so two test processes (or a test and another xvfb-run on
-// the machine) starting together can pick the same one and one app finds no display: start
-// each process's search at its own number.
+// A private Xvfb server for the lifetime of the object. The server picks its own display
+// number (-displayfd): it claims the first free one with an exclusive lock file and writes the
+// number back only once it accepts connections, so concurrent servers (other test processes, a
+// CI job's xvfb-run) cannot collide and nothing races its start-up. xvfb-run -a, used before,
+// chose the number by looking for lock files and set up an xauth cookie; a CI run once found
+// its display refusing the app ("Failed to open display :440"). This server has no cookie: it
+// listens only on its local socket.
+class XvfbServer {
+ public:
+  XvfbServer() {
+    int fds[2];
+    if (::pipe(fds) != 0) return;
+    // Everything the child needs is prepared before fork: between fork and exec only
+    // async-signal-safe calls.
+    const std::string log = (scratch_dir() / "xvfb.log").string();
+    const std::string fd = std::to_string(fds[1]);
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::close(fds[0]);
+      const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (out >= 0) {
+        ::dup2(out, STDOUT_FILENO);
+        ::dup2(out, STDERR_FILENO);
+      }
+      ::execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+               static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::close(fds[1]);
+    if (pid_ < 0) {
+      ::close(fds[0]);
+      return;
+    }
+    std::string number;
+    pollfd p{fds[0], POLLIN, 0};
+    char c = 0;
+    // The number arrives as one line; a server that cannot start closes the pipe (read 0).
+    while (::poll(&p, 1, 30000) == 1 && ::read(fds[0], &c, 1) == 1 && c != '\n') number += c;
+    ::close(fds[0]);
+    if (!number.empty() && number.find_first_not_of("0123456789") == std::string::npos) display_ = ":" + number;
+  }
+  ~XvfbServer() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGTERM);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+  }
+  XvfbServer(const XvfbServer&) = delete;
+  XvfbServer& operator=(const XvfbServer&) = delete;
+
+  // ":N", or empty when the server did not start.
+  const std::string& display() const { return display_; }
+
+ private:
+  pid_t pid_ = -1;
+  std::string display_;
+};
+
+// `command` (a shell command line) with DISPLAY set to a fresh Xvfb server; -1 when no server
+// started (the log is in scratch_dir()/xvfb.log).
 inline int run_under_xvfb(const std::string& command) {
-  const int first_display = 100 + static_cast<int>(getpid() % 400) * 2;
-  return run("xvfb-run -a -n " + std::to_string(first_display) + " -s '-screen 0 1280x1024x24' " + command);
+  const XvfbServer server;
+  if (server.display().empty()) {
+    std::fprintf(stderr, "run_under_xvfb: Xvfb did not start; see %s\n", (scratch_dir() / "xvfb.log").c_str());
+    return -1;
+  }
+  return run("DISPLAY=" + server.display() + "; export DISPLAY; unset XAUTHORITY; " + command);
 }
 
 // Fraction of pixels that differ from the image's top-left (background) pixel.
