@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include "checks.h"
+#include "page_populate.h"
 
 namespace lapis::solver::detail {
 namespace {
@@ -106,7 +107,15 @@ void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const c
   factorized_ = false;
   const auto t0 = std::chrono::steady_clock::now();
   cholmod_sparse a = sparse_view(A, -1);
+  if (L_->is_super && L_->xtype == CHOLMOD_PATTERN) {
+    // The values are allocated here rather than inside cholmod_factorize (which then uses
+    // them as they are) so that their pages can be faulted in on another thread meanwhile
+    // (page_populate.h): the factor is the largest fresh allocation of a set-up.
+    cholmod_change_factor(CHOLMOD_REAL, /*to_ll=*/1, /*to_super=*/1, /*to_packed=*/1, /*to_monotonic=*/1, L_, c);
+    context_.check(function, "cholmod_change_factor");
+  }
   {
+    const PagePopulator populate(L_->is_super ? L_->x : nullptr, L_->xsize * sizeof(double));
     const SerialOpenMP serial;
     cholmod_factorize(&a, L_, c);
   }
