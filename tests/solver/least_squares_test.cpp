@@ -130,6 +130,16 @@ TEST_CASE("solver: a block in the metric Dᵀ D solves like the block D A with r
   CHECK(with_metric.factor().stats().nnz_L == plain.factor().stats().nnz_L);
   CHECK_THROWS_WITH_AS(with_metric.add_block(A, 1.0, "bad", SparseMatrix(m, m + 1)),
                        doctest::Contains("metric is"), InvalidArgument);
+  // The blocks are kept as added (the caller's copies above, the temporaries below taken),
+  // and a rejected block leaves no trace.
+  CHECK(with_metric.num_blocks() == 2);
+  CHECK(with_metric.block_matrix(1).isApprox(A));
+  CHECK(with_metric.block_metric(1).isApprox(W));
+  CHECK(with_metric.block_metric(0).nonZeros() == 0);
+  CHECK(plain.block_matrix(1).isApprox(SparseMatrix(D * A)));
+  CHECK_THROWS_WITH_AS(plain.block_matrix(2),
+                       "solver::LeastSquares::block_matrix(): block 2 out of range [0, 2)", InvalidArgument);
+  CHECK_THROWS_AS(plain.block_metric(-1), InvalidArgument);
 }
 
 TEST_CASE("solver: least squares rejects bad input naming the function") {

@@ -101,10 +101,10 @@ struct ImplicitLaplacianDeformer::Impl {
   solver::LeastSquares first{1};
   solver::LeastSquares second{1};
   bool has_coherence = false;
-  // Kept for the large-rotation guide system, built on the first frame that needs it.
+  // Kept for the large-rotation guide system, built on the first frame that needs it; it
+  // reuses first's blocks: E_L is block 0, the others' ids are -1 when absent.
   detail::Stencil stencil;
-  solver::SparseMatrix A_L, A_R, A_T, A_B;
-  solver::SparseMatrix metric_R;  // Dᵀ D ⊗ I₃ over A_R's rows (E_R's pairs)
+  int block_R = -1, block_T = -1, block_B = -1;
   double weight_R = 0, weight_T = 0;
   std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
   std::vector<int> guided_for;               // handles the guide system was built for
@@ -276,11 +276,10 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
       detail::reweight(s0, w.mesh.V, w.mesh.F, weights);
       SparseRows D(n);
       for (int i : m.free) detail::add_laplacian_row(D, s0, i);
-      const solver::SparseMatrix A_D = D.matrix();
       m.second = solver::LeastSquares(n);
-      m.second.add_block(A_D, 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
+      m.second.add_block(D.matrix(), 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");  // taken, not copied
       m.second.set_fixed(m.constrained);
-      m.delta = A_D * solver::DenseMatrix(w.mesh.V);
+      m.delta = m.second.block_matrix(0) * solver::DenseMatrix(w.mesh.V);
       m.second.precompute();
     });
   }
@@ -370,25 +369,26 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   }
 
   m->first = solver::LeastSquares(n);
-  m->A_L = EL.matrix();
-  m->A_R = ER.matrix();
-  m->metric_R = pair_graph_laplacian(ER.rows() / 3, pairs);
-  m->A_T = T.matrix();
-  m->A_B = EB.matrix();
-  const solver::SparseMatrix &A_L = m->A_L, &A_R = m->A_R, &A_T = m->A_T, &A_B = m->A_B;
   m->weight_R = options_.coherence_weight * h * h;
   m->weight_T = options_.transform_weight * h * h;
-  m->first.add_block(A_L, 1.0, "E_L (Eq. 2.6)");
-  if (A_R.rows() > 0) m->first.add_block(A_R, m->weight_R, "E_R (Eq. 2.7)", m->metric_R);
-  if (A_T.rows() > 0) m->first.add_block(A_T, m->weight_T, "M_c = W_c (Eq. 2.8)");
-  if (A_B.rows() > 0) m->first.add_block(A_B, blend_weight_, "E_T (§3.3.3)");
+  // Each block goes to the solver as the builder's temporary, taken without a copy (tens of
+  // MB at 50K vertices, each page of a copy faulted in afresh).
+  m->first.add_block(EL.matrix(), 1.0, "E_L (Eq. 2.6)");
+  if (ER.rows() > 0)
+    m->block_R = m->first.add_block(ER.matrix(), m->weight_R, "E_R (Eq. 2.7)", pair_graph_laplacian(ER.rows() / 3, pairs));
+  if (T.rows() > 0) m->block_T = m->first.add_block(T.matrix(), m->weight_T, "M_c = W_c (Eq. 2.8)");
+  if (EB.rows() > 0) m->block_B = m->first.add_block(EB.matrix(), blend_weight_, "E_T (§3.3.3)");
   m->first.set_fixed(m->constrained);
   m->first.set_ordering_skeleton(edge_graph(s));
   m->stencil = s;
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
-  m->has_coherence = A_R.rows() > 0;
-  m->transform_rest = A_T * solver::DenseMatrix(P);
-  m->blend_rest = A_B * solver::DenseMatrix(P);
+  m->has_coherence = m->block_R >= 0;
+  // M_c(v') and E_T's rows at the rest state; no rows when the block is absent.
+  const auto at_rest = [&](int block) {
+    return block >= 0 ? solver::DenseMatrix(m->first.block_matrix(block) * solver::DenseMatrix(P)) : solver::DenseMatrix(0, 3);
+  };
+  m->transform_rest = at_rest(m->block_T);
+  m->blend_rest = at_rest(m->block_B);
 
   try {
     m->first.precompute();
@@ -451,10 +451,11 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
     }
   const solver::SparseMatrix A_G = Gr.matrix();
   m.guided = std::make_unique<solver::LeastSquares>(n);
-  m.guided->add_block(m.A_L, 1.0, "E_L (Eq. 2.6)");
-  if (m.A_R.rows() > 0) m.guided->add_block(m.A_R, m.weight_R, "E_R (Eq. 2.7)", m.metric_R);
-  if (m.A_T.rows() > 0) m.guided->add_block(m.A_T, m.weight_T, "M_c = W_c (Eq. 2.8)");
-  if (m.A_B.rows() > 0) m.guided->add_block(m.A_B, blend_weight_, "E_T (§3.3.3)");
+  m.guided->add_block(m.first.block_matrix(0), 1.0, "E_L (Eq. 2.6)");
+  if (m.block_R >= 0)
+    m.guided->add_block(m.first.block_matrix(m.block_R), m.weight_R, "E_R (Eq. 2.7)", m.first.block_metric(m.block_R));
+  if (m.block_T >= 0) m.guided->add_block(m.first.block_matrix(m.block_T), m.weight_T, "M_c = W_c (Eq. 2.8)");
+  if (m.block_B >= 0) m.guided->add_block(m.first.block_matrix(m.block_B), blend_weight_, "E_T (§3.3.3)");
   m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);
   m.guided->set_ordering_skeleton(edge_graph(m.stencil));

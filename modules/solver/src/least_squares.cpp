@@ -18,8 +18,8 @@ struct LeastSquares::Impl {
     bool has_metric = false;
   };
   int n = 0;
-  // A deque: blocks never move once added. Eigen's sparse matrices have no noexcept move, so a
-  // vector copied every block on each growth (~50 MB at a 50K-vertex merge's E_R).
+  // A deque: blocks never move once added. Eigen 3.4's sparse matrices have no move at all, so
+  // a vector copied every block on each growth (~50 MB at a 50K-vertex merge's E_R).
   std::deque<Block> blocks;
   std::vector<int> fixed, free;
   SparseMatrix skeleton;  // empty: CHOLMOD orders
@@ -28,6 +28,29 @@ struct LeastSquares::Impl {
   bool precomputed = false;
 
   explicit Impl(CholeskyOptions o) : chol(o) {}
+
+  // Appends a checked block, swapping A and metric (if any) into place: Eigen 3.4's
+  // SparseMatrix has no move, and a copy of E_R's block at a 50K-vertex merge is ~23 MB of
+  // fresh pages (page_populate.h says what those cost).
+  int append(SparseMatrix& A, double weight, std::string name, SparseMatrix* metric) {
+    Block& block = blocks.emplace_back();
+    block.A.swap(A);
+    block.weight = weight;
+    block.name = std::move(name);
+    if (metric) {
+      block.metric.swap(*metric);
+      block.has_metric = true;
+    }
+    precomputed = false;
+    return static_cast<int>(blocks.size()) - 1;
+  }
+
+  const Block& block(int id, const char* fn) const {
+    if (id < 0 || id >= static_cast<int>(blocks.size()))
+      throw InvalidArgument(std::string(fn) + ": block " + std::to_string(id) + " out of range [0, " +
+                            std::to_string(blocks.size()) + ")");
+    return blocks[static_cast<size_t>(id)];
+  }
 };
 
 LeastSquares::LeastSquares(int n, CholeskyOptions options) : impl_(std::make_unique<Impl>(options)) {
@@ -41,32 +64,40 @@ LeastSquares::~LeastSquares() = default;
 LeastSquares::LeastSquares(LeastSquares&&) noexcept = default;
 LeastSquares& LeastSquares::operator=(LeastSquares&&) noexcept = default;
 
-int LeastSquares::add_block(const SparseMatrix& A, double weight, std::string name) {
-  constexpr const char* fn = "solver::LeastSquares::add_block()";
-  if (A.cols() != impl_->n)
+namespace {
+
+void check_block(const SparseMatrix& A, double weight, int n, const char* fn) {
+  if (A.cols() != n)
     throw InvalidArgument(std::string(fn) + ": block is " + detail::dims(A.rows(), A.cols()) +
-                          ", expected " + std::to_string(impl_->n) + " columns");
+                          ", expected " + std::to_string(n) + " columns");
   if (!(std::isfinite(weight) && weight > 0))
     throw InvalidArgument(std::string(fn) + ": weight " + std::to_string(weight) + " is not finite and > 0");
   detail::require_finite(A, fn);
-  Impl::Block& block = impl_->blocks.emplace_back();
-  block.A = A;
-  block.weight = weight;
-  block.name = std::move(name);
-  impl_->precomputed = false;
-  return static_cast<int>(impl_->blocks.size()) - 1;
 }
 
-int LeastSquares::add_block(const SparseMatrix& A, double weight, std::string name, const SparseMatrix& metric) {
+}  // namespace
+
+int LeastSquares::add_block(SparseMatrix A, double weight, std::string name) {
+  check_block(A, weight, impl_->n, "solver::LeastSquares::add_block()");
+  return impl_->append(A, weight, std::move(name), nullptr);
+}
+
+int LeastSquares::add_block(SparseMatrix A, double weight, std::string name, SparseMatrix metric) {
   constexpr const char* fn = "solver::LeastSquares::add_block()";
+  check_block(A, weight, impl_->n, fn);
   if (metric.rows() != A.rows() || metric.cols() != A.rows())
     throw InvalidArgument(std::string(fn) + ": metric is " + detail::dims(metric.rows(), metric.cols()) +
                           ", expected " + detail::dims(A.rows(), A.rows()) + " (the block's rows)");
   detail::require_finite(metric, fn);
-  const int id = add_block(A, weight, std::move(name));
-  impl_->blocks.back().metric = metric;
-  impl_->blocks.back().has_metric = true;
-  return id;
+  return impl_->append(A, weight, std::move(name), &metric);
+}
+
+const SparseMatrix& LeastSquares::block_matrix(int id) const {
+  return impl_->block(id, "solver::LeastSquares::block_matrix()").A;
+}
+
+const SparseMatrix& LeastSquares::block_metric(int id) const {
+  return impl_->block(id, "solver::LeastSquares::block_metric()").metric;
 }
 
 void LeastSquares::set_fixed(std::vector<int> indices) {
@@ -95,7 +126,7 @@ void LeastSquares::set_ordering_skeleton(SparseMatrix skeleton) {
     throw InvalidArgument(std::string(fn) + ": skeleton is " + detail::dims(skeleton.rows(), skeleton.cols()) +
                           ", expected " + detail::dims(n, n));
   skeleton.makeCompressed();
-  impl_->skeleton = std::move(skeleton);
+  impl_->skeleton.swap(skeleton);  // std::move would copy (Eigen 3.4's SparseMatrix has no move)
   impl_->precomputed = false;
 }
 
@@ -128,7 +159,7 @@ void LeastSquares::precompute() {
   for (const auto& b : m.blocks) blocks.push_back({&b.A, b.weight, b.has_metric ? &b.metric : nullptr});
   detail::NormalMatrices normal = detail::normal_matrices(blocks, m.free, m.fixed, m.n);
   const SparseMatrix& N = normal.free_free;
-  m.free_fixed = std::move(normal.free_fixed);
+  m.free_fixed.swap(normal.free_fixed);  // std::move would copy: Eigen 3.4's SparseMatrix has no move
   try {
     if (m.skeleton.size() > 0)
       m.chol.analyze(N, skeleton_nested_dissection(N, restrict_to(m.skeleton, m.free, m.n)));

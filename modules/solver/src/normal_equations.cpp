@@ -127,7 +127,12 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
   for (size_t b = 0; b < blocks.size(); ++b) {
     rows[b] = *blocks[b].A;
     rows[b].makeCompressed();
-    if (blocks[b].metric) rows[b] = metric_times(*blocks[b].metric, rows[b]);
+    if (blocks[b].metric) {
+      // Swapped in, not assigned: Eigen 3.4's SparseMatrix has no move, and `=` from a named
+      // result copies it (fresh pages, each faulted in; see page_populate.h).
+      RowMajor weighted = metric_times(*blocks[b].metric, rows[b]);
+      rows[b].swap(weighted);
+    }
   }
   const int nf = static_cast<int>(free.size());
   // Contiguous column pieces of about equal work (see kPiecesPerThread), so the runs
@@ -201,7 +206,8 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
   // the fixed unknowns coupled to free unknown j, i.e. row j of free_fixed. Build it as
   // #fixed by #free and transpose.
   NormalMatrices out;
-  out.free_free = assemble(nf, nf, runs, false);
+  SparseMatrix free_free = assemble(nf, nf, runs, false);
+  out.free_free.swap(free_free);  // not `=`, which would copy (see above)
   const SparseMatrix fixed_free = assemble(static_cast<int>(fixed.size()), nf, runs, true);
   out.free_fixed = fixed_free.transpose();
   return out;

@@ -23,13 +23,18 @@ class LeastSquares {
   LeastSquares& operator=(LeastSquares&&) noexcept;
 
   // A  m_b by n block of rows, weight w_b > 0 (squared-norm weight). Returns the block's id,
-  // the position of its right-hand side in solve(). Invalidates the precomputation.
-  int add_block(const SparseMatrix& A, double weight, std::string name = {});
+  // the position of its right-hand side in solve(). Invalidates the precomputation. The block
+  // is kept: pass a temporary (e.g. a builder's matrix()) and it is taken without a copy.
+  int add_block(SparseMatrix A, double weight, std::string name = {});
   // A block whose residual is measured in the metric W (m_b by m_b, symmetric positive
   // semi-definite): w_b (A x − r)ᵀ W (A x − r). Energies over pairs, Σ_(i,j) ‖a_i x − a_j x‖²,
   // are Aᵀ (Dᵀ D) A with one row a_i per item instead of one per pair: the same normal matrix
   // from far fewer, shorter products (the implicit Laplacian's E_R, thesis Eq. 2.7).
-  int add_block(const SparseMatrix& A, double weight, std::string name, const SparseMatrix& metric);
+  int add_block(SparseMatrix A, double weight, std::string name, SparseMatrix metric);
+  // Block `id`'s matrix and metric (an empty matrix when it has none), as added. Throw
+  // InvalidArgument for an id out of range.
+  const SparseMatrix& block_matrix(int id) const;
+  const SparseMatrix& block_metric(int id) const;
   // Unknowns held at given values (eliminated, not penalized). Invalidates the precomputation.
   void set_fixed(std::vector<int> indices);
 
