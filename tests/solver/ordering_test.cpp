@@ -82,6 +82,30 @@ TEST_CASE("solver: skeleton nested dissection orders a wide stencil about as wel
   CHECK((A * X - B).norm() / B.norm() <= 1e-10);
 }
 
+TEST_CASE("solver: A's lower triangle alone orders, factorizes and solves as the whole of A") {
+  // What LeastSquares now hands over: its normal matrix without the upper triangle.
+  SparseMatrix edges;
+  const SparseMatrix A = wide_stencil_matrix(grid_laplacian_2d(40, &edges));
+  const SparseMatrix lower = A.triangularView<Eigen::Lower>();
+  REQUIRE(lower.nonZeros() < A.nonZeros());
+  const std::vector<int> perm = skeleton_nested_dissection(A, edges, {.leaf_size = 150});
+  CHECK(skeleton_nested_dissection(lower, edges, {.leaf_size = 150}) == perm);
+  std::srand(9);
+  const DenseMatrix B = DenseMatrix::Random(A.rows(), 2);
+  for (auto options : {CholeskyOptions{Backend::Cholmod, FactorKind::Supernodal},
+                       CholeskyOptions{Backend::Cholmod, FactorKind::Simplicial},
+                       CholeskyOptions{Backend::Eigen, FactorKind::Simplicial}}) {
+    CAPTURE(std::string(to_string(options.backend)));
+    Cholesky whole(options), half(options);
+    whole.analyze(A, perm);
+    whole.factorize(A);
+    half.analyze(lower, perm);
+    half.factorize(lower);
+    CHECK(half.stats().nnz_L == whole.stats().nnz_L);
+    CHECK((half.solve(B) - whole.solve(B)).norm() <= 1e-12 * whole.solve(B).norm());
+  }
+}
+
 TEST_CASE("solver: skeleton nested dissection of a disconnected skeleton, of tiny and of empty-skeleton matrices") {
   // Two grids side by side with no edge between them, one matrix.
   SparseMatrix e1;

@@ -171,9 +171,10 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
             const double a = blocks[b].weight * e.value();
             for (int p = row_start[e.row()]; p < row_start[e.row() + 1]; ++p) {
               const int k = cols[p];
+              const int r = role[static_cast<size_t>(k)];
+              if (r >= 0 && r < j) continue;  // the upper triangle: nothing reads it
               if (!acc.touched[static_cast<size_t>(k)]) {
                 acc.touched[static_cast<size_t>(k)] = 1;
-                const int r = role[static_cast<size_t>(k)];
                 (r >= 0 ? acc.free_list : acc.fixed_list).push_back(r >= 0 ? r : -r - 1);
               }
               acc.value[static_cast<size_t>(k)] += a * vals[p];

@@ -69,6 +69,7 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
   std::vector<int> component(static_cast<size_t>(n), -1);  // CAMD's constraint set of each unknown
   int components = 0;
   std::vector<int> local(static_cast<size_t>(n), -1), side(static_cast<size_t>(n), -1);
+  std::vector<char> crosses(static_cast<size_t>(n), 0);  // already in crossing[its side]
   std::vector<int> column_start, rows, partition;
   std::vector<double> ones;
   // Depth first, the separator task below its two sides: every part is numbered before the
@@ -124,18 +125,23 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
     // Widen: unknowns of side s coupled in A to side 1 − s join the separator, for the side
     // that gives the smaller separator. The skeleton's separator is only as wide as its own
     // edges; A's couplings reach further.
+    // Each coupling is read once, from its lower-triangle entry (u > v), and marks both ends.
     std::vector<int> crossing[2];
     for (int v : part) {
       const int s = side[static_cast<size_t>(v)];
       if (s == 2) continue;
       for (SparseMatrix::InnerIterator e(a, v); e; ++e) {
         const int u = static_cast<int>(e.row());
-        if (local[static_cast<size_t>(u)] >= 0 && side[static_cast<size_t>(u)] == 1 - s) {
-          crossing[s].push_back(v);
-          break;
-        }
+        if (u <= v || local[static_cast<size_t>(u)] < 0 || side[static_cast<size_t>(u)] != 1 - s) continue;
+        for (const int end : {v, u})
+          if (!crosses[static_cast<size_t>(end)]) {
+            crosses[static_cast<size_t>(end)] = 1;
+            crossing[side[static_cast<size_t>(end)]].push_back(end);
+          }
       }
     }
+    for (const auto& list : crossing)
+      for (int v : list) crosses[static_cast<size_t>(v)] = 0;
     for (int v : crossing[crossing[0].size() <= crossing[1].size() ? 0 : 1]) side[static_cast<size_t>(v)] = 2;
     Task left, right, separator{{}, true};
     for (int v : part) {

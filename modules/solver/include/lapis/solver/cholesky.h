@@ -29,7 +29,7 @@ class Cholesky {
   Cholesky(const Cholesky&) = delete;
   Cholesky& operator=(const Cholesky&) = delete;
 
-  // A  n by n symmetric (both triangles stored; only the lower one is read).
+  // A  n by n symmetric; only its lower triangle is read (the upper may be stored or left out).
   // Symbolic analysis: chooses the fill-reducing ordering. Throws InvalidArgument if A is
   // not square, SolverFailure if the backend fails.
   void analyze(const SparseMatrix& A);

@@ -23,7 +23,8 @@ struct SkeletonDissectionOptions {
 };
 
 // A fill-reducing ordering of the symmetric matrix A (perm[k] is the unknown eliminated
-// k-th), by nested dissection of `skeleton`: each part is bisected on the skeleton (METIS'
+// k-th; A's lower triangle is read, the upper may be left out), by nested dissection of
+// `skeleton`: each part is bisected on the skeleton (METIS'
 // vertex separator through cholmod_bisect), the separator is widened by the vertices of one
 // side that A couples to the other (the side that needs fewer), and the two sides recurse.
 // skeleton  n by n, its pattern read (values and diagonal ignored, symmetric); any sparse
