@@ -1,10 +1,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 
+#include "grid_matrices.h"
 #include "lapis/solver/blas_threads.h"
 #include "lapis/solver/cholesky.h"
 #include "lapis/solver/least_squares.h"
@@ -104,6 +107,43 @@ TEST_CASE("solver: A's lower triangle alone orders, factorizes and solves as the
     CHECK(half.stats().nnz_L == whole.stats().nnz_L);
     CHECK((half.solve(B) - whole.solve(B)).norm() <= 1e-12 * whole.solve(B).norm());
   }
+}
+
+TEST_CASE("solver: orderings made on two threads at once equal those made one at a time") {
+  // METIS keeps its random state in process-wide statics (cholmod_context.h): without the
+  // solver's lock, a dissection and a CHOLMOD-chosen METIS ordering running together came
+  // out different from run to run (mesh_deform's two systems at 200K vertices).
+  SparseMatrix edges;
+  const SparseMatrix wide = wide_stencil_matrix(grid_laplacian_2d(50, &edges));
+  // A 3D grid: AMD's fill is poor there, so CHOLMOD tries METIS too and keeps it.
+  SparseMatrix cube = -testing::grid_laplacian_3d(24);
+  for (int i = 0; i < cube.rows(); ++i) cube.coeffRef(i, i) += 0.1;
+  const auto dissect = [&] { return skeleton_nested_dissection(wide, edges, {.leaf_size = 100}); };
+  const auto chosen = [&] {
+    Cholesky chol;
+    chol.analyze(cube);
+    return std::make_pair(std::string(chol.stats().ordering), chol.stats().nnz_L);
+  };
+  const std::vector<int> alone = dissect();
+  const auto chosen_alone = chosen();
+  REQUIRE(chosen_alone.first == "METIS");  // CHOLMOD tried METIS after AMD, and kept it
+  // Dissections one after another for as long as the other thread orders (three times), so
+  // the two overlap whatever the machine's speed.
+  std::atomic<bool> done{false};
+  std::vector<std::pair<std::string, std::int64_t>> chosen_together;
+  std::thread other([&] {
+    for (int k = 0; k < 3; ++k) chosen_together.push_back(chosen());
+    done = true;
+  });
+  int dissections = 0, differing = 0;
+  while (!done || dissections == 0) {
+    differing += dissect() != alone;
+    ++dissections;
+  }
+  other.join();
+  CAPTURE(dissections);
+  CHECK(differing == 0);
+  for (const auto& c : chosen_together) CHECK(c == chosen_alone);
 }
 
 TEST_CASE("solver: skeleton nested dissection of a disconnected skeleton, of tiny and of empty-skeleton matrices") {

@@ -96,4 +96,9 @@ std::ptrdiff_t failed_column(const cholmod_factor* L) {
   return perm ? perm[minor] : minor;
 }
 
+std::mutex& metis_mutex() {
+  static std::mutex m;
+  return m;
+}
+
 }  // namespace lapis::solver::detail

@@ -5,6 +5,7 @@
 
 #include <cholmod.h>
 
+#include <mutex>
 #include <string>
 
 #include "lapis/core/error.h"
@@ -30,6 +31,14 @@ class CholmodContext {
  private:
   cholmod_common common_{};
 };
+
+// Held around every CHOLMOD call that may run METIS (cholmod_bisect; cholmod_analyze when it
+// chooses the ordering). METIS keeps its random generator (GKlib's Mersenne twister) in
+// process-wide statics and reseeds it at each call, with the global index as the loop
+// variable: two calls at once give orderings that depend on the timing, and the seeding loop
+// of one can run the other's index past its array. mesh_deform orders its two systems on
+// two threads; at 200K vertices both reach METIS.
+std::mutex& metis_mutex();
 
 // A cholmod_sparse header over A's arrays; A must be compressed and outlive the view.
 // stype = -1: CHOLMOD reads the lower triangle only.

@@ -69,6 +69,7 @@ void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats&
     c->nmethods = 0;
     c->method[0].ordering = first_method;
   } else {
+    const std::lock_guard metis(metis_mutex());  // CHOLMOD may try METIS (cholmod_context.h)
     symbolic_ = cholmod_analyze(&a, c);
   }
   context_.check(function, ordering ? "cholmod_analyze_p" : "cholmod_analyze");

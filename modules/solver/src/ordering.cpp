@@ -119,7 +119,10 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
     S.sorted = 1;
     S.packed = 1;
     partition.assign(static_cast<size_t>(m), 0);
-    cholmod_bisect(&S, nullptr, 0, /*compress=*/0, partition.data(), c);
+    {
+      const std::lock_guard metis(detail::metis_mutex());  // see cholmod_context.h
+      cholmod_bisect(&S, nullptr, 0, /*compress=*/0, partition.data(), c);
+    }
     context.check(fn, "cholmod_bisect");
     for (int k = 0; k < m; ++k) side[static_cast<size_t>(part[static_cast<size_t>(k)])] = partition[static_cast<size_t>(k)];
     // Widen: unknowns of side s coupled in A to side 1 − s join the separator, for the side
