@@ -4,7 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdint>
+#include <system_error>
 
 #ifndef MADV_POPULATE_WRITE
 #define MADV_POPULATE_WRITE 23  // Linux 5.14; older headers lack the name
@@ -26,16 +26,22 @@ PagePopulator::PagePopulator(void* data, std::size_t bytes, std::size_t min_byte
   const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(data) + page - 1) / page * page;
   const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(data) + bytes) / page * page;
   if (last <= first) return;
-  helper_ = std::thread([this, first, last] {
-    std::uintptr_t end = last;
-    while (end > first && !stop_.load(std::memory_order_relaxed)) {
-      const std::uintptr_t begin = end - first > kChunk ? (end - kChunk) / kChunk * kChunk : first;
-      const std::uintptr_t from = std::max(begin, first);
-      if (::madvise(reinterpret_cast<void*>(from), end - from, MADV_POPULATE_WRITE) != 0) return;
-      populated_.fetch_add(end - from, std::memory_order_relaxed);
-      end = from;
-    }
-  });
+  try {
+    helper_ = std::thread([this, first, last] { populate(first, last); });
+  } catch (const std::system_error&) {
+    // No thread to be had (the process is at its limit): the owner faults its pages itself.
+  }
+}
+
+void PagePopulator::populate(std::uintptr_t first, std::uintptr_t last) {
+  std::uintptr_t end = last;
+  while (end > first && !stop_.load(std::memory_order_relaxed)) {
+    // Chunks aligned to kChunk (the first one from `last` may be shorter), never below first.
+    const std::uintptr_t from = end - first > kChunk ? std::max((end - kChunk) / kChunk * kChunk, first) : first;
+    if (::madvise(reinterpret_cast<void*>(from), end - from, MADV_POPULATE_WRITE) != 0) return;
+    populated_.fetch_add(end - from, std::memory_order_relaxed);
+    end = from;
+  }
 }
 
 void PagePopulator::wait() {

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <thread>
 
 namespace lapis::solver::detail {
@@ -39,6 +40,9 @@ class PagePopulator {
   static constexpr std::size_t kMinBytes = std::size_t{16} << 20;
 
  private:
+  // The helper's loop over whole pages [first, last), from the end.
+  void populate(std::uintptr_t first, std::uintptr_t last);
+
   std::atomic<bool> stop_{false};
   std::atomic<std::size_t> populated_{0};
   std::thread helper_;
