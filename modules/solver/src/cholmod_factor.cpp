@@ -108,15 +108,18 @@ void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const c
   factorized_ = false;
   const auto t0 = std::chrono::steady_clock::now();
   cholmod_sparse a = sparse_view(A, -1);
+  // The values of a first supernodal factorization are allocated here rather than inside
+  // cholmod_factorize (which then uses them as they are) so that their pages can be faulted
+  // in on another thread meanwhile (page_populate.h): the factor is the largest fresh
+  // allocation of a set-up. A refactorization writes into values already resident.
+  void* fresh_values = nullptr;
   if (L_->is_super && L_->xtype == CHOLMOD_PATTERN) {
-    // The values are allocated here rather than inside cholmod_factorize (which then uses
-    // them as they are) so that their pages can be faulted in on another thread meanwhile
-    // (page_populate.h): the factor is the largest fresh allocation of a set-up.
     cholmod_change_factor(CHOLMOD_REAL, /*to_ll=*/1, /*to_super=*/1, /*to_packed=*/1, /*to_monotonic=*/1, L_, c);
     context_.check(function, "cholmod_change_factor");
+    fresh_values = L_->x;
   }
   {
-    const PagePopulator populate(L_->is_super ? L_->x : nullptr, L_->xsize * sizeof(double));
+    const PagePopulator populate(fresh_values, L_->xsize * sizeof(double));
     const SerialOpenMP serial;
     cholmod_factorize(&a, L_, c);
   }
