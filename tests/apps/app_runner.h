@@ -2,12 +2,10 @@
 // a visible window driven by xdotool. Pixel checks read the screenshots back.
 #pragma once
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <thread>
 
 #include <fcntl.h>
 #include <poll.h>
