@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -100,6 +101,39 @@ TEST_CASE("geometry: mixed areas split obtuse triangles 1/2, 1/4, 1/4 and use Vo
   CHECK(cells[2] == doctest::Approx(0.125));
   const Eigen::VectorXd thirds = vertex_areas(right, MassType::Barycentric);
   CHECK(thirds[1] == doctest::Approx(0.5 / 3));
+}
+
+TEST_CASE("geometry: a needle or cap thinner than kDegenerateTriangleHeight has zero cotangents") {
+  const Eigen::Vector3d a(0, 0, 0), b(2, 0, 0);
+  using Cot = std::array<double, 3>;
+  CHECK(triangle_cotangents(a, Eigen::Vector3d(0, 2, 0), b) == Cot{0, 1, 1});  // right angle at p0
+  // A cap whose apex lies on the base up to rounding: |cross| ~1e-16, cotangents ~1e16 before.
+  CHECK(triangle_cotangents(a, b, Eigen::Vector3d(1, 1e-16, 0)) == Cot{});
+  // Heights just under and over 1e-6 of the longest edge (2): 1.9e-6 and 2.1e-6.
+  CHECK(triangle_cotangents(a, b, Eigen::Vector3d(1, 1.9e-6, 0)) == Cot{});
+  const Cot cap = triangle_cotangents(a, b, Eigen::Vector3d(1, 2.1e-6, 0));
+  CHECK(cap[2] == doctest::Approx((1.0 - 2.1e-6 * 2.1e-6) / (-2 * 2.1e-6)).epsilon(1e-12));  // cot of ~180°
+  CHECK(cap[0] == doctest::Approx(1 / 2.1e-6).epsilon(1e-12));
+  // A NaN coordinate counts as degenerate: no NaN reaches a Laplacian from here.
+  CHECK(triangle_cotangents(a, b, Eigen::Vector3d(std::nan(""), 1, 0)) == Cot{});
+}
+
+TEST_CASE("geometry: a collapsed face adds nothing to the cotan Laplacian and keeps it semi-definite") {
+  TriMesh m = make_irregular_grid(9, 7);
+  // Face 40's first corner moved onto its opposite edge, off it by 1e-13 of the edge: a cap
+  // with cotangents ~1e13 unless dropped.
+  const int f = 40, v = m.F(f, 0), p = m.F(f, 1), q = m.F(f, 2);
+  const Eigen::RowVector3d along = m.V.row(q) - m.V.row(p);
+  m.V.row(v) = 0.5 * (m.V.row(p) + m.V.row(q)) + 1e-13 * Eigen::RowVector3d(-along.y(), along.x(), 0);
+  TriMesh without = m;
+  without.F.row(f) = m.F.row(m.num_faces() - 1);
+  without.F.conservativeResize(m.num_faces() - 1, 3);
+  const Eigen::SparseMatrix<double> L = cotan_laplacian(m);
+  CHECK((L - cotan_laplacian(without)).norm() <= 1e-12 * L.norm());
+  CHECK(Eigen::Map<const Eigen::VectorXd>(L.valuePtr(), L.nonZeros()).cwiseAbs().maxCoeff() < 100);  // no 1e13
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(m.num_vertices());
+  CHECK(x.dot(L * x) <= 0);
+  CHECK(vertex_areas(m).sum() == doctest::Approx(vertex_areas(without).sum()).epsilon(1e-9));
 }
 
 TEST_CASE("geometry: uniform Laplacian has edge ones and minus degree on the diagonal") {

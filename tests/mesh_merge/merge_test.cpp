@@ -159,3 +159,25 @@ TEST_CASE("mesh_merge: one precomputed Merger gives the one-off results for othe
     }
   }
 }
+
+TEST_CASE("mesh_merge: a source face collapsed onto its edge merges like the intact source") {
+  const TriMesh intact = test::dome(), tgt = test::body();
+  TriMesh src = intact;
+  // A face near the top: its first corner moved onto the opposite edge, 1e-13 of the way back
+  // (cotangents ~1e13 unless dropped; the merge threw "not positive definite" before).
+  int f = 0;
+  while (src.V(src.F(f, 0), 2) < 0.8) ++f;
+  const int v = src.F(f, 0);
+  const Eigen::RowVector3d edge_middle = 0.5 * (src.V.row(src.F(f, 1)) + src.V.row(src.F(f, 2)));
+  src.V.row(v) = edge_middle + 1e-13 * (src.V.row(v) - edge_middle);
+  const auto pairs = test::dome_on_body(src, tgt);
+  const MergeResult r = merge(src, tgt, pairs), ref = merge(intact, tgt, pairs);
+  CHECK(seam_quality(tgt, r).valid());
+  REQUIRE(r.mesh.V.allFinite());
+  double far = 0;
+  for (int u = 0; u < src.num_vertices(); ++u)
+    if ((intact.V.row(u) - intact.V.row(v)).norm() > 0.5)
+      far = std::max(far, (r.mesh.V.row(r.source_map[u]) - ref.mesh.V.row(ref.source_map[u])).norm());
+  CAPTURE(far);
+  CHECK(far < 0.03);  // 0.01: the merge reshapes the dome as a whole
+}

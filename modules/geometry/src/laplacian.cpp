@@ -11,20 +11,26 @@
 #include "parallel.h"
 
 namespace lapis::geometry {
-namespace {
 
-// Cotangents of the three corner angles of face f; zero for a degenerate face.
-std::array<double, 3> corner_cotangents(const TriMesh& m, Eigen::Index f) {
-  std::array<double, 3> cot{0, 0, 0};
+std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+  const Eigen::Vector3d p[3] = {p0, p1, p2};
+  const double twice_area = (p1 - p0).cross(p2 - p0).norm();
+  const double longest_sq = std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()});
+  // The smallest height is 2A / longest edge, so "height < ε · longest" reads 2A < ε · longest².
+  // Written negated so that a NaN coordinate also counts as degenerate.
+  if (!(twice_area > kDegenerateTriangleHeight * longest_sq)) return {0, 0, 0};
+  std::array<double, 3> cot{};
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d p = m.V.row(m.F(f, k));
-    const Eigen::Vector3d u = Eigen::Vector3d(m.V.row(m.F(f, (k + 1) % 3))) - p;
-    const Eigen::Vector3d w = Eigen::Vector3d(m.V.row(m.F(f, (k + 2) % 3))) - p;
-    const double sine = u.cross(w).norm();
-    if (sine <= 0) return {0, 0, 0};
-    cot[k] = u.dot(w) / sine;
+    const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+    cot[k] = u.dot(w) / twice_area;  // |u × w| is twice the area at every corner
   }
   return cot;
+}
+
+namespace {
+
+std::array<double, 3> corner_cotangents(const TriMesh& m, Eigen::Index f) {
+  return triangle_cotangents(m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)));
 }
 
 // Assembles a symmetric vertex operator column by column, one vertex per OpenMP iteration:
@@ -105,8 +111,9 @@ Eigen::VectorXd vertex_areas(const TriMesh& mesh, MassType type) {
     const Eigen::Vector3d p[3] = {mesh.V.row(mesh.F(f, 0)), mesh.V.row(mesh.F(f, 1)), mesh.V.row(mesh.F(f, 2))};
     const double A = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     std::array<double, 3> share{A / 3, A / 3, A / 3};
-    if (type == MassType::Voronoi && A > 0) {
-      const std::array<double, 3> cot = corner_cotangents(mesh, f);
+    // A degenerate face (all cotangents zero) keeps the barycentric thirds of its ~zero area.
+    const std::array<double, 3> cot = type == MassType::Voronoi ? corner_cotangents(mesh, f) : std::array<double, 3>{};
+    if (cot != std::array<double, 3>{}) {
       const int obtuse = cot[0] < 0 ? 0 : cot[1] < 0 ? 1 : cot[2] < 0 ? 2 : -1;
       for (int k = 0; k < 3; ++k) {
         if (obtuse >= 0) {

@@ -1,10 +1,11 @@
 #include "stencil.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
-#include <Eigen/Geometry>
+#include "lapis/geometry/laplacian.h"
 
 namespace lapis::mesh_deform {
 
@@ -12,14 +13,6 @@ const char* to_string(LaplacianWeights w) { return w == LaplacianWeights::Cotang
 
 namespace detail {
 namespace {
-
-// cot of the angle at corner o of triangle (o, a, b).
-double cot_at(const Eigen::Vector3d& o, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d u = a - o, v = b - o;
-  const double s = u.cross(v).norm();
-  // A zero-area triangle has no defined angle; contributing nothing keeps the row finite.
-  return s > 0 ? u.dot(v) / s : 0.0;
-}
 
 int slot(const Stencil& s, int i, int j) {
   const auto b = s.nbr.begin() + s.offsets[i], e = s.nbr.begin() + s.offsets[i + 1];
@@ -68,9 +61,11 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
   }
   std::fill(s.w.begin(), s.w.end(), 0.0);
   for (int f = 0; f < F.rows(); ++f) {
+    // Zero for a degenerate face (geometry::kDegenerateTriangleHeight): it adds nothing.
+    const std::array<double, 3> cot = geometry::triangle_cotangents(P.row(F(f, 0)), P.row(F(f, 1)), P.row(F(f, 2)));
     for (int c = 0; c < 3; ++c) {
-      const int o = F(f, c), a = F(f, (c + 1) % 3), b = F(f, (c + 2) % 3);
-      const double h = 0.5 * cot_at(P.row(o).transpose(), P.row(a).transpose(), P.row(b).transpose());
+      const int a = F(f, (c + 1) % 3), b = F(f, (c + 2) % 3);
+      const double h = 0.5 * cot[static_cast<size_t>(c)];
       s.w[slot(s, a, b)] += h;
       s.w[slot(s, b, a)] += h;
     }

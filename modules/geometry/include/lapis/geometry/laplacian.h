@@ -7,6 +7,8 @@
 // so (L x)_i = sum_j w_ij (x_j - x_i), and -L is the positive semi-definite stiffness.
 #pragma once
 
+#include <array>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -14,8 +16,21 @@
 
 namespace lapis::geometry {
 
-// #V x #V cotangent Laplacian (convention above). Degenerate faces contribute nothing
-// (their cotangents are unbounded). Columns are sorted, compressed.
+// A triangle is numerically degenerate when its smallest height is below this fraction of its
+// longest edge: a cap (an angle near 180 degrees) or a needle. Its cotangents are unbounded (a
+// collinear triangle's come out ~1e16 from rounding), and squared in a least-squares normal
+// matrix they swamp every other row: one such face made every deformer and the merge fail as
+// "not positive definite". A triangle a million times longer than high has no usable angles.
+// Looser than ValidationOptions::degenerate_tolerance (1e-14, zero area up to rounding): a
+// face can have an area worth reporting and still angles no solver can use.
+inline constexpr double kDegenerateTriangleHeight = 1e-6;
+
+// Cotangents of the corner angles of the triangle (p0, p1, p2), cot[k] at p_k; all three zero
+// for a degenerate triangle (see above), which then contributes nothing to a Laplacian.
+std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
+
+// #V x #V cotangent Laplacian (convention above). Degenerate faces (kDegenerateTriangleHeight)
+// contribute nothing. Columns are sorted, compressed.
 Eigen::SparseMatrix<double> cotan_laplacian(const TriMesh& mesh);
 
 // #V x #V graph Laplacian: L_ij = 1 for every edge, L_ii = -degree. Same sign convention.
