@@ -153,3 +153,31 @@ TEST_CASE("mesh_deform: a face collapsed onto its edge neither breaks nor bends 
     CHECK(far < 0.05);  // 0.001-0.01 with the face dropped
   }
 }
+
+TEST_CASE("mesh_deform: free vertices with only degenerate faces are named before any solve") {
+  const TriMesh bar = box_bar(4, 1.0, 4.0);
+  TriMesh m = bar;
+  // A band of the bar squeezed onto one point: vertices inside it keep no face with usable
+  // angles. The solvers failed on a singular matrix naming no vertex.
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (bar.V(v, 2) > 2.0 && bar.V(v, 2) < 3.2) m.V.row(v) << 0.5, 0.5, 2.6;
+  const Selection s = test::bottom_fixed_top_handle(bar, 2, 0.1, 0.1);
+  // Uniform naive editing measures no angle: the squeezed mesh is still a valid input to it.
+  NaiveOptions uniform;
+  uniform.weights = LaplacianWeights::Uniform;
+  NaiveLaplacianDeformer u(m, uniform);
+  u.set_selection(s);
+  CHECK((u.deform(HandleTransforms::identity(s)) - m.V).norm() <= 1e-9 * m.V.norm());
+  for (auto& d : all_methods(m)) {
+    CAPTURE(d->name());
+    d->set_selection(s);
+    try {
+      d->precompute();
+      FAIL("no error");
+    } catch (const lapis::InvalidArgument& e) {
+      const std::string what = e.what();
+      CHECK(what.starts_with("mesh_deform::Deformer::precompute(): "));
+      CHECK(what.find("have no face with usable angles") != std::string::npos);
+    }
+  }
+}

@@ -1,8 +1,11 @@
 #include "lapis/mesh_deform/deformer.h"
 
+#include <array>
 #include <string>
+#include <vector>
 
 #include "lapis/core/error.h"
+#include "lapis/geometry/laplacian.h"
 
 namespace lapis::mesh_deform {
 namespace {
@@ -15,6 +18,22 @@ std::string str(long v) { return std::to_string(v); }
 
 void check_index(int v, int n, const char* context, const std::string& where) {
   if (v < 0 || v >= n) fail(context, where + " vertex " + str(v) + " out of range [0, " + str(n) + ")");
+}
+
+// Every free vertex needs one face with usable angles: with only degenerate faces (or none)
+// it has no cotangent weight, normal or area, and the solvers would fail on a singular
+// matrix with nothing to say about which vertex. O(#F), next to a factorization.
+void require_shaped_free_vertices(const TriMesh& m, const Layout& L, const char* context) {
+  std::vector<char> shaped(static_cast<size_t>(m.num_vertices()), 0);
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (geometry::triangle_cotangents(m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2))) != std::array<double, 3>{})
+      for (int k = 0; k < 3; ++k) shaped[static_cast<size_t>(m.F(f, k))] = 1;
+  int count = 0, first = -1;
+  for (int v : L.free)
+    if (!shaped[static_cast<size_t>(v)]) count++, first = first < 0 ? v : first;
+  if (count > 0)
+    fail(context, str(count) + " free vertices (the first: " + str(first) + ") have no face with usable angles: " +
+                      "every face around them is degenerate (thinner than 1e-6 of its longest edge) or there is none");
 }
 
 }  // namespace
@@ -77,8 +96,10 @@ void Deformer::set_selection(Selection selection) {
 }
 
 void Deformer::precompute() {
-  layout_ = make_layout(selection_, mesh_.num_vertices(), "mesh_deform::Deformer::precompute()");
+  constexpr const char* fn = "mesh_deform::Deformer::precompute()";
+  layout_ = make_layout(selection_, mesh_.num_vertices(), fn);
   dirty_ = true;  // stays dirty if setup throws
+  if (needs_face_shapes()) require_shaped_free_vertices(mesh_, layout_, fn);
   setup(layout_);
   dirty_ = false;
 }

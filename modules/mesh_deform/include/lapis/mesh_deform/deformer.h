@@ -65,7 +65,8 @@ class Deformer {
   // Validates the selection and runs the method's setup (assembly, factorization). Throws
   // InvalidArgument "mesh_deform::Deformer::precompute(): ..." for an empty ROI, an index out
   // of range, a duplicate, an empty handle, a handle vertex outside the ROI or in two
-  // handles, and an ROI covering the whole mesh without any handle.
+  // handles, and an ROI covering the whole mesh without any handle; and, for a method that
+  // measures angles (needs_face_shapes()), a free vertex without a non-degenerate face.
   void precompute();
 
   // Deformed positions (#V by 3) for this frame. Throws InvalidArgument when the transform
@@ -78,6 +79,11 @@ class Deformer {
 
  protected:
   virtual void setup(const Layout& layout) = 0;
+  // Whether the method measures the rest mesh's angles, normals or areas (cotangent weights,
+  // gradients, rotations): then a free vertex whose faces are all degenerate
+  // (geometry::kDegenerateTriangleHeight) or that has none cannot be placed, and precompute()
+  // says so instead of failing inside the solver. Uniform naive editing does not.
+  virtual bool needs_face_shapes() const { return true; }
   // Subclasses call this when an option that setup() depends on changes.
   void mark_dirty() { dirty_ = true; }
   // targets  #V by 3: rest positions moved by the handle transforms at handle vertices, rest

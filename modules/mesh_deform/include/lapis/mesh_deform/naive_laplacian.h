@@ -28,6 +28,7 @@ class NaiveLaplacianDeformer final : public Deformer {
 
  protected:
   void setup(const Layout& layout) override;
+  bool needs_face_shapes() const override { return options_.weights == LaplacianWeights::Cotangent; }
   void solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) override;
 
  private:
