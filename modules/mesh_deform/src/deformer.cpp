@@ -31,9 +31,11 @@ void require_shaped_free_vertices(const TriMesh& m, const Layout& L, const char*
   int count = 0, first = -1;
   for (int v : L.free)
     if (!shaped[static_cast<size_t>(v)]) count++, first = first < 0 ? v : first;
-  if (count > 0)
-    fail(context, str(count) + " free vertices (the first: " + str(first) + ") have no face with usable angles: " +
-                      "every face around them is degenerate (thinner than 1e-6 of its longest edge) or there is none");
+  if (count == 0) return;
+  const std::string who = count == 1 ? "free vertex " + str(first) + " has"
+                                     : str(count) + " free vertices (the first: " + str(first) + ") have";
+  fail(context, who + " no face with usable angles: every face around " + (count == 1 ? "it" : "them") +
+                    " is degenerate (thinner than 1e-6 of its longest edge) or there is none");
 }
 
 }  // namespace
