@@ -80,6 +80,13 @@ TEST_CASE("mesh_merge: invalid inputs throw errors naming the cause") {
     CHECK(starts_with(e, check + "the source is not manifold"));
     CHECK(e.find("non-manifold vert") != std::string::npos);
   }
+  SUBCASE("a face naming a vertex twice") {
+    TriMesh bad = src;
+    bad.F(3, 2) = bad.F(3, 0);
+    CHECK(merge_error(bad, tgt, good) == check + "the source's face 3 (" + std::to_string(bad.F(3, 0)) + ", " +
+                                            std::to_string(bad.F(3, 1)) + ", " + std::to_string(bad.F(3, 0)) +
+                                            ") names a vertex twice");
+  }
   SUBCASE("keys in opposite cyclic orders") {
     const geometry::Connectivity cs(src), ct(tgt);
     const auto& sl = cs.boundary_loops()[0];

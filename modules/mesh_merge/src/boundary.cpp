@@ -28,6 +28,15 @@ struct LoopIndex {
 [[noreturn]] void fail(const std::string& what) { throw InvalidArgument(std::string(kCheck) + ": " + what); }
 
 void require_manifold(const TriMesh& mesh, const char* name) {
+  // A face naming one vertex twice would surface below as non-manifold vertices far from it,
+  // which points nowhere near the cause. (Zero-area faces with three corners are fine: their
+  // cotangents are dropped, geometry::kDegenerateTriangleHeight.)
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const int a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    if (a == b || b == c || c == a)
+      fail(std::string(name) + "'s face " + std::to_string(f) + " (" + std::to_string(a) + ", " + std::to_string(b) +
+           ", " + std::to_string(c) + ") names a vertex twice");
+  }
   geometry::ValidationOptions o;
   o.check_degenerate = false;
   o.check_duplicates = false;
