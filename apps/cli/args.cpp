@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "lapis/core/format.h"
+
 namespace lapis::cli {
 
 Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& switches) {
@@ -52,7 +54,7 @@ double Args::get_double(const std::string& flag, double fallback, double lo, dou
   if (end == it->second.c_str() || *end || !std::isfinite(v))
     throw UsageError(flag + " expects a finite number, got '" + it->second + "'");
   if (v < lo || v > hi)
-    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + it->second);
+    throw UsageError(flag + " must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + it->second);
   return v;
 }
 

@@ -242,6 +242,8 @@ TEST_CASE("mesh_merge: transition merging rejects bad widths with clear errors")
     CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(sw, tw)),
                          doctest::Contains("mesh_merge::merge(): transition source_width and target_width must be finite and > 0"),
                          InvalidArgument);
+  // The widths as given, not rounded to six decimals ("-0.000000" before).
+  CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(-2e-9, 0.3)), doctest::Contains("got -2e-09 and 0.3"), InvalidArgument);
   MergeOptions bad_weight = transition_options();
   bad_weight.transition.weight = 0;
   CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, bad_weight), doctest::Contains("weight w_T must be finite and > 0"),

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -170,13 +171,13 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   constexpr const char* fn = "hair_sketch::StrandGrower::grow()";
   const GrowthOptions& o = options_;
   if (!(std::isfinite(o.step) && o.step > 0))
-    throw InvalidArgument(std::string(fn) + ": step must be positive, got " + std::to_string(o.step));
+    throw InvalidArgument(std::string(fn) + ": step must be positive, got " + format_number(o.step));
   if (!(std::isfinite(o.max_length) && o.max_length >= 0))
     throw InvalidArgument(std::string(fn) + ": max_length must be non-negative, got " +
-                          std::to_string(o.max_length));
+                          format_number(o.max_length));
   if (!(std::isfinite(o.min_magnitude) && o.min_magnitude >= 0))
     throw InvalidArgument(std::string(fn) + ": min_magnitude must be non-negative, got " +
-                          std::to_string(o.min_magnitude));
+                          format_number(o.min_magnitude));
   if (roots.size() > static_cast<size_t>(std::numeric_limits<int>::max() / 2))
     throw InvalidArgument(std::string(fn) + ": " + std::to_string(roots.size()) + " roots are too many");
   for (size_t i = 0; i < roots.size(); ++i)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
@@ -101,7 +102,7 @@ class Reader {
   double number(const json& obj, const std::string& path, const char* k, double lo, double hi) const {
     const double v = number(key(obj, path, k), path + "." + k);
     if (v < lo || v > hi)
-      fail(path + "." + k, "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      fail(path + "." + k, "expected a number in [" + format_number(lo) + ", " + format_number(hi) + "]");
     return v;
   }
   long integer(const json& obj, const std::string& path, const char* k, long lo, long hi) const {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "curve_sampling.h"
+#include "lapis/core/format.h"
 #include "lapis/hair_sketch/sketch.h"
 #include "sketch_stroke.h"
 
@@ -19,8 +20,8 @@ void check_stroke(const Stroke& stroke, const SketchOptions& options, const char
     if (i) length += (stroke[i] - stroke[i - 1]).norm();
   }
   if (length < options.min_stroke_pixels)
-    reject(fn, "degenerate stroke: " + std::to_string(length) + " pixels long, expected at least " +
-                   std::to_string(options.min_stroke_pixels));
+    reject(fn, "degenerate stroke: " + format_number(length) + " pixels long, expected at least " +
+                   format_number(options.min_stroke_pixels));
 }
 
 double polyline_length(const std::vector<Eigen::Vector3d>& p) {
@@ -133,9 +134,9 @@ TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke,
   }
   const double reach = options.surface_width * options.spacing;
   if (best > reach)
-    detail::reject(fn, "stroke starts " + std::to_string(best / options.spacing) +
+    detail::reject(fn, "stroke starts " + format_number(best / options.spacing) +
                            " grid spacings from the parting, expected within " +
-                           std::to_string(options.surface_width));
+                           format_number(options.surface_width));
   const double s = total > 0 ? s_best / total : 0.0;
   const int end = s < 0.5 ? 0 : 1;
   // The side axis and scalp normal of the untilted frame at s.

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "boundary_checked.h"
+#include "lapis/core/format.h"
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/mesh_merge/constraints.h"
 #include "lapis/mesh_merge/refine.h"
@@ -36,7 +37,7 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
     // §3.3.3: the user specifies the widths; there is no width that suits every mesh.
     if (!(t.source_width > 0) || !(t.target_width > 0) || !std::isfinite(t.source_width) || !std::isfinite(t.target_width))
       fail("transition source_width and target_width must be finite and > 0 (thesis §3.3.3: one width per mesh), got " +
-           std::to_string(t.source_width) + " and " + std::to_string(t.target_width));
+           format_number(t.source_width) + " and " + format_number(t.target_width));
     if (!(t.weight > 0) || !std::isfinite(t.weight)) fail("transition weight w_T must be finite and > 0");
   }
 }

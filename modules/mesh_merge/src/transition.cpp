@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
+#include "lapis/core/format.h"
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/geometry/laplacian.h"
 #include "lapis/solver/least_squares.h"
@@ -24,12 +24,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 int find_root(std::vector<int>& parent, int a) {
   while (parent[a] != a) a = parent[a] = parent[parent[a]];
   return a;
-}
-
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", x);
-  return buf;
 }
 
 // Which faces around cut vertex c lie on the side that gets the u = 1 copy. The cut edges
@@ -92,11 +86,11 @@ std::pair<int, double> locate_on_loop(const std::vector<double>& params, double 
 TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
                                const std::vector<double>& loop_u, double width, bool reversed, const char* which) {
   if (!(width > 0) || !std::isfinite(width))
-    fail(which, "transition width must be finite and > 0, got " + num(width));
+    fail(which, "transition width must be finite and > 0, got " + format_number(width));
   if (loop.size() < 3 || loop_u.size() != loop.size())
     fail(which, "merging loop needs at least 3 vertices and one parameter per vertex");
   const int nv = mesh.num_vertices();
-  const std::string w = "of width " + num(width);
+  const std::string w = "of width " + format_number(width);
 
   // §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
   // shorter than the width; its faces are those touching such a vertex.

@@ -4,6 +4,7 @@
 #include <deque>
 
 #include "checks.h"
+#include "lapis/core/format.h"
 #include "lapis/solver/ordering.h"
 #include "normal_equations.h"
 
@@ -71,7 +72,7 @@ void check_block(const SparseMatrix& A, double weight, int n, const char* fn) {
     throw InvalidArgument(std::string(fn) + ": block is " + detail::dims(A.rows(), A.cols()) +
                           ", expected " + std::to_string(n) + " columns");
   if (!(std::isfinite(weight) && weight > 0))
-    throw InvalidArgument(std::string(fn) + ": weight " + std::to_string(weight) + " is not finite and > 0");
+    throw InvalidArgument(std::string(fn) + ": weight " + format_number(weight) + " is not finite and > 0");
   detail::require_finite(A, fn);
 }
 

@@ -8,6 +8,7 @@
 #include "checks.h"
 #include "cholmod_factor.h"
 #include "eigen_factor.h"
+#include "lapis/core/format.h"
 #include "updown_cost_model.h"
 
 namespace lapis::solver {
@@ -332,7 +333,7 @@ ModifyReport UpdatableCholesky::set_diagonal_weights(std::span<const int> indice
       throw InvalidArgument(std::string(fn) + ": index " + std::to_string(i) + " out of range [0, " +
                             std::to_string(m.n) + ")");
     if (!(std::isfinite(weights[k]) && weights[k] >= 0))
-      throw InvalidArgument(std::string(fn) + ": weight " + std::to_string(weights[k]) + " of index " +
+      throw InvalidArgument(std::string(fn) + ": weight " + format_number(weights[k]) + " of index " +
                             std::to_string(i) + " is not finite and >= 0");
     target[i] = weights[k];
   }
