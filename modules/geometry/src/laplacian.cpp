@@ -13,12 +13,10 @@
 namespace lapis::geometry {
 
 std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+  if (!(p0.allFinite() && p1.allFinite() && p2.allFinite()) || is_thin_triangle(p0, p1, p2, kDegenerateTriangleHeight))
+    return {0, 0, 0};
   const Eigen::Vector3d p[3] = {p0, p1, p2};
   const double twice_area = (p1 - p0).cross(p2 - p0).norm();
-  const double longest_sq = std::max({(p1 - p0).squaredNorm(), (p2 - p1).squaredNorm(), (p0 - p2).squaredNorm()});
-  // The smallest height is 2A / longest edge, so "height < ε · longest" reads 2A < ε · longest².
-  // Written negated so that a NaN coordinate also counts as degenerate.
-  if (!(twice_area > kDegenerateTriangleHeight * longest_sq)) return {0, 0, 0};
   std::array<double, 3> cot{};
   for (int k = 0; k < 3; ++k) {
     const Eigen::Vector3d u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];

@@ -23,11 +23,7 @@ bool face_in_range(const TriMesh& m, Eigen::Index f) {
 
 bool is_degenerate(const TriMesh& m, Eigen::Index f, double tolerance) {
   const int a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-  if (a == b || b == c || c == a) return true;
-  const Eigen::Vector3d e0 = m.V.row(b) - m.V.row(a), e1 = m.V.row(c) - m.V.row(b),
-                        e2 = m.V.row(a) - m.V.row(c);
-  const double longest2 = std::max({e0.squaredNorm(), e1.squaredNorm(), e2.squaredNorm()});
-  return e0.cross(-e2).norm() <= tolerance * longest2;
+  return a == b || b == c || c == a || is_thin_triangle(m.V.row(a), m.V.row(b), m.V.row(c), tolerance);
 }
 
 std::uint64_t pair_key(int a, int b) {
@@ -114,6 +110,13 @@ void list(std::ostringstream& out, const char* what, const std::vector<T>& items
 }
 
 }  // namespace
+
+bool is_thin_triangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                      double tolerance) {
+  const Eigen::Vector3d e0 = p1 - p0, e1 = p2 - p1, e2 = p0 - p2;
+  const double longest2 = std::max({e0.squaredNorm(), e1.squaredNorm(), e2.squaredNorm()});
+  return e0.cross(-e2).norm() <= tolerance * longest2;
+}
 
 bool ValidationReport::ok() const {
   return out_of_range_faces.empty() && non_finite_vertices.empty() && degenerate_faces.empty() &&

@@ -1,6 +1,5 @@
 #include "lapis/mesh_deform/deformer.h"
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -26,7 +25,8 @@ void check_index(int v, int n, const char* context, const std::string& where) {
 void require_shaped_free_vertices(const TriMesh& m, const Layout& L, const char* context) {
   std::vector<char> shaped(static_cast<size_t>(m.num_vertices()), 0);
   for (int f = 0; f < m.num_faces(); ++f)
-    if (geometry::triangle_cotangents(m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2))) != std::array<double, 3>{})
+    if (!geometry::is_thin_triangle(m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)),
+                                    geometry::kDegenerateTriangleHeight))
       for (int k = 0; k < 3; ++k) shaped[static_cast<size_t>(m.F(f, k))] = 1;
   int count = 0, first = -1;
   for (int v : L.free)

@@ -16,8 +16,8 @@
 
 namespace lapis::geometry {
 
-// A triangle is numerically degenerate when its smallest height is below this fraction of its
-// longest edge: a cap (an angle near 180 degrees) or a needle. Its cotangents are unbounded (a
+// A triangle is numerically degenerate when its smallest height is at most this fraction of its
+// longest edge (is_thin_triangle, tri_mesh.h): a cap (an angle near 180 degrees) or a needle. Its cotangents are unbounded (a
 // collinear triangle's come out ~1e16 from rounding), and squared in a least-squares normal
 // matrix they swamp every other row: one such face made every deformer and the merge fail as
 // "not positive definite". A triangle a million times longer than high has no usable angles.
@@ -26,7 +26,8 @@ namespace lapis::geometry {
 inline constexpr double kDegenerateTriangleHeight = 1e-6;
 
 // Cotangents of the corner angles of the triangle (p0, p1, p2), cot[k] at p_k; all three zero
-// for a degenerate triangle (see above), which then contributes nothing to a Laplacian.
+// for a degenerate triangle (see above) or a non-finite corner, which then contributes nothing
+// to a Laplacian.
 std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
 
 // #V x #V cotangent Laplacian (convention above). Degenerate faces (kDegenerateTriangleHeight)

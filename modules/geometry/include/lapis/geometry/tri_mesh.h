@@ -22,6 +22,12 @@ struct TriMesh {
   int num_faces() const { return static_cast<int>(F.rows()); }
 };
 
+// Whether the triangle (p0, p1, p2) is thin: |e1 x e2| <= tolerance * (longest edge)^2, i.e. its
+// smallest height is at most `tolerance` times its longest edge (scale invariant). False when a
+// coordinate is not finite: callers that may see NaN check finiteness themselves.
+bool is_thin_triangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                      double tolerance);
+
 // What validate() checks. Tolerances are relative so that the check is scale invariant.
 struct ValidationOptions {
   // A face is degenerate when |e1 x e2| <= degenerate_tolerance * (longest edge)^2, i.e. when
