@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "lapis/geometry/polar.h"
 #include "lapis/solver/cholesky.h"
 #include "rotation_fit.h"
 #include "stencil.h"
@@ -40,11 +41,73 @@ struct ArapDeformer::Impl {
   // that stays fixed over the frame, Σ_j w_ij d_j over constrained j minus (L V)_i.
   Vertices lap, frame_rhs;
   solver::DenseMatrix b;
+  // #V by #region handles, internal order: the harmonic field of each region handle (1 on it,
+  // 0 on the fixed region and the other handles), which spreads the handles' rotations over
+  // the ROI for a frame that starts cold.
+  solver::DenseMatrix handle_fields;
 
   void start_frame(const Vertices& mesh_targets, bool warm);
-  double fit_rotations(int& fallbacks);
+  void build_handle_fields(const Layout& layout);
+  void blend_handle_rotations(const HandleTransforms& transforms);
+  void identity_rotations();
+  // fit false: keeps the rotations and only measures the energy under them.
+  double fit_rotations(int& fallbacks, bool fit = true);
   void assemble_rhs();
+  void global_step();
 };
+
+// L_ff φ_f = −L_fc φ_c per region handle, with the factor the global step already has.
+void ArapDeformer::Impl::build_handle_fields(const Layout& layout) {
+  const int n = static_cast<int>(order.size()), nf = static_cast<int>(free.size());
+  const int nh = layout.num_region_handles;
+  handle_fields = solver::DenseMatrix::Zero(n, nh);
+  if (nh == 0) return;
+  auto handle_at = [&](int i) {  // region handle of internal vertex i, or -1
+    const int v = order[i];
+    return layout.role[v] == VertexRole::RegionHandle ? layout.handle_of[v] : -1;
+  };
+  solver::DenseMatrix rhs = solver::DenseMatrix::Zero(nf, nh);
+  for (int k = 0; k < nf; ++k)
+    for (int e = s.offsets[free[k]]; e < s.offsets[free[k] + 1]; ++e)
+      if (const int h = local[s.nbr[e]] < 0 ? handle_at(s.nbr[e]) : -1; h >= 0) rhs(k, h) += s.w[e];
+  const solver::DenseMatrix phi = chol.solve(rhs);
+  for (int k = 0; k < nf; ++k) handle_fields.row(free[k]) = phi.row(k);
+  for (int i = 0; i < n; ++i)
+    if (const int h = local[i] < 0 ? handle_at(i) : -1; h >= 0) handle_fields(i, h) = 1;
+}
+
+// A cold frame's first rotations: each vertex turns by the field-weighted blend of the region
+// handles' rotation vectors (the fixed region and point handles count as the identity). A
+// rigid motion shared by every handle then holds everywhere and the first global step
+// reproduces it exactly; a bend starts from a smooth turn instead of from no turn at all.
+void ArapDeformer::Impl::blend_handle_rotations(const HandleTransforms& transforms) {
+  const Eigen::Index nh = handle_fields.cols();
+  std::vector<Eigen::Vector3d> r(static_cast<size_t>(nh));
+  for (Eigen::Index h = 0; h < nh; ++h) {
+    const Eigen::AngleAxisd aa(geometry::polar_rotation(transforms.regions[static_cast<size_t>(h)].topLeftCorner<3, 3>()));
+    r[static_cast<size_t>(h)] = aa.angle() * aa.axis();
+  }
+  const int nr = static_cast<int>(fitted.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nr; ++k) {
+    const int i = fitted[k];
+    Eigen::Vector3d ri = Eigen::Vector3d::Zero();
+    for (Eigen::Index h = 0; h < nh; ++h) ri += handle_fields(i, h) * r[static_cast<size_t>(h)];
+    const double angle = ri.norm();
+    q[i] = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, ri / angle)) : Eigen::Quaterniond::Identity();
+    R[i] = q[i].toRotationMatrix();
+  }
+}
+
+void ArapDeformer::Impl::identity_rotations() {
+  std::fill(R.begin(), R.end(), Eigen::Matrix3d::Identity());
+  std::fill(q.begin(), q.end(), Eigen::Quaterniond::Identity());
+}
+
+void ArapDeformer::Impl::global_step() {
+  const solver::DenseMatrix d = chol.solve(b);
+  for (size_t k = 0; k < free.size(); ++k) X.row(free[k]) = rest.row(free[k]) + d.row(static_cast<Eigen::Index>(k));
+}
 
 // Targets into internal order; the iterate starts from them, or, warm, from the last frame's
 // result at the free vertices.
@@ -74,8 +137,8 @@ void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets, bool warm) {
 
 // Local step (Sorkine & Alexa Eq. 5–6): R_i maximizes tr(R_iᵀ A_i), A_i = Σ_j w_ij ẽ_ij e_ijᵀ,
 // each fit started from the vertex's last rotation. Returns the ARAP energy of the iterate
-// under the new rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
-double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
+// under the new (with fit false, the current) rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
+double ArapDeformer::Impl::fit_rotations(int& fallbacks, bool fit) {
   const int nr = static_cast<int>(fitted.size());
   double energy = 0;
   int fell = 0;
@@ -90,9 +153,11 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
       A.noalias() += et * we[k].transpose();
       sq += s.w[k] * et.squaredNorm();
     }
-    bool fell_back = false;
-    R[i] = detail::nearest_rotation(A, q[i], &fell_back);
-    fell += fell_back;
+    if (fit) {
+      bool fell_back = false;
+      R[i] = detail::nearest_rotation(A, q[i], &fell_back);
+      fell += fell_back;
+    }
     energy += sq - 2 * (R[i].transpose() * A).trace();
   }
   fallbacks += fell;
@@ -137,7 +202,7 @@ void ArapDeformer::setup(const Layout& layout) {
   geometry::Faces F = mesh_.F;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) F(f, c) = rank[F(f, c)];
-  m->s = detail::make_stencil(m->rest, F, LaplacianWeights::Cotangent);
+  m->s = detail::make_stencil(m->rest, F, LaplacianWeights::Cotangent, detail::ObtuseAngles::ClampToZero);
   for (int v : layout.free) m->free.push_back(rank[v]);
   std::sort(m->free.begin(), m->free.end());
   m->local.assign(static_cast<size_t>(n), -1);
@@ -182,27 +247,40 @@ void ArapDeformer::setup(const Layout& layout) {
       m->we[k] = m->s.w[k] * e;
       m->rest_sq[i] += m->s.w[k] * e.squaredNorm();
     }
+  m->build_handle_fields(layout);
   impl_ = std::move(m);
   stats_ = {};
   stats_.setup_ms = ms_since(t0);
 }
 
-void ArapDeformer::solve(const HandleTransforms&, const Vertices& targets, Vertices& out) {
+void ArapDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
+  const bool cold = !(options_.warm_start && m.have_previous);
   m.start_frame(targets, options_.warm_start);
   double rot_ms = 0, solve_ms = 0, last_energy = -1;
   int it = 0, fallbacks = 0;
-  for (; it < options_.max_iterations;) {
-    auto t0 = std::chrono::steady_clock::now();
+  auto global_step = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
+    m.global_step();
+    solve_ms += ms_since(t0);
+    ++it;
+  };
+  if (cold) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (options_.cold_start == ArapStart::HandleRotations) m.blend_handle_rotations(transforms);
+    else m.identity_rotations();
+    stats_.energy = m.fit_rotations(fallbacks, false);
+    m.assemble_rhs();
+    rot_ms += ms_since(t0);
+    global_step();
+  }
+  while (it < options_.max_iterations) {
+    const auto t0 = std::chrono::steady_clock::now();
     const double energy = m.fit_rotations(fallbacks);
     m.assemble_rhs();
     rot_ms += ms_since(t0);
-    ++it;
-    t0 = std::chrono::steady_clock::now();
-    const solver::DenseMatrix d = m.chol.solve(m.b);
-    for (size_t k = 0; k < m.free.size(); ++k) m.X.row(m.free[k]) = m.rest.row(m.free[k]) + d.row(static_cast<Eigen::Index>(k));
-    solve_ms += ms_since(t0);
+    global_step();
     const bool converged = options_.tolerance > 0 && last_energy >= 0 &&
                            last_energy - energy <= options_.tolerance * std::max(last_energy, 1e-300);
     last_energy = energy;

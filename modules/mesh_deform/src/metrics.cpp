@@ -73,21 +73,22 @@ Distortion distortion(const geometry::TriMesh& rest, const geometry::Vertices& X
     }
   d.angle = summarize(std::move(angles));
 
-  // Negative cotangent weights (obtuse triangles) would let the sum go negative; a metric
-  // needs a non-negative energy, so they are clamped to zero here.
+  // The energy ArapDeformer minimizes: cotangent weights with obtuse angles clamped to zero,
+  // without which the sum has no lower bound (stencil.h, ObtuseAngles).
+  const detail::Stencil sa = detail::make_stencil(V, rest.F, LaplacianWeights::Cotangent, detail::ObtuseAngles::ClampToZero);
   double energy = 0, norm = 0;
-  for (int i = 0; i < s.size(); ++i) {
+  for (int i = 0; i < sa.size(); ++i) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-      const int j = s.nbr[k];
-      A += std::max(s.w[k], 0.0) * (X.row(i) - X.row(j)).transpose() * (V.row(i) - V.row(j));
+    for (int k = sa.offsets[i]; k < sa.offsets[i + 1]; ++k) {
+      const int j = sa.nbr[k];
+      A += sa.w[k] * (X.row(i) - X.row(j)).transpose() * (V.row(i) - V.row(j));
     }
     const Eigen::Matrix3d R = geometry::polar_rotation(A);
-    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-      const int j = s.nbr[k];
+    for (int k = sa.offsets[i]; k < sa.offsets[i + 1]; ++k) {
+      const int j = sa.nbr[k];
       const Eigen::Vector3d e = (V.row(i) - V.row(j)).transpose(), et = (X.row(i) - X.row(j)).transpose();
-      energy += std::max(s.w[k], 0.0) * (et - R * e).squaredNorm();
-      norm += std::max(s.w[k], 0.0) * e.squaredNorm();
+      energy += sa.w[k] * (et - R * e).squaredNorm();
+      norm += sa.w[k] * e.squaredNorm();
     }
   }
   d.arap_energy = norm > 0 ? energy / norm : 0;

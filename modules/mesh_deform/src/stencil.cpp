@@ -52,7 +52,7 @@ std::vector<int> spatial_order(const Vertices& P) {
   return order;
 }
 
-void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights) {
+void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights, ObtuseAngles obtuse) {
   const int n = s.size();
   if (weights == LaplacianWeights::Uniform) {
     for (int i = 0; i < n; ++i)
@@ -65,14 +65,15 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
     const std::array<double, 3> cot = geometry::triangle_cotangents(P.row(F(f, 0)), P.row(F(f, 1)), P.row(F(f, 2)));
     for (int c = 0; c < 3; ++c) {
       const int a = F(f, (c + 1) % 3), b = F(f, (c + 2) % 3);
-      const double h = 0.5 * cot[static_cast<size_t>(c)];
+      const double cot_c = cot[static_cast<size_t>(c)];
+      const double h = 0.5 * (obtuse == ObtuseAngles::ClampToZero ? std::max(cot_c, 0.0) : cot_c);
       s.w[slot(s, a, b)] += h;
       s.w[slot(s, b, a)] += h;
     }
   }
 }
 
-Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights) {
+Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights, ObtuseAngles obtuse) {
   const int n = static_cast<int>(P.rows());
   // Each face edge seen from both ends, bucketed by its start vertex (a counting sort: a
   // global sort of the 6·#F directed edges cost several times more), then each vertex's few
@@ -106,7 +107,7 @@ Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeigh
     s.offsets[static_cast<size_t>(i) + 1] = static_cast<int>(s.nbr.size());
   }
   s.w.assign(s.nbr.size(), 0.0);
-  reweight(s, P, F, weights);
+  reweight(s, P, F, weights, obtuse);
   return s;
 }
 

@@ -27,13 +27,21 @@ struct Stencil {
   int valence(int i) const { return offsets[i + 1] - offsets[i]; }
 };
 
+// What a cotangent weight takes from an obtuse angle, whose cotangent is negative. Laplacian
+// coordinates need the signed cotangents (they are what make δ_i the mean-curvature normal);
+// an energy Σ w_ij ‖·‖² needs non-negative weights, or it has no lower bound and minimizing it
+// folds the mesh. ClampToZero is CGAL's ORIGINAL_ARAP weighting: ½ (max(0, cot α) + max(0, cot β)).
+enum class ObtuseAngles { Keep, ClampToZero };
+
 // Cotangent weights are libigl's 0.5 (cot α + cot β) (symmetric, unnormalized: the Voronoi
 // area of §2.3 only reweights whole rows of the least-squares systems); uniform are 1/|N(i)|.
 // P  positions to measure angles on (#V by 3), F faces.
-Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights);
+Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeights weights,
+                     ObtuseAngles obtuse = ObtuseAngles::Keep);
 
 // Recomputes only the weights of s for new positions P (same connectivity).
-void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights);
+void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights,
+              ObtuseAngles obtuse = ObtuseAngles::Keep);
 
 // δ_i for every vertex (#V by 3).
 Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);

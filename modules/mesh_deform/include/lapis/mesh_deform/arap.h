@@ -9,6 +9,17 @@
 
 namespace lapis::mesh_deform {
 
+// Where a frame without a previous result (the first, or any with warm_start off) starts.
+// Sorkine & Alexa §4 leave the initial guess open and suggest naive Laplacian editing.
+enum class ArapStart {
+  // Every vertex turned by the harmonic blend of the region handles' rotations, then one
+  // global step: a motion shared by all handles is reproduced at once, a bend starts turned.
+  HandleRotations,
+  // One global step with identity rotations, i.e. naive Laplacian editing: CGAL's
+  // Surface_mesh_deformation order (global step, then rotations), step for step.
+  NaiveLaplacian,
+};
+
 struct ArapOptions {
   int max_iterations = 10;  // per deform(); Sorkine & Alexa report 2–3 suffice while dragging
   // Stop early once the energy's relative decrease falls below this; 0: always run
@@ -17,6 +28,7 @@ struct ArapOptions {
   // Start from the previous frame's result (interactive drag, Sorkine & Alexa §4) rather
   // than from the rest mesh with the handles moved.
   bool warm_start = true;
+  ArapStart cold_start = ArapStart::HandleRotations;
 };
 
 struct ArapStats {

@@ -23,7 +23,8 @@ struct Distortion {
   Summary laplacian_length;  // |‖δ̃_i‖/‖δ_i‖ − 1| per vertex with ‖δ_i‖ above 1e-8 of the mean
   Summary angle;             // |θ̃ − θ| in radians, per triangle corner
   // Σ_i Σ_j w⁺_ij ‖ẽ_ij − R_i e_ij‖² with the best rotation per vertex, divided by
-  // Σ_i Σ_j w⁺_ij ‖e_ij‖² (0 for any rigid motion, scale free); w⁺ = max(cotangent weight, 0).
+  // Σ_i Σ_j w⁺_ij ‖e_ij‖² (0 for any rigid motion, scale free); w⁺_ij = ½ (max(0, cot α) +
+  // max(0, cot β)), the weights ArapDeformer minimizes with (CGAL's ORIGINAL_ARAP weighting).
   double arap_energy = 0;
 };
 
