@@ -3,9 +3,8 @@
 #
 # Why an allocator at all: Lapis' one-off set-ups (a merge, a deformation's factorizations)
 # touch hundreds of MB of fresh memory. glibc's malloc maps it in 4 KB pages and returns large
-# blocks to the system on free, so each stage faults its memory in again; on this project's
-# virtual machines a page fault costs microseconds, and faults were a third of a 50K-vertex
-# merge. The options live in modules/core/allocator/jemalloc_options.cpp.
+# blocks to the system on free, so each stage faults its memory in again; on a virtual machine
+# a page fault costs microseconds, and faults were a third of a 50K-vertex merge. The options live in modules/core/allocator/jemalloc_options.cpp.
 option(LAPIS_JEMALLOC "Link executables against jemalloc with transparent huge pages" ON)
 
 if(LAPIS_JEMALLOC AND LAPIS_SANITIZE)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Flat-shaded PNG of one or more OBJ meshes side by side (README figures; Debian's
+"""Flat-shaded PNG of one or more OBJ meshes side by side (docs/images figures; Debian's
 python3-matplotlib). Usage: render_mesh.py OUT.png ELEV AZIM MESH.obj [MESH.obj ...]"""
 import sys
 

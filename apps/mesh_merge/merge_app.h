@@ -26,7 +26,7 @@ namespace lapis::merge_app {
 
 using mesh_merge::MergeSetup;
 
-// Auto-merge runs after every change while the last merge took less than this (issue #10).
+// Auto-merge runs after every change while the last merge took less than this.
 constexpr double kAutoMergeMs = 500.0;
 
 enum class Tool { PairLoops, Keys, Handles, Move, Paint };

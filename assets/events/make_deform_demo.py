@@ -3,12 +3,12 @@
 screenshots of the app at each step.
 
   assets/events/make_deform_demo.py > assets/events/deform_demo.json
-      `scripts/demo deform` and the README screenshot, on the armadillo with
+      `scripts/demo deform` and docs/images/deform_app.png, on the armadillo with
       assets/selections/armadillo_hand.*: orbit to a front three-quarter view, pull the right
       hand up and out with the gizmo's arrows, turn it with a ring, colour by edge-length
       distortion.
   assets/events/make_deform_demo.py bench > assets/events/deform_bench.json
-      the README's --benchmark run, on bunny00 Loop-subdivided once (150,818 vertices): lasso
+      the --benchmark run of bench/README.md, on bunny00 Loop-subdivided once (150,818 vertices): lasso
       the bottom as fixed and the ear tips as the handle, wait for the setup (an "idle" event
       holds the replay while the app is busy), then drag the handle up and sideways.
 """

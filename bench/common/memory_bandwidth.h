@@ -1,8 +1,7 @@
 // The machine's memory read bandwidth, on one thread and on all. Sparse triangular solves
 // and update/downdates stream their factor from memory, so their times scale with it: the
 // benchmarks print it beside their figures, which makes figures from different machines
-// comparable (the issues quote a reference machine reading ≈ 15 GB/s on one core and ≈ 30
-// on two).
+// comparable.
 #pragma once
 
 #include <omp.h>

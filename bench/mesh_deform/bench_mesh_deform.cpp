@@ -6,8 +6,8 @@
 //
 //   bench_mesh_deform [--sizes 26k,52k,151k,416k,1m] [--implicit-large]
 //
-// Meshes: armadillo (26K), the mannequin-devil bust Loop-subdivided once (52K: the issue's
-// 50K implicit target), Loop-subdivided bunny (151K) and armadillo (416K), the man
+// Meshes: armadillo (26K), the mannequin-devil bust Loop-subdivided once (52K: the 50K
+// implicit target), Loop-subdivided bunny (151K) and armadillo (416K), the man
 // Loop-subdivided three times (1.1M). The implicit method runs at 416K and 1M only with
 // --implicit-large (its factor would need several GB).
 // Fixed region: the lowest 10% of the vertices along y; handle: the top 5%, rotated 45° about

@@ -1,6 +1,6 @@
 // Poisson mesh merging timings (thesis Table 3.1): a bumpy spherical cap (the "head") merged
 // onto an open cylinder (the "neck"), configuration-independent, sizes from 10K to 200K source
-// vertices. Targets (issue 9): 16K source <= 0.5 s and 50K <= 1.5 s end to end.
+// vertices. Targets: 16K source <= 0.5 s and 50K <= 1.5 s end to end.
 // Usage: bench_mesh_merge [--quick]   (--quick: the 10K and 16K cases only)
 // Besides the in-process repetitions, each case is merged once in a fresh process ("cold"):
 // what `lapis merge` pays, with every page of its memory new to the process.

@@ -289,7 +289,7 @@ int main(int argc, char** argv) {
       first_row = false;
     }
     r["modify_ms"] = modify;
-    // The targets at the thesis' resolution (N = 37), as ratios measured in this run.
+    // The targets at the thesis' resolution (N = 37), as ratios measured in this run.
     if (modify.contains("10")) {
       const double m10 = modify["10"]["modify_plus_solve3_ms"].get<double>();
       r["speedup_k10_vs_refactor"] = sup.stats().factorize_ms / m10;

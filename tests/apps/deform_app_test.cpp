@@ -211,7 +211,7 @@ TEST_CASE("apps: deform app — lasso a handle, brush the fixed feet, grow, undo
     CHECK(viewer::distance_to_segment(p, left, right) < 24 + 4);  // + perspective across the feet
   }
 
-  // Second session: open the saved files, grow the fixed region twice, undo once, redo nothing,
+  // Second run: open the saved files, grow the fixed region twice, undo once, redo nothing,
   // save: one ring more than before.
   fs::copy_file(roi, dir / "first.roi.txt");
   EventScript edit;

@@ -56,7 +56,7 @@ TEST_CASE("mesh_merge: real meshes: the mannequin's head onto the man's body") {
   const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -14.0}, {0, 0, 1});
   const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.36}, {0, 0, 1});
   const MergeResult r = check_real_merge(devil.above, man.below, 0);
-  // Left for the README figure (scripts/render_mesh.py).
+  // Left for the figure docs/images/merge_devil_on_man.png (scripts/render_mesh.py).
   geometry::write_obj(std::filesystem::temp_directory_path() / "lapis_merge_devil_head_on_man.obj", r.mesh);
 }
 

@@ -318,7 +318,7 @@ TEST_CASE("solver: weights whose removal makes the matrix indefinite throw and k
     CHECK_THROWS_AS(chol.set_diagonal_weights(nodes, std::vector<double>(nodes.size(), 0.0)), NotPositiveDefinite);
     CHECK(chol.diagonal_weight(nodes[0]) == 1.0);
     // The failed downdate is undone by the matching update: the previous system up to the
-    // round-off of a modified factor (the issue's 1e-8).
+    // round-off of a modified factor (1e-8).
     CHECK(relative_difference(chol.solve(B), before) <= 1e-8);
     // And it goes on working.
     const int one[] = {nodes[0]};

@@ -5,8 +5,8 @@
 //
 // Why: a one-off 50K-vertex merge touches about 700 MB of fresh memory (the normal matrices,
 // the Cholesky factors, CHOLMOD's workspace). With glibc's malloc, in 4 KB pages returned to the
-// system on free, that was ~250K page faults, over a third of the merge's time on this
-// project's virtual machines, where a fault costs microseconds.
+// system on free, that was ~250K page faults, over a third of the merge's time on a virtual
+// machine, where a fault costs microseconds.
 //
 // thp:always backs jemalloc's extents with transparent huge pages (MADV_HUGEPAGE), which the
 // system grants on request when /sys/kernel/mm/transparent_hugepage/enabled is "madvise", as on
@@ -17,13 +17,11 @@
 // a 50K merge's main thread. The purging that matters is of blocks over 8 MiB (the factors,
 // the normal matrices): jemalloc serves them from its "huge" arena and purges that one at once
 // on free unless the default decay is -1. Neither oversize_threshold:0 nor keeping pages only
-// during mesh_deform's set-up (per-arena mallctl) recovered the gain: cold 50K merges, medians
-// of six alternating runs, 2.09 and 1.81 s against 1.59 s. The cost is that the process's
-// resident memory stays at its peak (a 50K merge: 840 MB instead of 670–700 MB; a 1M-unknown
-// hair benchmark: 4.0 instead of 2.2 GiB).
+// during mesh_deform's set-up (per-arena mallctl) recovered the gain. The cost is that the
+// process's resident memory stays at its peak (a 50K merge: 840 MB instead of 670–700 MB).
 //
-// One merge of the 50K-vertex bench source in a fresh process, same code, three runs each:
-// glibc 3.17–3.24 s; jemalloc with thp:always 2.09–2.29 s; with both options 1.55–1.82 s.
+// Together the two options make a one-off 50K merge about twice as fast as with glibc's malloc;
+// the measurements are in docs/decisions.md.
 extern "C" {
 // NOLINTNEXTLINE: the name and linkage are jemalloc's interface.
 const char* malloc_conf = "thp:always,metadata_thp:auto,dirty_decay_ms:-1";

@@ -1,5 +1,5 @@
 // Private: predicts the milliseconds of a rank-k update/downdate and of a numeric
-// refactorization, calibrated by timing the real operations on this machine as they run.
+// refactorization, calibrated by timing the real operations as they run.
 //
 // A rank-1 update starting at permuted column k touches the columns of L on the
 // elimination-tree path from k to the root (Davis & Hager 1999), so its cost is

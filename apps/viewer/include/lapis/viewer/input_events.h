@@ -1,6 +1,6 @@
 // The stream of mouse and keyboard events an app receives, with the frame and time each
 // arrived at. Recorded to a JSON file and replayed frame by frame, so any interaction can
-// be reproduced exactly (tests, bug reports, benchmarks, README screenshots).
+// be reproduced exactly (tests, bug reports, benchmarks, documentation screenshots).
 #pragma once
 
 #include <filesystem>

@@ -14,7 +14,7 @@ namespace lapis::hair_sketch {
 class CholeskyFieldSolver final : public FieldSolver {
  public:
   // modify: how edits change the factor. Auto: the solver layer's cost model picks update/
-  // downdate or refactorization per edit (timed on this machine); Refactorize: the baseline
+  // downdate or refactorization per edit (timed as it runs); Refactorize: the baseline
   // the benchmark compares against; UpdateDowndate: always modify (tests of the thesis path,
   // which must not depend on timings).
   // Throws ResourceLimit when estimate_cholesky_bytes(n) exceeds options.memory_limit_bytes.

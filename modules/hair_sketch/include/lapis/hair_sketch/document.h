@@ -1,4 +1,4 @@
-// The hairstyle as an undoable document (issue 6): the head reference, grid, growth and
+// The hairstyle as an undoable document: the head reference, grid, growth and
 // sketch settings, the camera, the style primitives (thesis §4.5) and the strokes they were
 // drawn with. Every change is a Command; the Document keeps undo and redo stacks of
 // (command, inverse) pairs, so undo restores the previous state exactly.

@@ -1,4 +1,4 @@
-// Inspection exports of a hairstyle (issue 6): strands as OBJ polylines (any mesh viewer),
+// Inspection exports of a hairstyle: strands as OBJ polylines (any mesh viewer),
 // the vector field as a legacy-VTK image (ParaView) or as raw float32 (numpy.fromfile).
 // The .hair exchange format has its own header, hair_file.h. Every write is atomic.
 #pragma once

@@ -46,12 +46,9 @@ class FieldSolver {
 struct FieldSolverOptions {
   double omega = 100;  // constraint weight ω, thesis §4.4.1
   // Auto uses the thesis path while its factor (estimate_cholesky_bytes) stays under this
-  // size (≈ 10K unknowns), the multigrid path beyond. Measured on the bundled head
-  // (bench_hair_sketch --sizes 8000,15000,25000,50000, 2026-11-26), field solve of a
-  // stroke / an edit in ms, multigrid against update/downdate: 32 / 33 against 48 / 65 at
-  // 7.7K, 91 / 75 against 288 / 390 at 25K, 226 / 229 against 794 / 1101 at 50K; and the
-  // multigrid hierarchy is built in a fraction of the factorization's time. At 1M the
-  // factor (~28 GiB) would not fit at all.
+  // size (≈ 10K unknowns), the multigrid path beyond, where the multigrid solve is faster
+  // (3–5× at 25K and 50K on the bundled head; docs/decisions.md) and its hierarchy is built
+  // in a fraction of the factorization's time. At 1M the factor (~28 GiB) would not fit.
   double thesis_max_factor_bytes = 48.0 * (1 << 20);
   double memory_limit_bytes = 16.0 * (1ull << 30);
 };

@@ -54,12 +54,12 @@ struct GridOptions {
 };
 
 // Bytes the fast (multigrid) field path needs for n nodes: fine and coarse operators in
-// float with indices, the double field and the CG work vectors (measured layout, see
-// multigrid.cpp).
+// float with indices, the double field and the CG work vectors (the measured layout, see
+// grid.cpp).
 double estimate_multigrid_bytes(std::int64_t n);
 // Bytes of the thesis path's simplicial LDLᵀ factor for n nodes. The 3D bi-Laplacian fills
-// in like n^(4/3); the constant is fitted to the measured 38M non-zeros at 50K unknowns
-// (issue 5), 12 bytes per non-zero (value + row index).
+// in like n^(4/3); the constant is fitted to the measured 38M non-zeros at 50K unknowns,
+// 12 bytes per non-zero (value + row index).
 double estimate_cholesky_bytes(std::int64_t n);
 
 // The grid over head_box enlarged by the options' margins with about target_unknowns nodes.

@@ -53,9 +53,8 @@ Strands grow_strands(const SampledField& field, const std::vector<Eigen::Vector3
 
 // Growth for the interactive loop, where the strands regrow after every edit: it writes into
 // memory that the previous regrowth touched (its own per-block buffers and the caller's
-// strands), because a fresh allocation pays a page fault per 4 KB on first touch, which on
-// this machine cost as much as the growth itself (20K strands at 50K unknowns: ~30 ms of
-// faults against ~20 ms of steps). Keeps about one set of strands' worth of buffers.
+// strands), because a fresh allocation pays a page fault per 4 KB on first touch, which can
+// cost as much as the growth itself. Keeps about one set of strands' worth of buffers.
 class StrandGrower {
  public:
   explicit StrandGrower(GrowthOptions options = {}) : options_(options) {}

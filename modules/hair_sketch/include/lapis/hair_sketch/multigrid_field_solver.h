@@ -1,8 +1,8 @@
 // The fast field path: conjugate gradients on the exact normal equations (applied
 // matrix-free in double), preconditioned by one Galerkin multigrid cycle in single
 // precision, warm-started from the previous field. Plain CG stalls on this system (the
-// bi-Laplacian plus ω² = 10⁴ diagonal entries: a small residual is not a small error, issue
-// 5); the multigrid preconditioner makes the spectrum uniform, so the iteration's step sizes
+// bi-Laplacian plus ω² = 10⁴ diagonal entries: a small residual is not a small error); the
+// multigrid preconditioner makes the spectrum uniform, so the iteration's step sizes
 // bound the remaining error and the stop test is on the estimated error, not the residual.
 #pragma once
 
@@ -18,9 +18,8 @@ class MultigridHierarchy;
 
 struct MultigridFieldOptions {
   double omega = 100;             // ω, thesis §4.4.1
-  // Stop when the estimated relative 2-norm error of the field is below this. The issue's
-  // accuracy requirement is 1e-6; measured against direct solves (50K and 118K grids after
-  // a stroke, the tests' edit sequences) the estimate was 1.1–3.3× the true error once the
+  // Stop when the estimated relative 2-norm error of the field is below this. The field must
+  // be within 1e-6; against direct solves the estimate was 1.1–3.3× the true error once the
   // iteration had settled, and the factor 2 here is margin on top of that.
   double tolerance = 5e-7;
   int max_iterations = 200;
@@ -28,27 +27,23 @@ struct MultigridFieldOptions {
   // coarse correction per cycle on the finest level and several per visit of each coarser
   // one. The V-cycle's coarse correction weakens with depth, and a strong one lets the costly
   // fine level smooth less. The corrections after the first cost one product on the coarser
-  // level only (multigrid_hierarchy.cpp), so four are cheap where the hierarchy is deep.
-  // Field solve after a stroke on the bundled head, one driver, solvers taking turns
-  // (iterations, median ms): 250K (5 levels) 15 / 422 with two corrections, 13 / 389 with
-  // three, 12 / 374 with four; 1M (5 levels) 18 / 2117 with two, 14 / 1923 with four; 50K
-  // (4 levels) 12 iterations either way, 56 ms with two and 63 with four, hence the automatic
-  // choice. Degree 1 needs 17.5 iterations at 50K; a W-cycle on the finest level too (9–11
-  // iterations) doubles the costliest products and is slower everywhere.
+  // level only (multigrid_hierarchy.cpp), so four are cheap where the hierarchy is deep: at
+  // 250K and 1M four corrections save 3–4 iterations over two, at 50K (4 levels) none, hence
+  // the automatic choice. The measurements, and the variants that were slower (degree 1, a
+  // W-cycle on the finest level too), are in docs/decisions.md.
   int smoothing_degree = 2;       // Chebyshev degree per pre/post smoothing
   int cycle_index = 1;            // coarse corrections per cycle on the finest level
   int coarse_cycle_index = 0;     // ... per visit of each coarser level (1: V-cycle; 0: 4 if
                                   // the hierarchy has 5 or more levels, else 2, and at most
                                   // 2 into a level small enough to run on one thread, where
-                                  // the other thread waits: 250K 12 / 13 iterations after a
-                                  // stroke / an edit either way, solves 5–10% faster)
+                                  // the other thread waits: the same iterations, faster)
   int coarsest_nodes = 500;       // dense LDLᵀ at or below this many nodes
   bool cubic_prolongation = false;  // cubic measured worse (70 vs 41 iterations)
   double smoothing_range = 0.12;  // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
   // The warm start is first relaxed by Gauss–Seidel sweeps over the nodes within this many
   // nodes of a changed constraint (local_relaxation.h: after an edit most of the previous
-  // field's error is there; 250K edit 13 → 12 iterations, 1M 14 / 15 → 13 / 14), when the
-  // sweeps update at most relax_budget × (grid nodes) nodes; 0 sweeps: never.
+  // field's error is there, and it saves an iteration at 250K and 1M), when the sweeps update
+  // at most relax_budget × (grid nodes) nodes; 0 sweeps: never.
   int relax_radius = 3;
   int relax_sweeps = 15;
   double relax_budget = 0.5;

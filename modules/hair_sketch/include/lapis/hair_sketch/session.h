@@ -1,4 +1,4 @@
-// Hairstyle sessions as JSON (issue 6): the document (settings, camera, primitives) and the
+// Hairstyle sessions as JSON: the document (settings, camera, primitives) and the
 // recorded strokes, so a session can be reopened for editing or replayed from its input.
 // Numbers are written shortest-round-trip, so load(save(x)) is bit-identical. Saving is
 // atomic (temporary file, fsync, rename): a crash mid-save leaves the old file intact.

@@ -1,4 +1,4 @@
-// How good a merge is (issue 9's quality metrics, used by the tests, the CLI report and the
+// How good a merge is (the quality metrics used by the tests, the CLI report and the
 // benchmark): is the seam valid and watertight, did the target stay put away from the seam,
 // is the seam as smooth as the target itself, and did the source keep its details.
 #pragma once

@@ -6,7 +6,7 @@
 // at 50K vertices). The separators it finds are bands a few rings wide across the mesh, and such
 // bands can be found on the mesh's own 1-ring graph (the skeleton, ~7 entries per column) and
 // widened until they also separate the dense graph: the factor comes out 4–8% larger than
-// METIS's, in about a third of the ordering time (solver section of the README).
+// METIS's, in about a third of the ordering time (docs/decisions.md).
 #pragma once
 
 #include <vector>
