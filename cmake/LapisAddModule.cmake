@@ -1,17 +1,38 @@
-# lapis_add_module(NAME <name> SOURCES <files...> [PUBLIC_DEPS <targets...>] [PRIVATE_DEPS <targets...>])
-#   Builds modules/<name> as the static library lapis_<name> with alias lapis::<name>.
-#   Public headers live in modules/<name>/include/lapis/<name>/, private code in src/.
+# lapis_add_module(NAME <name> [SOURCES <files...>] [PUBLIC_DEPS <targets...>] [PRIVATE_DEPS <targets...>]
+#                  [EXPORT <set>])
+#   Builds the directory as the static library lapis_<name> with alias lapis::<name>; without
+#   SOURCES, as a header-only INTERFACE library. Public headers live in include/lapis/<name>/,
+#   private code in src/. The library and its headers are installed and exported as
+#   lapis::<name> in the export set <set> (default LapisTargets, see cmake/LapisInstall.cmake),
+#   so a new module needs nothing but this call.
 function(lapis_add_module)
-  cmake_parse_arguments(ARG "" "NAME" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "NAME;EXPORT" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  if(NOT ARG_EXPORT)
+    set(ARG_EXPORT LapisTargets)
+  endif()
   set(target lapis_${ARG_NAME})
-  add_library(${target} STATIC ${ARG_SOURCES})
-  add_library(lapis::${ARG_NAME} ALIAS ${target})
+  if(ARG_SOURCES)
+    add_library(${target} STATIC ${ARG_SOURCES})
+    set(scope PUBLIC)
+  elseif(ARG_PRIVATE_DEPS)
+    message(FATAL_ERROR "lapis_add_module(${ARG_NAME}): a header-only module has no PRIVATE_DEPS")
+  else()
+    add_library(${target} INTERFACE)
+    set(scope INTERFACE)
+  endif()
   target_include_directories(${target}
-    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
-    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
-  target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
-  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
-  lapis_target_defaults(${target})
+    ${scope} $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(${target} ${scope} ${ARG_PUBLIC_DEPS})
+  target_compile_features(${target} ${scope} cxx_std_20)
+  if(ARG_SOURCES)
+    target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+    target_link_libraries(${target} PRIVATE ${ARG_PRIVATE_DEPS})
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    lapis_target_defaults(${target})
+  endif()
+  add_library(lapis::${ARG_NAME} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${ARG_NAME})
+  lapis_install_module(${target} ${ARG_EXPORT})
 endfunction()
 
 # lapis_add_test(NAME <module> SOURCES <files...> DEPS <targets...> [LABELS <labels>])

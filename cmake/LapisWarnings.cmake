@@ -6,9 +6,10 @@ if(LAPIS_SANITIZE)
   target_link_options(lapis_build_flags INTERFACE -fsanitize=address,undefined)
 endif()
 
-# Executables also get the allocator (cmake/LapisAllocator.cmake).
+# Executables also get the allocator (cmake/LapisAllocator.cmake). The flags are the build's
+# own: an installed static library must not ask its consumers for lapis_build_flags.
 function(lapis_target_defaults target)
-  target_link_libraries(${target} PRIVATE lapis_build_flags)
+  target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:lapis_build_flags>)
   get_target_property(type ${target} TYPE)
   if(type STREQUAL "EXECUTABLE")
     lapis_use_allocator(${target})
