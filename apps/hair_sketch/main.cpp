@@ -6,6 +6,7 @@
 
 #include "args.h"
 #include "hair_sketch_app.h"
+#include "lapis/core/asset_path.h"
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
@@ -37,16 +38,19 @@ int main(int argc, char** argv) {
     hair_app::AppPaths paths;
     hair_sketch::Hairstyle style;
     hair_sketch::Head head;
-    const std::filesystem::path source_dir = LAPIS_SOURCE_DIR;
     if (args.has("--session")) {
       paths.session = args.get("--session");
       style = hair_sketch::load_session(paths.session);
       head = hair_sketch::load_session_head(style, paths.session, args.get("--head", ""));
+    } else if (args.has("--head")) {
+      paths.session = "hairstyle.json";
+      head = hair_sketch::load_head(args.get("--head"));
+      style.settings.head_mesh = args.get("--head");
     } else {
       paths.session = "hairstyle.json";
-      head = args.has("--head") ? hair_sketch::load_head(args.get("--head")) : hair_sketch::load_bundled_head(source_dir);
-      style.settings.head_mesh = args.has("--head") ? args.get("--head") : (source_dir / "assets/head.obj").string();
-      if (!args.has("--head")) style.settings.scalp_mask = (source_dir / "assets/head_scalp.txt").string();
+      style.settings.head_mesh = asset_path("head.obj").string();
+      style.settings.scalp_mask = asset_path("head_scalp.txt").string();
+      head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);
     }
     style.settings.roots = static_cast<int>(args.get_int("--roots", style.settings.roots, 1, 2000000));
     if (args.has("--save-session")) paths.session = args.get("--save-session");

@@ -7,6 +7,7 @@
 
 #include "args.h"
 #include "deform_app.h"
+#include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
 
@@ -19,8 +20,9 @@ constexpr const char* kUsage =
     "                    [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
     "                    [--exit-after-replay] [--benchmark OUT.json] [--size WxH]\n"
-    "Opens MESH (OBJ/OFF/PLY/STL; default assets/external/armadillo.off) and the selection files if\n"
-    "the ROI file exists (else Ctrl+S creates them). Paint with B (brush) or L\n"
+    "Opens MESH (OBJ/OFF/PLY/STL; default external/armadillo.off of the assets: $LAPIS_ASSET_DIR,\n"
+    "share/lapis of the install or assets/ of the source tree) and the selection files if the ROI\n"
+    "file exists (else Ctrl+S creates them). Paint with B (brush) or L\n"
     "(lasso) onto 1 ROI, 2 fixed, 3 handle (N: new handle), Shift erases; +/- grow/shrink by a ring;\n"
     "drag the gizmo (arrows move, rings rotate, square scales); right-drag orbits, middle-drag pans,\n"
     "wheel zooms, F frames. Ctrl+Z / Ctrl+Shift+Z undo / redo, R reset pose, C colour by distortion,\n"
@@ -47,12 +49,16 @@ int main(int argc, char** argv) {
                      "--full-while-dragging", "--export", "--export-on-exit"});
     // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
     // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
-    const std::filesystem::path source_dir = LAPIS_SOURCE_DIR;
     deform_app::DeformPaths paths;
-    paths.bundled_dir = source_dir / "assets/external";
-    paths.mesh = args.get("--mesh", positional.empty() ? (paths.bundled_dir / "armadillo.off").string() : positional);
-    if (!std::filesystem::exists(paths.mesh) && paths.mesh.parent_path() == paths.bundled_dir)
-      throw IoError("cannot open " + paths.mesh.string() + ": the bundled meshes are extracted by scripts/setup");
+    // The bundled meshes (external/ of the assets, extracted by scripts/setup) are the file
+    // panel's choices and the default mesh; without them, a mesh given opens all the same.
+    const bool mesh_given = args.has("--mesh") || !positional.empty();
+    try {
+      paths.bundled_dir = asset_path("external");
+    } catch (const IoError& e) {
+      if (!mesh_given) throw IoError(std::string(e.what()) + "; the bundled meshes are extracted by scripts/setup");
+    }
+    paths.mesh = args.get("--mesh", mesh_given ? positional : (paths.bundled_dir / "armadillo.off").string());
     geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
     if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0) mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
     paths.roi = args.get("--roi", "out/deform_selection.roi.txt");

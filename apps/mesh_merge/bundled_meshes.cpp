@@ -10,11 +10,11 @@ namespace lapis::merge_app {
 
 namespace fs = std::filesystem;
 
-std::vector<BundledMesh> bundled_meshes(const fs::path& source_dir) {
+std::vector<BundledMesh> bundled_meshes(const fs::path& asset_dir) {
   std::vector<BundledMesh> out;
-  for (const char* dir : {"assets/merge", "assets/external"}) {
+  for (const char* dir : {"merge", "external"}) {
     std::error_code ec;
-    for (const auto& e : fs::directory_iterator(source_dir / dir, ec)) {
+    for (const auto& e : fs::directory_iterator(asset_dir / dir, ec)) {
       const std::string ext = e.path().extension().string();
       if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl")
         out.push_back({std::string(dir) + "/" + e.path().filename().string(), e.path()});
@@ -26,9 +26,9 @@ std::vector<BundledMesh> bundled_meshes(const fs::path& source_dir) {
 
 const std::vector<std::string>& preset_names() {
   static const std::vector<std::string> names{
-      "dome onto neck (assets/merge)",
-      "placed dome onto neck (assets/merge, for dependent mode)",
-      "devil's head onto the man (assets/external, cut by planes)",
+      "dome onto neck (merge/)",
+      "placed dome onto neck (merge/, for dependent mode)",
+      "devil's head onto the man (external/, cut by planes)",
   };
   return names;
 }
@@ -44,9 +44,9 @@ geometry::TriMesh z_up_to_y_up(geometry::TriMesh m) {
 
 }  // namespace
 
-MeshPair load_preset_meshes(int preset, const fs::path& source_dir) {
+MeshPair load_preset_meshes(int preset, const fs::path& asset_dir) {
   auto shared = [](geometry::TriMesh m) { return std::make_shared<const geometry::TriMesh>(std::move(m)); };
-  const fs::path merge = source_dir / "assets/merge", external = source_dir / "assets/external";
+  const fs::path merge = asset_dir / "merge", external = asset_dir / "external";
   switch (preset) {
     case 0:
       return {shared(geometry::read_mesh(merge / "dome.obj")), shared(geometry::read_mesh(merge / "neck.obj")),

@@ -4,6 +4,7 @@
 
 #include "args.h"
 #include "bundled_meshes.h"
+#include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
 #include "merge_app.h"
 
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
     const cli::Args args(rest);
     args.allow_only({"--source", "--target", "--preset", "--export"});
     merge_app::AppPaths paths;
-    paths.source_dir = LAPIS_SOURCE_DIR;
+    paths.asset_dir = asset_path("merge").parent_path();
     if (args.has("--export")) paths.export_prefix = args.get("--export"), paths.export_on_exit = true;
     if (args.has("--source") != args.has("--target")) throw cli::UsageError("--source and --target go together");
     merge_app::MeshPair meshes;
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
       meshes.target_name = std::filesystem::path(args.get("--target")).filename().string();
     } else {
       const long preset = args.get_int("--preset", 0, 0, static_cast<long>(merge_app::preset_names().size()) - 1);
-      meshes = merge_app::load_preset_meshes(static_cast<int>(preset), paths.source_dir);
+      meshes = merge_app::load_preset_meshes(static_cast<int>(preset), paths.asset_dir);
     }
     mesh_merge::MergeSetup setup;
     setup.source = meshes.source;

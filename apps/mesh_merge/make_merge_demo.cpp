@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const merge_app::MeshPair meshes = merge_app::load_preset_meshes(2, argv[1]);
+    const merge_app::MeshPair meshes = merge_app::load_preset_meshes(2, std::filesystem::path(argv[1]) / "assets");
     mesh_merge::MergeSetup setup;
     setup.source = meshes.source;
     setup.target = meshes.target;

@@ -155,7 +155,7 @@ void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, b
 
 void MergeApp::load_preset(viewer::Viewer& v, int preset) {
   try {
-    MeshPair p = load_preset_meshes(preset, paths_.source_dir);
+    MeshPair p = load_preset_meshes(preset, paths_.asset_dir);
     replace_meshes(v, p.source, p.source_name, p.target, p.target_name, "open preset");
     if (p.place_source) {
       MergeSetup next = setup();

@@ -71,7 +71,7 @@ struct MergeOutcome {
 struct AppPaths {
   std::filesystem::path export_prefix = "out/merge";  // <prefix>.obj, <prefix>_pairs.json, ...
   bool export_on_exit = false;                         // batch runs
-  std::filesystem::path source_dir;                    // the repository (bundled meshes)
+  std::filesystem::path asset_dir;                     // holds merge/ and external/ (bundled meshes)
 };
 
 class MergeApp final : public viewer::ViewerApp {

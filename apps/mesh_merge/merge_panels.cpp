@@ -39,7 +39,7 @@ void MergeApp::draw_menu(viewer::Viewer& v) {
     }
     for (int side = 0; side < 2; ++side) {
       if (!ImGui::BeginMenu(side == 0 ? "Open source" : "Open target")) continue;
-      for (const BundledMesh& m : bundled_meshes(paths_.source_dir))
+      for (const BundledMesh& m : bundled_meshes(paths_.asset_dir))
         if (ImGui::MenuItem(m.label.c_str())) load_mesh(v, m.path, side == 0);
       ImGui::EndMenu();
     }
