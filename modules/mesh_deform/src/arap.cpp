@@ -36,7 +36,7 @@ struct ArapDeformer::Impl {
   std::vector<Eigen::Matrix3d> R;    // #V rotations
   std::vector<Eigen::Quaterniond> q; // the same rotations, each fit's start in the next iteration
   Vertices X, targets;               // this frame's iterate and handle targets, internal order
-  bool have_previous = false;        // X holds the last frame's result
+  bool have_previous = false;        // R holds the rotations of the last frame's result
   // Per frame, over the free vertices: (L V)_i = Σ_j w_ij e_ij, and the right-hand side's part
   // that stays fixed over the frame, Σ_j w_ij d_j over constrained j minus (L V)_i.
   Vertices lap, frame_rhs;
@@ -46,12 +46,11 @@ struct ArapDeformer::Impl {
   // the ROI for a frame that starts cold.
   solver::DenseMatrix handle_fields;
 
-  void start_frame(const Vertices& mesh_targets, bool warm);
+  void start_frame(const Vertices& mesh_targets);
   void build_handle_fields(const Layout& layout);
   void blend_handle_rotations(const HandleTransforms& transforms);
   void identity_rotations();
-  // fit false: keeps the rotations and only measures the energy under them.
-  double fit_rotations(int& fallbacks, bool fit = true);
+  double fit_rotations(int& fallbacks);
   void assemble_rhs();
   void global_step();
 };
@@ -79,7 +78,7 @@ void ArapDeformer::Impl::build_handle_fields(const Layout& layout) {
 // A cold frame's first rotations: each vertex turns by the field-weighted blend of the region
 // handles' rotation vectors (the fixed region and point handles count as the identity). A
 // rigid motion shared by every handle then holds everywhere and the first global step
-// reproduces it exactly; a bend starts from a smooth turn instead of from no turn at all.
+// reproduces it exactly.
 void ArapDeformer::Impl::blend_handle_rotations(const HandleTransforms& transforms) {
   const Eigen::Index nh = handle_fields.cols();
   std::vector<Eigen::Vector3d> r(static_cast<size_t>(nh));
@@ -109,13 +108,13 @@ void ArapDeformer::Impl::global_step() {
   for (size_t k = 0; k < free.size(); ++k) X.row(free[k]) = rest.row(free[k]) + d.row(static_cast<Eigen::Index>(k));
 }
 
-// Targets into internal order; the iterate starts from them, or, warm, from the last frame's
-// result at the free vertices.
-void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets, bool warm) {
+// Targets into internal order, placed at the constrained vertices of the iterate (the global
+// steps place the free ones).
+void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets) {
   const int n = static_cast<int>(order.size()), nf = static_cast<int>(free.size());
   targets.resize(n, 3);
   for (int k = 0; k < n; ++k) targets.row(k) = mesh_targets.row(order[k]);
-  if (!(warm && have_previous)) X = targets;
+  if (X.rows() != n) X = targets;
   for (int i = 0; i < n; ++i)
     if (local[i] < 0) X.row(i) = targets.row(i);
   lap.resize(nf, 3);
@@ -137,8 +136,8 @@ void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets, bool warm) {
 
 // Local step (Sorkine & Alexa Eq. 5–6): R_i maximizes tr(R_iᵀ A_i), A_i = Σ_j w_ij ẽ_ij e_ijᵀ,
 // each fit started from the vertex's last rotation. Returns the ARAP energy of the iterate
-// under the new (with fit false, the current) rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
-double ArapDeformer::Impl::fit_rotations(int& fallbacks, bool fit) {
+// under the new rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
+double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
   const int nr = static_cast<int>(fitted.size());
   double energy = 0;
   int fell = 0;
@@ -153,11 +152,9 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks, bool fit) {
       A.noalias() += et * we[k].transpose();
       sq += s.w[k] * et.squaredNorm();
     }
-    if (fit) {
-      bool fell_back = false;
-      R[i] = detail::nearest_rotation(A, q[i], &fell_back);
-      fell += fell_back;
-    }
+    bool fell_back = false;
+    R[i] = detail::nearest_rotation(A, q[i], &fell_back);
+    fell += fell_back;
     energy += sq - 2 * (R[i].transpose() * A).trace();
   }
   fallbacks += fell;
@@ -253,34 +250,34 @@ void ArapDeformer::setup(const Layout& layout) {
   stats_.setup_ms = ms_since(t0);
 }
 
+// Each iteration is a global step with the current rotations, then the rotations of its
+// result (CGAL's order). A warm frame starts from the rotations the last frame ended with, a
+// cold one from ArapOptions::cold_start's; the frame's own targets never enter a rotation fit
+// before a global step has placed the free vertices around them.
 void ArapDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
   const bool cold = !(options_.warm_start && m.have_previous);
-  m.start_frame(targets, options_.warm_start);
+  m.start_frame(targets);
   double rot_ms = 0, solve_ms = 0, last_energy = -1;
   int it = 0, fallbacks = 0;
-  auto global_step = [&] {
-    const auto t0 = std::chrono::steady_clock::now();
+  auto t0 = std::chrono::steady_clock::now();
+  if (cold) {
+    if (options_.cold_start == ArapStart::HandleRotations) m.blend_handle_rotations(transforms);
+    else m.identity_rotations();
+  }
+  rot_ms += ms_since(t0);
+  while (it < options_.max_iterations) {
+    t0 = std::chrono::steady_clock::now();
+    m.assemble_rhs();
+    rot_ms += ms_since(t0);
+    t0 = std::chrono::steady_clock::now();
     m.global_step();
     solve_ms += ms_since(t0);
     ++it;
-  };
-  if (cold) {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (options_.cold_start == ArapStart::HandleRotations) m.blend_handle_rotations(transforms);
-    else m.identity_rotations();
-    stats_.energy = m.fit_rotations(fallbacks, false);
-    m.assemble_rhs();
-    rot_ms += ms_since(t0);
-    global_step();
-  }
-  while (it < options_.max_iterations) {
-    const auto t0 = std::chrono::steady_clock::now();
+    t0 = std::chrono::steady_clock::now();
     const double energy = m.fit_rotations(fallbacks);
-    m.assemble_rhs();
     rot_ms += ms_since(t0);
-    global_step();
     const bool converged = options_.tolerance > 0 && last_energy >= 0 &&
                            last_energy - energy <= options_.tolerance * std::max(last_energy, 1e-300);
     last_energy = energy;

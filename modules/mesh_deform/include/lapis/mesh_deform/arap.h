@@ -9,14 +9,15 @@
 
 namespace lapis::mesh_deform {
 
-// Where a frame without a previous result (the first, or any with warm_start off) starts.
-// Sorkine & Alexa §4 leave the initial guess open and suggest naive Laplacian editing.
+// The rotations a frame without a previous result (the first, or any with warm_start off)
+// starts its first global step from. Sorkine & Alexa §4 leave the initial guess open and
+// suggest naive Laplacian editing.
 enum class ArapStart {
-  // Every vertex turned by the harmonic blend of the region handles' rotations, then one
-  // global step: a motion shared by all handles is reproduced at once, a bend starts turned.
+  // Every vertex turned by the harmonic blend of the region handles' rotations: a motion
+  // shared by all handles is reproduced by the first global step.
   HandleRotations,
-  // One global step with identity rotations, i.e. naive Laplacian editing: CGAL's
-  // Surface_mesh_deformation order (global step, then rotations), step for step.
+  // Identity rotations, so the first global step is naive Laplacian editing: CGAL's
+  // Surface_mesh_deformation, iteration for iteration.
   NaiveLaplacian,
 };
 
@@ -25,15 +26,15 @@ struct ArapOptions {
   // Stop early once the energy's relative decrease falls below this; 0: always run
   // max_iterations (benchmarks, reproducible results).
   double tolerance = 0.0;
-  // Start from the previous frame's result (interactive drag, Sorkine & Alexa §4) rather
-  // than from the rest mesh with the handles moved.
+  // Start from the rotations of the previous frame's result (interactive drag, Sorkine &
+  // Alexa §4) rather than from cold_start's.
   bool warm_start = true;
   ArapStart cold_start = ArapStart::HandleRotations;
 };
 
 struct ArapStats {
   int iterations = 0;          // in the last deform()
-  double energy = 0;           // Σ_i Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² before the last global step
+  double energy = 0;           // Σ_i Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² of the result, R_i its best rotations
   int rotation_fallbacks = 0;  // rotation fits that needed the SVD fallback (last frame)
   double setup_ms = 0;
   double frame_ms = 0;
