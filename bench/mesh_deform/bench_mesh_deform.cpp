@@ -18,6 +18,8 @@
 #include <numeric>
 #include <string>
 
+#include <omp.h>
+
 #include "cgal_arap.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
@@ -116,7 +118,9 @@ json run_one(const Size& size, const std::string& method) {
       d = std::make_unique<ImplicitLaplacianDeformer>(m, o);
       imp = static_cast<ImplicitLaplacianDeformer*>(d.get());
     }
-    if (method == "arap") {
+    if (method == "arap" || method == "arap_1t") {
+      // arap_1t: one OpenMP thread, to set beside CGAL, which runs on one.
+      if (method == "arap_1t") omp_set_num_threads(1);
       ArapOptions o;
       o.max_iterations = kArapIterationsPerFrame;
       d = std::make_unique<ArapDeformer>(m, o);
@@ -181,7 +185,7 @@ int main(int argc, char** argv) {
   bench::Table table({"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
   for (const Size& s : kSizes) {
     if (sizes.find(s.name) == std::string::npos) continue;
-    for (const char* method : {"naive", "implicit", "implicit_backsub", "arap", "cgal_arap"}) {
+    for (const char* method : {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap"}) {
       if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large) continue;
       const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
       FILE* p = popen(cmd.c_str(), "r");
