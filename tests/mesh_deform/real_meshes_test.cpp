@@ -8,6 +8,7 @@
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
+#include "sweep.h"
 #include "test_meshes.h"
 
 using namespace lapis::mesh_deform;
@@ -71,4 +72,42 @@ TEST_CASE("mesh_deform: high genus: a similarity of all handles of the double to
   double e = 0;
   for (int i = 0; i < m.num_vertices(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
   CHECK(e <= 1e-6 * t::bbox_diagonal(m.V));
+}
+
+// The sweep's cases (sweep.h) on the camel: many obtuse triangles (negative cotangents),
+// thin legs and a long neck.
+TEST_CASE("mesh_deform: every method on the camel: identity, motion of all handles, bend") {
+  const TriMesh m = sweep::load_external("camel");
+  for (const sweep::MethodCase& method : sweep::methods()) {
+    CAPTURE(method.name);
+    sweep::check_identity(method, m);
+    sweep::check_all_handle_motion(method, m);
+    sweep::check_bend(method, m, "camel");
+  }
+}
+
+TEST_CASE("mesh_deform: ARAP on the dino agrees with CGAL's converged ORIGINAL_ARAP") {
+  sweep::check_arap_against_cgal(sweep::load_external("dino"), 20, 0.01);
+}
+
+// With a negative weight the energy has no lower bound, and the iteration lowers it by
+// folding: the energy rose from iteration to iteration on the camel and identity handles
+// moved it by 5% of its diagonal. Clamped, each local and each global step can only lower it.
+TEST_CASE("mesh_deform: ARAP's energy never rises over the iterations on the camel") {
+  const TriMesh m = sweep::load_external("camel");
+  const Selection s = sweep::selection(m, false);
+  ArapOptions o;
+  o.max_iterations = 1;
+  ArapDeformer d(m, o);
+  d.set_selection(s);
+  const HandleTransforms bend{{sweep::bend(m, s.region_handles[0], 45)}, {}};
+  d.deform(bend);  // cold: the start's global step, no energy yet
+  d.deform(bend);
+  double last = d.stats().energy;
+  for (int it = 0; it < 30; ++it) {
+    d.deform(bend);  // warm: one more local + global step from the last result
+    CHECK(d.stats().energy >= 0);
+    CHECK(d.stats().energy <= last * (1 + 1e-12));
+    last = d.stats().energy;
+  }
 }

@@ -1,0 +1,309 @@
+// The real-mesh property sweep: every deformation method on the meshes of assets/external
+// (scripts/setup extracts them from libcgal-demo: obtuse triangles, boundaries, several
+// components, high genus), checked by properties that hold whatever the mesh:
+//   identity handles          -> the rest mesh
+//   one rigid motion of all   -> that motion (rotation-invariant methods), or one similarity
+//   handles                      -> that similarity (methods that model scale)
+//   a bend of a region handle -> no folded edge or collapsed triangle
+// plus ARAP against CGAL's converged ORIGINAL_ARAP on the bend. Shared by the default suite
+// (one mesh) and the labelled full sweep.
+#pragma once
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cgal_arap.h"
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/io.h"
+#include "lapis/geometry/polar.h"
+#include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/naive_laplacian.h"
+#include "test_meshes.h"
+
+namespace lapis::mesh_deform::sweep {
+
+inline std::filesystem::path external_dir() { return std::filesystem::path(LAPIS_SOURCE_DIR) / "assets" / "external"; }
+
+// Every mesh scripts/setup extracts, by name, sorted.
+inline std::vector<std::string> external_meshes() {
+  std::vector<std::string> names;
+  if (std::filesystem::is_directory(external_dir()))
+    for (const auto& e : std::filesystem::directory_iterator(external_dir()))
+      if (e.path().extension() == ".off") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline TriMesh load_external(const std::string& name) {
+  const auto path = external_dir() / (name + ".off");
+  REQUIRE_MESSAGE(std::filesystem::exists(path), path.string() << " missing: run scripts/setup");
+  return geometry::read_mesh(path);
+}
+
+struct MethodCase {
+  std::string name;
+  std::function<std::unique_ptr<Deformer>(const TriMesh&)> make;
+  enum class Invariance { Translation, Rigid, Similarity } invariance;
+  double rigid_tolerance;  // of the bounding-box diagonal, for a rigid motion of all handles
+};
+
+inline std::unique_ptr<Deformer> make_arap(const TriMesh& m, int iterations, double tolerance) {
+  ArapOptions o;
+  o.max_iterations = iterations;
+  o.tolerance = tolerance;
+  return std::make_unique<ArapDeformer>(m, o);
+}
+
+// Every method of the module, with the invariance it promises.
+inline std::vector<MethodCase> methods() {
+  using I = MethodCase::Invariance;
+  auto implicit = [](ShearingRemoval r) {
+    return [r](const TriMesh& m) {
+      ImplicitOptions o;
+      o.shearing = r;
+      return std::unique_ptr<Deformer>(std::make_unique<ImplicitLaplacianDeformer>(m, o));
+    };
+  };
+  auto naive = [](LaplacianWeights w) {
+    return [w](const TriMesh& m) {
+      NaiveOptions o;
+      o.weights = w;
+      return std::unique_ptr<Deformer>(std::make_unique<NaiveLaplacianDeformer>(m, o));
+    };
+  };
+  return {
+      {"naive cotan", naive(LaplacianWeights::Cotangent), I::Translation, 0},
+      {"naive uniform", naive(LaplacianWeights::Uniform), I::Translation, 0},
+      {"implicit", implicit(ShearingRemoval::RetainFeatures), I::Rigid, 1e-7},
+      {"implicit scale", implicit(ShearingRemoval::ScaleFeatures), I::Similarity, 1e-7},
+      {"arap", [](const TriMesh& m) { return make_arap(m, 10, 0); }, I::Rigid, 1e-7},
+  };
+}
+
+// The long axis of the bounding box.
+inline int long_axis(const TriMesh& m) {
+  Eigen::Index a;
+  (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).maxCoeff(&a);
+  return static_cast<int>(a);
+}
+
+// Along the long axis: each component's lowest 10% is fixed (so every component is anchored),
+// the mesh's top 5% is the handle; vertices on no face stay outside the ROI. both_ends: the
+// ROI is every used vertex and the fixed slabs become a second region handle.
+inline Selection selection(const TriMesh& m, bool both_ends) {
+  const int axis = long_axis(m);
+  const geometry::Components c = geometry::connected_components(m);
+  std::vector<double> lo(c.count, 1e300), hi(c.count, -1e300);
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (const int k = c.vertex_component[v]; k >= 0) {
+      lo[k] = std::min(lo[k], m.V(v, axis));
+      hi[k] = std::max(hi[k], m.V(v, axis));
+    }
+  const double top = m.V.col(axis).maxCoeff() - 0.05 * (m.V.col(axis).maxCoeff() - m.V.col(axis).minCoeff());
+  Selection s;
+  std::vector<int> bottom, handle;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    const int k = c.vertex_component[v];
+    if (k < 0) continue;
+    const bool fixed = m.V(v, axis) <= lo[k] + 0.1 * (hi[k] - lo[k]);
+    if (fixed) bottom.push_back(v);
+    else if (m.V(v, axis) >= top) handle.push_back(v);
+    if (!fixed || both_ends) s.roi.push_back(v);
+  }
+  s.region_handles.push_back(handle);
+  if (both_ends) s.region_handles.push_back(bottom);
+  return s;
+}
+
+inline Eigen::Vector3d centroid(const TriMesh& m, const std::vector<int>& vs) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : vs) c += m.V.row(v).transpose();
+  return c / std::max<size_t>(1, vs.size());
+}
+
+// The handle turned `degrees` about an axis across the long one, through its centroid, and
+// moved `shift` diagonals sideways (the benchmark's drag: 45°, 0.15).
+inline Eigen::Matrix4d bend(const TriMesh& m, const std::vector<int>& handle, double degrees, double shift = 0.15) {
+  const int axis = long_axis(m);
+  const Eigen::Vector3d across = Eigen::Vector3d::Unit((axis + 1) % 3), side = Eigen::Vector3d::Unit((axis + 2) % 3);
+  return test::rotation_about(across, degrees, centroid(m, handle), shift * test::bbox_diagonal(m.V) * side);
+}
+
+inline double max_distance(const Vertices& a, const Vertices& b) { return (a - b).rowwise().norm().maxCoeff(); }
+
+// T applied to every rest position.
+inline Vertices transformed(const TriMesh& m, const Eigen::Matrix4d& T) {
+  return ((m.V * T.topLeftCorner<3, 3>().transpose()).rowwise() + T.topRightCorner<3, 1>().transpose()).eval();
+}
+
+// A rigid motion (or, with scale != 1, a similarity) that turns the whole mesh well away
+// from any axis.
+inline Eigen::Matrix4d all_handle_motion(const TriMesh& m, double scale) {
+  const double d = test::bbox_diagonal(m.V);
+  Eigen::Matrix4d T = test::rotation_about(Eigen::Vector3d(1, 2, 3), 70, centroid(m, test::all_vertices(m)),
+                                           Eigen::Vector3d(0.3 * d, -0.2 * d, 0.1 * d));
+  T.topLeftCorner<3, 3>() *= scale;
+  return T;
+}
+
+struct Folds {
+  int folded = 0;     // edges whose faces turned from under 60° apart at rest to over 120°
+  int collapsed = 0;  // faces that kept less than 1% of their rest area
+};
+
+// Folds are measured between neighbouring faces, so they do not depend on how far the bend
+// turns a part of the mesh: an edge folds when the angle between its two faces' normals goes
+// from under 60° at rest (a smooth part) to over 120° (the surface creased back onto itself).
+inline Folds folds(const TriMesh& m, const Vertices& X) {
+  auto normal = [&](const Vertices& P, int t) -> Eigen::Vector3d {
+    const Eigen::Vector3d a = P.row(m.F(t, 0)), b = P.row(m.F(t, 1)), c = P.row(m.F(t, 2));
+    return (b - a).cross(c - a);
+  };
+  std::vector<std::array<int, 3>> edges;  // (lower vertex, higher vertex, face)
+  for (int t = 0; t < m.num_faces(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.F(t, k), b = m.F(t, (k + 1) % 3);
+      edges.push_back({std::min(a, b), std::max(a, b), t});
+    }
+  std::sort(edges.begin(), edges.end());
+  Folds f;
+  for (size_t k = 0; k + 1 < edges.size(); ++k) {
+    if (edges[k][0] != edges[k + 1][0] || edges[k][1] != edges[k + 1][1]) continue;
+    const int s = edges[k][2], t = edges[k + 1][2];
+    const Eigen::Vector3d r0 = normal(m.V, s), r1 = normal(m.V, t), d0 = normal(X, s), d1 = normal(X, t);
+    if (r0.norm() == 0 || r1.norm() == 0 || d0.norm() == 0 || d1.norm() == 0) continue;
+    f.folded += r0.normalized().dot(r1.normalized()) > 0.5 && d0.normalized().dot(d1.normalized()) < -0.5;
+  }
+  for (int t = 0; t < m.num_faces(); ++t) f.collapsed += normal(X, t).norm() < 0.01 * normal(m.V, t).norm();
+  return f;
+}
+
+// Identity handles return the rest mesh (≤ 1e-9 of the diagonal).
+inline void check_identity(const MethodCase& method, const TriMesh& m) {
+  const Selection s = selection(m, false);
+  auto d = method.make(m);
+  d->set_selection(s);
+  const double e = max_distance(d->deform(HandleTransforms::identity(s)), m.V) / test::bbox_diagonal(m.V);
+  MESSAGE(method.name << " identity: " << e << " of the diagonal");
+  CHECK(e <= 1e-9);
+}
+
+// One motion on every handle, the ROI all of the mesh: a rotation-invariant method returns
+// the rigidly moved mesh, one that models scale the similarly moved one.
+inline void check_all_handle_motion(const MethodCase& method, const TriMesh& m) {
+  if (method.invariance == MethodCase::Invariance::Translation) return;
+  const Selection s = selection(m, true);
+  const double scale = method.invariance == MethodCase::Invariance::Similarity ? 0.7 : 1.0;
+  const Eigen::Matrix4d T = all_handle_motion(m, scale);
+  auto d = method.make(m);
+  d->set_selection(s);
+  const double e = max_distance(d->deform(HandleTransforms{{T, T}, {}}), transformed(m, T)) / test::bbox_diagonal(m.V);
+  const std::string what = scale == 1 ? " rigid" : " similarity";
+  MESSAGE(method.name << what << " motion of all handles: " << e << " of the diagonal");
+  CHECK(e <= method.rigid_tolerance);
+}
+
+// Meshes on which a method is known to fold under the sweep's bend, each case reported
+// instead of checked: uniform weights ignore the triangles' shapes (thesis §2.4.3), and the
+// implicit method creases the man's fingers and the mannequin-devil's (CGAL's ARAP does not).
+inline bool known_to_fold(const std::string& mesh, const std::string& method) {
+  if (method == "naive uniform") return true;
+  return (mesh == "man" || mesh == "mannequin-devil") && method.starts_with("implicit");
+}
+
+// A bend of the top handle (30° and 0.1 diagonals, dragged over `frames` frames) folds and
+// collapses nothing.
+inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std::string& mesh_name, int frames = 4) {
+  const Selection s = selection(m, false);
+  auto d = method.make(m);
+  d->set_selection(s);
+  Vertices X;
+  for (int f = 1; f <= frames; ++f)
+    X = d->deform(HandleTransforms{{bend(m, s.region_handles[0], 30.0 * f / frames, 0.1 * f / frames)}, {}});
+  REQUIRE(X.allFinite());
+  const Folds k = folds(m, X);
+  MESSAGE(method.name << " bend: " << k.folded << " folded edges, " << k.collapsed << " collapsed of " << m.num_faces()
+                      << " faces");
+  if (known_to_fold(mesh_name, method.name)) {
+    WARN_MESSAGE(k.folded + k.collapsed == 0, mesh_name << ": " << method.name << " folds as known");
+    return X;
+  }
+  CHECK(k.folded == 0);
+  CHECK(k.collapsed == 0);
+  return X;
+}
+
+// ARAP against CGAL's ORIGINAL_ARAP (the same energy: clamped cotangent weights) on the bend.
+// Started as CGAL starts (naive Laplacian editing), every iteration is CGAL's: equal to
+// rounding after 1 and after `steps` iterations. From Lapis' default start, run until the
+// energy settles, both land within `tolerance` of the diagonal of each other.
+inline void check_arap_against_cgal(const TriMesh& m, int steps, double tolerance) {
+  const Selection s = selection(m, false);
+  const Eigen::Matrix4d T = bend(m, s.region_handles[0], 45);
+  const double diag = test::bbox_diagonal(m.V);
+  peers::CgalArap cgal(m, s.roi, s.region_handles[0]);
+  cgal.set_targets(transformed(m, T));
+  ArapOptions o;
+  o.cold_start = ArapStart::NaiveLaplacian;
+  o.warm_start = false;
+  for (int n : {1, steps}) {
+    o.max_iterations = n;
+    ArapDeformer d(m, o);
+    d.set_selection(s);
+    cgal.deform(static_cast<unsigned>(n == 1 ? 1 : steps - 1), 0.0);
+    const double e = max_distance(d.deform(HandleTransforms{{T}, {}}), cgal.positions()) / diag;
+    MESSAGE("arap against CGAL after " << n << " iterations from CGAL's start: " << e << " of the diagonal");
+    CHECK(e <= 1e-7);
+  }
+  auto d = make_arap(m, 3000, 1e-9);
+  d->set_selection(s);
+  const Vertices X = d->deform(HandleTransforms{{T}, {}});
+  cgal.deform(3000, 1e-9);
+  const double e = max_distance(X, cgal.positions()) / diag;
+  MESSAGE("arap against CGAL, both converged: " << e << " of the diagonal after "
+                                               << static_cast<const ArapDeformer&>(*d).stats().iterations << " iterations");
+  CHECK(e <= tolerance);
+}
+
+// Twist of a drag about the long axis through the handle's centroid.
+inline Eigen::Matrix4d twist(const TriMesh& m, const std::vector<int>& handle, double degrees) {
+  return test::rotation_about(Eigen::Vector3d::Unit(long_axis(m)), degrees, centroid(m, handle));
+}
+
+// Turn (degrees) about the long axis of each of `slabs` slabs along it, from the fixed end to
+// the handle: the rotation fitted to each slab's vertices (Kabsch), its twist about the axis,
+// unwrapped from slab to slab starting at 0. Slabs with fewer than 3 vertices repeat the last.
+inline std::vector<double> twist_profile(const TriMesh& m, const Vertices& X, int slabs) {
+  const int axis = long_axis(m);
+  const double lo = m.V.col(axis).minCoeff(), hi = m.V.col(axis).maxCoeff();
+  std::vector<std::vector<int>> members(static_cast<size_t>(slabs));
+  for (int v = 0; v < m.num_vertices(); ++v)
+    members[static_cast<size_t>(std::min(slabs - 1, static_cast<int>(slabs * (m.V(v, axis) - lo) / (hi - lo))))].push_back(v);
+  std::vector<double> turn;
+  double last = 0;
+  for (const std::vector<int>& vs : members) {
+    if (vs.size() >= 3) {
+      Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero();
+      for (int v : vs) c0 += m.V.row(v).transpose(), c1 += X.row(v).transpose();
+      c0 /= vs.size();
+      c1 /= vs.size();
+      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+      for (int v : vs) A += (X.row(v).transpose() - c1) * (m.V.row(v).transpose() - c0).transpose();
+      const Eigen::Quaterniond q(geometry::polar_rotation(A));
+      const double a = 2 * std::atan2(q.vec()[axis], q.w()) * 180 / M_PI;
+      last += std::remainder(a - last, 360.0);
+    }
+    turn.push_back(last);
+  }
+  return turn;
+}
+
+}  // namespace lapis::mesh_deform::sweep

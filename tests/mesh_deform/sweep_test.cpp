@@ -1,0 +1,26 @@
+// The full real-mesh sweep (label `sweep`): every method on every mesh of assets/external.
+#include "sweep.h"
+
+using namespace lapis::mesh_deform;
+
+TEST_CASE("mesh_deform sweep: every method on every real mesh") {
+  const std::vector<std::string> names = sweep::external_meshes();
+  REQUIRE_MESSAGE(!names.empty(), "assets/external has no meshes: run scripts/setup");
+  for (const std::string& name : names) {
+    const TriMesh m = sweep::load_external(name);
+    for (const sweep::MethodCase& method : sweep::methods()) {
+      CAPTURE(name);
+      CAPTURE(method.name);
+      sweep::check_identity(method, m);
+      sweep::check_all_handle_motion(method, m);
+      sweep::check_bend(method, m, name);
+    }
+  }
+}
+
+TEST_CASE("mesh_deform sweep: ARAP agrees with CGAL's converged ORIGINAL_ARAP on every real mesh") {
+  for (const std::string& name : sweep::external_meshes()) {
+    CAPTURE(name);
+    sweep::check_arap_against_cgal(sweep::load_external(name), 20, 0.01);
+  }
+}
