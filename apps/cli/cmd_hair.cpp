@@ -18,6 +18,7 @@ namespace lapis::cli {
 namespace {
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 constexpr const char* kUsage =
     "usage: lapis hair --session FILE.json [--head MESH] [--grid-unknowns N] [--roots N]\n"

@@ -21,6 +21,7 @@
 namespace lapis::hair_app {
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 enum class Tool { StreamCurve, DividingCurve, Ponytail, Hint, Tilt, Select };
 const char* tool_name(Tool t);

@@ -12,6 +12,8 @@
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
+using hair_field::FieldMethod;
+
 namespace {
 
 using nlohmann::json;

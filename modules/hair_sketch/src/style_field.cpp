@@ -6,6 +6,17 @@
 #include "lapis/hair_sketch/scalp_avoidance.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::ConstraintSet;
+using hair_field::FieldMethod;
+using hair_field::FieldSolveReport;
+using hair_field::FieldSolverOptions;
+using hair_field::Grid;
+using hair_field::GridOptions;
+using hair_field::diff;
+using hair_field::make_field_solver;
+using hair_field::make_grid;
+
 namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {

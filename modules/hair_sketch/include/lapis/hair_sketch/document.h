@@ -13,8 +13,8 @@
 #include <Eigen/Core>
 
 #include "lapis/geometry/camera.h"
+#include "lapis/hair_field/field_solver.h"
 #include "lapis/hair_sketch/dividing_curve.h"
-#include "lapis/hair_sketch/field_solver.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/ponytail.h"
 #include "lapis/hair_sketch/sketch.h"
@@ -39,7 +39,7 @@ struct HairstyleSettings {
   std::string head_mesh;        // path; relative paths are relative to the session file
   std::string scalp_mask;       // path or empty (cap above a plane, see load_head)
   double grid_unknowns = 25000;  // thesis §4.6: about 25K for smooth styles, 50K ponytails
-  FieldMethod field_method = FieldMethod::Auto;
+  hair_field::FieldMethod field_method = hair_field::FieldMethod::Auto;
   double omega = 100;           // constraint weight ω, thesis §4.4.1
   int roots = 5000;             // strands to grow (RootOptions::count)
   std::uint32_t seed = 1;       // root jitter seed

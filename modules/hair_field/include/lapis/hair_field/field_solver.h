@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
+#include "lapis/hair_field/grid_operators.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 enum class FieldMethod {
   Auto,         // chosen from the grid size and memory (see choose_field_method)
@@ -64,4 +64,4 @@ FieldMethod choose_field_method(const Grid& grid, const FieldSolverOptions& opti
 std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod method,
                                                const FieldSolverOptions& options = {});
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -8,9 +8,9 @@
 
 #include <memory>
 
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 namespace detail {
 class MultigridHierarchy;
@@ -80,4 +80,4 @@ class MultigridFieldSolver final : public FieldSolver {
   std::unique_ptr<Work> work_;
 };
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

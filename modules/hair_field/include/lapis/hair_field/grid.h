@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 // Node (i, j, k) sits at origin + spacing * (i, j, k); index = i + dims[0] * (j + dims[1] * k).
 struct Grid {
@@ -67,4 +67,4 @@ double estimate_cholesky_bytes(std::int64_t n);
 // the fast path would exceed memory_limit_bytes.
 Grid make_grid(const Eigen::AlignedBox3d& head_box, const GridOptions& options = {});
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -24,9 +24,9 @@
 #include <Eigen/SparseCore>
 
 #include "grid_stencil.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/grid.h"
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 // Precision of the cycle: the preconditioner only needs a few digits.
 using Real = float;
@@ -120,4 +120,4 @@ class MultigridHierarchy {
   std::vector<double> dot_partials_;  // per thread, 8 doubles apart
 };
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

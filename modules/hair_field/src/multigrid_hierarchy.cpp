@@ -10,9 +10,9 @@
 #include "lapis/core/error.h"
 #include "grid_stencil.h"
 #include "grid_transfer.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/grid_operators.h"
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 namespace {
 
 // 1D interpolation weights of fine node f from the coarse nodes at f/2 (every other fine
@@ -333,7 +333,7 @@ void MultigridHierarchy::update_level(int l, const std::vector<Entry>& T) {
   for (const Entry& e : T) {
     const std::ptrdiff_t p = value_index(L.A, e.i, e.j);
     if (p < 0)
-      throw SolverFailure("hair_sketch::MultigridHierarchy::add_to_diagonal(): entry (" +
+      throw SolverFailure("hair_field::MultigridHierarchy::add_to_diagonal(): entry (" +
                           std::to_string(e.i) + ", " + std::to_string(e.j) +
                           ") outside the Galerkin pattern of level " + std::to_string(l));
     L.A.valuePtr()[p] += e.v;
@@ -565,4 +565,4 @@ std::int64_t MultigridHierarchy::operator_nonzeros() const {
   return s;
 }
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

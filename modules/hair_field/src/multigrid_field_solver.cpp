@@ -1,4 +1,4 @@
-#include "lapis/hair_sketch/multigrid_field_solver.h"
+#include "lapis/hair_field/multigrid_field_solver.h"
 
 #include <omp.h>
 
@@ -13,7 +13,7 @@
 #include "local_relaxation.h"
 #include "multigrid_hierarchy.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 // The iteration's vectors, allocated with the solver: an iteration allocates nothing (a
 // fresh 50K×3 temporary per vector operation cost page faults in every iteration).
@@ -39,7 +39,7 @@ MultigridFieldSolver::MultigridFieldSolver(const Grid& grid, MultigridFieldOptio
     : grid_(grid), opt_(options) {
   const auto n = grid.num_nodes();
   if (n < 8 || n > std::numeric_limits<int>::max() / 32)
-    throw InvalidArgument("hair_sketch::MultigridFieldSolver(): grid of " + std::to_string(n) +
+    throw InvalidArgument("hair_field::MultigridFieldSolver(): grid of " + std::to_string(n) +
                           " nodes is out of range");
   weights_.setZero(n);
   targets_.setZero(n, 3);
@@ -81,7 +81,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   const auto t0 = std::chrono::steady_clock::now();
   const int n = static_cast<int>(field_.rows());
   FieldSolveReport rep = detail::start_report(FieldMethod::Multigrid, diff, current, n,
-                                              "hair_sketch::MultigridFieldSolver::apply()");
+                                              "hair_field::MultigridFieldSolver::apply()");
   const double w = opt_.omega * opt_.omega;
   std::vector<std::pair<int, double>> changes;
   changes.reserve(diff.added.size() + diff.removed.size());
@@ -214,7 +214,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     rz = rz_new;
   }
   if (!converged)
-    throw SolverFailure("hair_sketch::MultigridFieldSolver::apply(): no convergence in " +
+    throw SolverFailure("hair_field::MultigridFieldSolver::apply(): no convergence in " +
                         std::to_string(opt_.max_iterations) + " iterations (estimated error " +
                         std::to_string(est) + ")");
   field_.swap(wk.x);
@@ -237,4 +237,4 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   return rep;
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field
