@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
       style.settings.head_mesh = args.has("--head") ? args.get("--head") : (source_dir / "assets/head.obj").string();
       if (!args.has("--head")) style.settings.scalp_mask = (source_dir / "assets/head_scalp.txt").string();
     }
-    style.settings.roots = static_cast<int>(args.get_int("--roots", style.settings.roots, 1, 2000000));
+    style.settings.roots.count =
+        static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
     if (args.has("--save-session")) paths.session = args.get("--save-session");
     paths.autosave = paths.session.string() + ".autosave.json";
     paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");

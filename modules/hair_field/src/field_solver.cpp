@@ -35,7 +35,7 @@ std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod met
         throw ResourceLimit("hair_field::make_field_solver(): the multigrid field of " +
                             std::to_string(grid.num_nodes()) + " unknowns exceeds the memory limit");
       MultigridFieldOptions mo;
-      mo.omega = options.omega;
+      mo.field = options;
       return std::make_unique<MultigridFieldSolver>(grid, mo);
     }
   }

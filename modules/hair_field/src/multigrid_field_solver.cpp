@@ -82,7 +82,7 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   const int n = static_cast<int>(field_.rows());
   FieldSolveReport rep = detail::start_report(FieldMethod::Multigrid, diff, current, n,
                                               "hair_field::MultigridFieldSolver::apply()");
-  const double w = opt_.omega * opt_.omega;
+  const double w = opt_.field.omega * opt_.field.omega;
   std::vector<std::pair<int, double>> changes;
   changes.reserve(diff.added.size() + diff.removed.size());
   for (const Constraint& c : diff.added) {

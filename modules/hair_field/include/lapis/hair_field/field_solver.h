@@ -53,7 +53,7 @@ struct FieldSolverOptions {
   // multigrid hierarchy is built in a fraction of the factorization's time. At 1M the
   // factor (~28 GiB) would not fit at all.
   double thesis_max_factor_bytes = 48.0 * (1 << 20);
-  double memory_limit_bytes = 16.0 * (1ull << 30);
+  double memory_limit_bytes = kDefaultMemoryLimitBytes;
 };
 
 // The method Auto picks for grid.

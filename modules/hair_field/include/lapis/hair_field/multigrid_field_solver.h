@@ -17,7 +17,7 @@ class MultigridHierarchy;
 }
 
 struct MultigridFieldOptions {
-  double omega = 100;             // ω, thesis §4.4.1
+  FieldSolverOptions field;  // the energy's ω (thesis §4.4.1) and the memory limit
   // Stop when the estimated relative 2-norm error of the field is below this. The issue's
   // accuracy requirement is 1e-6; measured against direct solves (50K and 118K grids after
   // a stroke, the tests' edit sequences) the estimate was 1.1–3.3× the true error once the

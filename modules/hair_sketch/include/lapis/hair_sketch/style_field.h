@@ -16,7 +16,7 @@
 
 namespace lapis::hair_sketch {
 
-// The field's grid for a head and the document's settings (make_grid with grid_unknowns).
+// The field's grid for a head and the document's settings (make_grid with settings.grid).
 hair_field::Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
 
 // Sketch options matching the grid (curves resampled at its spacing) and the settings.
@@ -36,7 +36,7 @@ class StyleField {
  public:
   // Throws ResourceLimit when the method's memory estimate exceeds the solver's limit.
   StyleField(const Head& head, const hair_field::Grid& grid, hair_field::FieldMethod method,
-             double omega = 100);
+             const hair_field::FieldSolverOptions& options = {});
   // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance).
   hair_field::FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
                                       const std::vector<hair_field::Constraint>& extra = {});
