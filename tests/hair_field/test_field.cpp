@@ -101,7 +101,7 @@ TEST_CASE("hair_field: multigrid within 1e-6 of a direct solve on an 18K grid af
   // with the automatic cycle, with four coarse corrections per visit of every coarser level,
   // with V-cycles, and with the warm start relaxed near each edit (local_relaxation.h).
   // A small coarsest level gives this grid five levels, so that the coarse corrections after
-  // the first (computed on the coarse level alone, multigrid_hierarchy.cpp) are exercised:
+  // the first (computed on the coarse level alone, multigrid_cycle.cpp) are exercised:
   // with the default 500 nodes the level below the finest would already be solved exactly.
   const Grid g = cube_grid(26);
   MultigridFieldOptions options;

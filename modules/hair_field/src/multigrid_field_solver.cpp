@@ -15,8 +15,53 @@
 
 namespace lapis::hair_field {
 
+namespace {
+
+using detail::parallel_nodes;  // element-wise passes run on one thread below this many nodes
+
+// Applies the diff to the weights (ω² at constrained nodes) and targets; returns the
+// changes of the normal matrix' diagonal it makes.
+std::vector<std::pair<int, double>> apply_to_weights(const ConstraintDiff& diff, double w,
+                                                     Eigen::VectorXd& weights, Field& targets) {
+  std::vector<std::pair<int, double>> changes;
+  changes.reserve(diff.added.size() + diff.removed.size());
+  for (const Constraint& c : diff.added) {
+    changes.emplace_back(c.node, w - weights[c.node]);
+    weights[c.node] = w;
+    targets.row(c.node) = c.direction.transpose();
+  }
+  for (int node : diff.removed) {
+    changes.emplace_back(node, -weights[node]);
+    weights[node] = 0;
+    targets.row(node).setZero();
+  }
+  for (const Constraint& c : diff.changed) targets.row(c.node) = c.direction.transpose();
+  return changes;
+}
+
+// The report's detail, e.g. "pcg+mg 5 levels (corrections per coarse visit: 4, 2), 12
+// iterations": the W-cycle's corrections per visit of levels 1, 2, ... (those above the
+// coarsest but one, which always make one).
+std::string solve_detail(const detail::MultigridHierarchy& mg, int relaxed, int iterations) {
+  std::string corrections;
+  bool w_cycle = false;
+  for (int l = 1; l + 2 < mg.levels(); ++l) {
+    corrections += (l > 1 ? ", " : "") + std::to_string(mg.corrections(l));
+    w_cycle = w_cycle || mg.corrections(l) > 1;
+  }
+  return "pcg+mg " + std::to_string(mg.levels()) + " levels" +
+         (w_cycle ? " (corrections per coarse visit: " + corrections + ")" : "") + ", " +
+         (relaxed > 0 ? std::to_string(relaxed) + " nodes relaxed near the edit, " : "") +
+         std::to_string(iterations) + " iterations";
+}
+
+}  // namespace
+
 // The iteration's vectors, allocated with the solver: an iteration allocates nothing (a
-// fresh 50K×3 temporary per vector operation cost page faults in every iteration).
+// fresh 50K×3 temporary per vector operation cost page faults in every iteration). Its
+// steps fuse the vector operations of an iteration into as few passes over the field as
+// the dot products allow (each must complete before the update that uses it), each pass
+// one parallel loop.
 struct MultigridFieldSolver::Work {
   Field x, r, p, q;
   detail::FieldF rf, zf;  // the cycle's residual and correction, in its precision
@@ -26,14 +71,98 @@ struct MultigridFieldSolver::Work {
 
   explicit Work(int n)
       : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3), mark(static_cast<size_t>(n), 0) {}
+
+  int nodes() const { return static_cast<int>(x.rows()); }
+
+  // r = b − A x with the exact double operator, b = WᵀW c formed on the fly, and r's copy
+  // in the cycle's precision; returns ‖r‖².
+  double residual(const Grid& grid, const double* wt, const double* tg) {
+    double* rr = r.data();
+    detail::normal_operator_visit(grid.dims, wt, x.data(), buffers,
+                                  [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
+                                    for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
+                                      rr[f] = wt[f / 3] * tg[f] - v[f - f0];
+                                  });
+    const int n = nodes();
+    detail::Real* rfp = rf.data();
+    double rnorm2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : rnorm2) if (n > parallel_nodes)
+    for (int i = 0; i < 3 * n; ++i) {
+      rfp[i] = static_cast<detail::Real>(rr[i]);
+      rnorm2 += rr[i] * rr[i];
+    }
+    return rnorm2;
+  }
+
+  // p = z, the first direction.
+  void first_direction() {
+    const int n = nodes();
+    double* pp = p.data();
+    const detail::Real* z = zf.data();
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+    for (int i = 0; i < 3 * n; ++i) pp[i] = static_cast<double>(z[i]);
+  }
+
+  // q = A p, and the column dots p·q on each line as it is written (per-thread partial
+  // sums, a cache line apart).
+  void product(const Grid& grid, const double* wt, double pq[3]) {
+    double* qq = q.data();
+    const double* pp = p.data();
+    line_dots.assign(8 * static_cast<size_t>(std::max(1, omp_get_max_threads())), 0.0);
+    detail::normal_operator_visit(grid.dims, wt, pp, buffers,
+                                  [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
+                                    double* dots = line_dots.data() + 8 * omp_get_thread_num();
+                                    double* ql = qq + f0;
+                                    const double* pl = pp + f0;
+                                    for (std::ptrdiff_t f = 0; f < len; f += 3) {
+                                      for (int c = 0; c < 3; ++c) {
+                                        ql[f + c] = v[f + c];
+                                        dots[c] += pl[f + c] * v[f + c];
+                                      }
+                                    }
+                                  });
+    pq[0] = pq[1] = pq[2] = 0;
+    for (size_t t = 0; t < line_dots.size(); t += 8)
+      for (int c = 0; c < 3; ++c) pq[c] += line_dots[t + c];
+  }
+
+  // x += α p and r −= α q, with the cycle's copy of r; step2 = ‖α p‖², x2 = ‖x‖².
+  void advance(const double alpha[3], double& step2, double& x2) {
+    const int n = nodes();
+    double* xx = x.data();
+    double* rr = r.data();
+    const double* pp = p.data();
+    const double* qq = q.data();
+    detail::Real* rfp = rf.data();
+    double s2 = 0, xn2 = 0;
+#pragma omp parallel for schedule(static) reduction(+ : s2, xn2) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
+        const double step = alpha[c] * pp[f];
+        xx[f] += step;
+        rr[f] -= alpha[c] * qq[f];
+        rfp[f] = static_cast<detail::Real>(rr[f]);
+        s2 += step * step;
+        xn2 += xx[f] * xx[f];
+      }
+    step2 = s2;
+    x2 = xn2;
+  }
+
+  // p = z + β p.
+  void next_direction(const double beta[3]) {
+    const int n = nodes();
+    double* pp = p.data();
+    const detail::Real* z = zf.data();
+#pragma omp parallel for schedule(static) if (n > parallel_nodes)
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
+        pp[f] = static_cast<double>(z[f]) + beta[c] * pp[f];
+      }
+  }
 };
-
-namespace {
-
-// Element-wise passes over the field run on one thread below this many nodes.
-constexpr int parallel_nodes = 20000;
-
-}  // namespace
 
 MultigridFieldSolver::MultigridFieldSolver(const Grid& grid, MultigridFieldOptions options)
     : grid_(grid), opt_(options) {
@@ -82,20 +211,8 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   const int n = static_cast<int>(field_.rows());
   FieldSolveReport rep = detail::start_report(FieldMethod::Multigrid, diff, current, n,
                                               "hair_field::MultigridFieldSolver::apply()");
-  const double w = opt_.field.omega * opt_.field.omega;
-  std::vector<std::pair<int, double>> changes;
-  changes.reserve(diff.added.size() + diff.removed.size());
-  for (const Constraint& c : diff.added) {
-    changes.emplace_back(c.node, w - weights_[c.node]);
-    weights_[c.node] = w;
-    targets_.row(c.node) = c.direction.transpose();
-  }
-  for (int node : diff.removed) {
-    changes.emplace_back(node, -weights_[node]);
-    weights_[node] = 0;
-    targets_.row(node).setZero();
-  }
-  for (const Constraint& c : diff.changed) targets_.row(c.node) = c.direction.transpose();
+  const auto changes =
+      apply_to_weights(diff, opt_.field.omega * opt_.field.omega, weights_, targets_);
   if (!changes.empty()) mg_->add_to_diagonal(changes);
   rep.update_ms = detail::ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
@@ -110,131 +227,70 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
     return rep;
   }
 
-  // The vector operations of an iteration are fused into as few passes over the field as
-  // the dot products allow (each must complete before the update that uses it), each pass
-  // one parallel loop over work vectors that live as long as the solver.
-  Work& wk = *work_;
-  double* x = wk.x.data();
-  double* r = wk.r.data();
-  double* p = wk.p.data();
-  double* q = wk.q.data();
-  detail::Real* rf = wk.rf.data();
-  const detail::Real* zf = nullptr;  // the cycle's output; apply() exchanges its storage
-  const double* wt = weights_.data();
-  const double* tg = targets_.data();
-
-  wk.x = field_;
+  work_->x = field_;
   const int relaxed = relax_near_edit(diff);
+  const Pcg pcg = solve_from_warm_start(current);
+  if (!pcg.converged)
+    throw SolverFailure("hair_field::MultigridFieldSolver::apply(): no convergence in " +
+                        std::to_string(opt_.max_iterations) + " iterations (estimated error " +
+                        std::to_string(pcg.error_estimate) + ")");
+  field_.swap(work_->x);
+  rep.iterations = pcg.iterations;
+  rep.error_estimate = pcg.error_estimate;
+  rep.detail = solve_detail(*mg_, relaxed, pcg.iterations);
+  rep.solve_ms = detail::ms_since(t1);
+  rep.total_ms = detail::ms_since(t0);
+  return rep;
+}
 
-  // r = b − A x with the exact double operator; b = WᵀW c is formed on the fly.
-  detail::normal_operator_visit(grid_.dims, wt, x, wk.buffers,
-                                [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
-                                  for (std::ptrdiff_t f = f0; f < f0 + len; ++f)
-                                    r[f] = wt[f / 3] * tg[f] - v[f - f0];
-                                });
+MultigridFieldSolver::Pcg MultigridFieldSolver::solve_from_warm_start(
+    const ConstraintSet& current) {
+  Work& wk = *work_;
+  const double* wt = weights_.data();
+  const double rnorm2 = wk.residual(grid_, wt, targets_.data());
   double bnorm2 = 0;  // b is zero off the constraints
   for (const Constraint& c : current.items())
     bnorm2 += wt[c.node] * wt[c.node] * targets_.row(c.node).squaredNorm();
   const double bnorm = std::sqrt(bnorm2);
-  double rnorm2 = 0;
-#pragma omp parallel for schedule(static) reduction(+ : rnorm2) if (n > parallel_nodes)
-  for (int i = 0; i < 3 * n; ++i) {
-    rf[i] = static_cast<detail::Real>(r[i]);
-    rnorm2 += r[i] * r[i];
-  }
   // The column dots r·z come from the cycle itself, formed as its last step writes z.
   double dots[3];
-  mg_->apply(wk.rf, wk.zf, r, dots);
-  zf = wk.zf.data();
+  mg_->apply(wk.rf, wk.zf, wk.r.data(), dots);
   Eigen::RowVector3d rz(dots[0], dots[1], dots[2]);
-#pragma omp parallel for schedule(static) if (n > parallel_nodes)
-  for (int i = 0; i < 3 * n; ++i) p[i] = static_cast<double>(zf[i]);
-  double prev_step = 0, est = 0;
+  wk.first_direction();
+  Pcg out;
+  double prev_step = 0;
   int it = 0;
-  bool converged = std::sqrt(rnorm2) <= 1e-15 * std::max(bnorm, 1e-300);
-  for (; !converged && it < opt_.max_iterations; ++it) {
-    // q = A p, and the column dots p·q on each line as it is written (per-thread partial
-    // sums, a cache line apart).
-    wk.line_dots.assign(8 * static_cast<size_t>(std::max(1, omp_get_max_threads())), 0.0);
-    detail::normal_operator_visit(grid_.dims, wt, p, wk.buffers,
-                                  [&](std::ptrdiff_t f0, std::ptrdiff_t len, const double* v) {
-                                    double* dots = wk.line_dots.data() + 8 * omp_get_thread_num();
-                                    double* ql = q + f0;
-                                    const double* pl = p + f0;
-                                    for (std::ptrdiff_t f = 0; f < len; f += 3) {
-                                      for (int c = 0; c < 3; ++c) {
-                                        ql[f + c] = v[f + c];
-                                        dots[c] += pl[f + c] * v[f + c];
-                                      }
-                                    }
-                                  });
-    double pq[3] = {0, 0, 0};
-    for (size_t t = 0; t < wk.line_dots.size(); t += 8)
-      for (int c = 0; c < 3; ++c) pq[c] += wk.line_dots[t + c];
+  out.converged = std::sqrt(rnorm2) <= 1e-15 * std::max(bnorm, 1e-300);
+  for (; !out.converged && it < opt_.max_iterations; ++it) {
+    double pq[3];
+    wk.product(grid_, wt, pq);
     double alpha[3];
     for (int c = 0; c < 3; ++c) alpha[c] = pq[c] > 0 ? rz[c] / pq[c] : 0.0;
-    // x += α p and r −= α q, with the cycle's copy of r and the norms of the step and of x.
     double step2 = 0, x2 = 0;
-#pragma omp parallel for schedule(static) reduction(+ : step2, x2) if (n > parallel_nodes)
-    for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
-        const double step = alpha[c] * p[f];
-        x[f] += step;
-        r[f] -= alpha[c] * q[f];
-        rf[f] = static_cast<detail::Real>(r[f]);
-        step2 += step * step;
-        x2 += x[f] * x[f];
-      }
+    wk.advance(alpha, step2, x2);
     // With a uniform preconditioned spectrum the steps shrink geometrically at rate ρ;
     // the error left is then about step·ρ/(1−ρ). ρ is taken pessimistically (max of the
     // last ratio and 0.5) so one lucky short step cannot stop the iteration.
     const double step_norm = std::sqrt(step2);
     const double rho = it == 0 ? 0.9 : std::clamp(step_norm / std::max(prev_step, 1e-300), 0.5, 0.95);
     prev_step = step_norm;
-    est = step_norm * rho / (1 - rho) / std::max(std::sqrt(x2), 1e-300);
+    out.error_estimate = step_norm * rho / (1 - rho) / std::max(std::sqrt(x2), 1e-300);
     // Not before the third step: the first ratios are not yet the settled rate (the estimate
     // at the second step was measured at half the true error).
-    if (it >= 2 && est <= opt_.tolerance) {
-      converged = true;
+    if (it >= 2 && out.error_estimate <= opt_.tolerance) {
+      out.converged = true;
       ++it;
       break;
     }
-    mg_->apply(wk.rf, wk.zf, r, dots);
-    zf = wk.zf.data();
+    mg_->apply(wk.rf, wk.zf, wk.r.data(), dots);
     const Eigen::RowVector3d rz_new(dots[0], dots[1], dots[2]);
     double beta[3];
     for (int c = 0; c < 3; ++c) beta[c] = rz[c] > 0 ? rz_new[c] / rz[c] : 0.0;
-#pragma omp parallel for schedule(static) if (n > parallel_nodes)
-    for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i) + c;
-        p[f] = static_cast<double>(zf[f]) + beta[c] * p[f];
-      }
+    wk.next_direction(beta);
     rz = rz_new;
   }
-  if (!converged)
-    throw SolverFailure("hair_field::MultigridFieldSolver::apply(): no convergence in " +
-                        std::to_string(opt_.max_iterations) + " iterations (estimated error " +
-                        std::to_string(est) + ")");
-  field_.swap(wk.x);
-  rep.iterations = it;
-  rep.error_estimate = est;
-  // The W-cycle's corrections per visit of levels 1, 2, ... (those above the coarsest but
-  // one, which always make one), e.g. "(corrections per coarse visit: 4, 2)".
-  std::string corrections;
-  bool w_cycle = false;
-  for (int l = 1; l + 2 < mg_->levels(); ++l) {
-    corrections += (l > 1 ? ", " : "") + std::to_string(mg_->corrections(l));
-    w_cycle = w_cycle || mg_->corrections(l) > 1;
-  }
-  rep.detail = "pcg+mg " + std::to_string(mg_->levels()) + " levels" +
-               (w_cycle ? " (corrections per coarse visit: " + corrections + ")" : "") + ", " +
-               (relaxed > 0 ? std::to_string(relaxed) + " nodes relaxed near the edit, " : "") +
-               std::to_string(it) + " iterations";
-  rep.solve_ms = detail::ms_since(t1);
-  rep.total_ms = detail::ms_since(t0);
-  return rep;
+  out.iterations = it;
+  return out;
 }
 
 }  // namespace lapis::hair_field

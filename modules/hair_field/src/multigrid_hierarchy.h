@@ -35,6 +35,13 @@ using FieldF = Eigen::Matrix<Real, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using RowSparseD = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 
+// Below this many stored entries a sparse product runs on one thread. The threshold counts
+// entries, not rows: level 1 of a 50K grid has only 7.4K rows but 0.9M entries (up to 125
+// a row), the costliest product of the cycle, and a row threshold left it on one thread.
+inline constexpr std::ptrdiff_t parallel_nonzeros = 50000;
+// Element-wise passes: below this many nodes one thread.
+inline constexpr int parallel_nodes = 20000;
+
 struct MultigridOptions {
   int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
   int cycle_index = 1;           // coarse-grid corrections per visit of the finest level

@@ -59,7 +59,7 @@ struct GridOptions {
 
 // Bytes the fast (multigrid) field path needs for n nodes: fine and coarse operators in
 // float with indices, the double field and the CG work vectors (measured layout, see
-// multigrid.cpp).
+// grid.cpp).
 double estimate_multigrid_bytes(std::int64_t n);
 // Bytes of the thesis path's simplicial LDLᵀ factor for n nodes. The 3D bi-Laplacian fills
 // in like n^(4/3); the constant is fitted to the measured 38M non-zeros at 50K unknowns

@@ -28,7 +28,7 @@ struct MultigridFieldOptions {
   // coarse correction per cycle on the finest level and several per visit of each coarser
   // one. The V-cycle's coarse correction weakens with depth, and a strong one lets the costly
   // fine level smooth less. The corrections after the first cost one product on the coarser
-  // level only (multigrid_hierarchy.cpp), so four are cheap where the hierarchy is deep.
+  // level only (multigrid_cycle.cpp), so four are cheap where the hierarchy is deep.
   // Field solve after a stroke on the bundled head, one driver, solvers taking turns
   // (iterations, median ms): 250K (5 levels) 15 / 422 with two corrections, 13 / 389 with
   // three, 12 / 374 with four; 1M (5 levels) 18 / 2117 with two, 14 / 1923 with four; 50K
@@ -76,6 +76,13 @@ class MultigridFieldSolver final : public FieldSolver {
   std::unique_ptr<detail::MultigridHierarchy> mg_;
   // Relaxes the warm start near the diff's nodes; returns how many nodes it relaxed.
   int relax_near_edit(const ConstraintDiff& diff);
+  // Preconditioned CG from the warm start in work_->x for the current weights and targets.
+  struct Pcg {
+    int iterations = 0;
+    double error_estimate = 0;
+    bool converged = false;
+  };
+  Pcg solve_from_warm_start(const ConstraintSet& current);
   struct Work;  // the iteration's vectors, kept between solves
   std::unique_ptr<Work> work_;
 };
