@@ -42,14 +42,16 @@ inline constexpr std::ptrdiff_t parallel_nonzeros = 50000;
 // Element-wise passes: below this many nodes one thread.
 inline constexpr int parallel_nodes = 20000;
 
+// The cycle's parameters, as MultigridFieldOptions (multigrid_field_solver.h) gives them;
+// the defaults live there.
 struct MultigridOptions {
-  int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
-  int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
+  int smoothing_degree = 0;      // Chebyshev polynomial degree, pre and post
+  int cycle_index = 0;           // coarse-grid corrections per visit of the finest level
   int coarse_cycle_index = 0;    // ... and per visit of each coarser level (1: V-cycle;
                                  // 0: 4 on hierarchies of 5 or more levels, else 2, and
                                  // at most 2 into a level whose products run on one thread)
-  double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
-  int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
+  double smoothing_range = 0;    // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
+  int coarsest_nodes = 0;        // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
 };
 
