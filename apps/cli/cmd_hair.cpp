@@ -18,6 +18,7 @@ namespace lapis::cli {
 namespace {
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 constexpr const char* kUsage =
     "usage: lapis hair --session FILE.json [--head MESH] [--grid-unknowns N] [--roots N]\n"
@@ -42,8 +43,10 @@ int run(const std::vector<std::string>& argv) {
   const std::string out_hair = args.get("--out-hair");
   Hairstyle session = load_session(session_path);
   if (args.has("--grid-unknowns"))
-    session.settings.grid_unknowns = static_cast<double>(args.get_int("--grid-unknowns", 0, 8, 100'000'000));
-  if (args.has("--roots")) session.settings.roots = static_cast<int>(args.get_int("--roots", 0, 0, 10'000'000));
+    session.settings.grid.target_unknowns =
+        static_cast<double>(args.get_int("--grid-unknowns", 0, 8, 100'000'000));
+  if (args.has("--roots"))
+    session.settings.roots.count = static_cast<int>(args.get_int("--roots", 0, 0, 10'000'000));
   const Head head = load_session_head(session, session_path, args.get("--head", ""));
 
   auto t = std::chrono::steady_clock::now();

@@ -123,14 +123,14 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   ImGui::Begin("Hair");
   HairstyleSettings s = document_.style().settings;
   bool changed = false;
-  int unknowns = static_cast<int>(s.grid_unknowns);
+  int unknowns = static_cast<int>(s.grid.target_unknowns);
   ImGui::SliderInt("grid unknowns", &unknowns, 5000, 1000000, "%d", ImGuiSliderFlags_Logarithmic);
-  if (ImGui::IsItemDeactivatedAfterEdit()) s.grid_unknowns = unknowns, changed = true;
-  ImGui::SliderInt("roots", &s.roots, 100, 100000, "%d", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemDeactivatedAfterEdit()) s.grid.target_unknowns = unknowns, changed = true;
+  ImGui::SliderInt("roots", &s.roots.count, 100, 100000, "%d", ImGuiSliderFlags_Logarithmic);
   changed |= ImGui::IsItemDeactivatedAfterEdit();
-  float length = static_cast<float>(s.max_length);
+  float length = static_cast<float>(s.growth.max_length);
   ImGui::SliderFloat("max length (d)", &length, 5, 400);
-  if (ImGui::IsItemDeactivatedAfterEdit()) s.max_length = length, changed = true;
+  if (ImGui::IsItemDeactivatedAfterEdit()) s.growth.max_length = length, changed = true;
   if (ImGui::Checkbox("scalp avoidance (thesis 4.6)", &s.scalp_avoidance)) changed = true;
   if (changed) {
     execute(v, Command{"change settings", SetSettings{s}, std::nullopt});

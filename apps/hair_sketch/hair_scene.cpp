@@ -4,10 +4,10 @@
 #include <cstdint>
 
 #include "hair_sketch_app.h"
-#include "lapis/hair_sketch/strand_display.h"
 #include "lapis/hair_sketch/sketch.h"
 #include "lapis/hair_sketch/style_field.h"
 #include "primitive_geometry.h"
+#include "strand_display.h"
 
 namespace lapis::hair_app {
 namespace {

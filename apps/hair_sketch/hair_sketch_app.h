@@ -21,6 +21,7 @@
 namespace lapis::hair_app {
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 enum class Tool { StreamCurve, DividingCurve, Ponytail, Hint, Tilt, Select };
 const char* tool_name(Tool t);
@@ -112,7 +113,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   bool show_scalp_ = false, show_glyphs_ = false, show_curves_ = true, show_strands_ = true;
   Eigen::Vector3f root_color_{0.16f, 0.09f, 0.05f}, tip_color_{0.55f, 0.36f, 0.20f};
   float strand_width_ = 1.0f;
-  // Strand segments drawn (hair_sketch::display_strands; 0: every segment), adapted to keep
+  // Strand segments drawn (display_strands, strand_display.h; 0: every segment), adapted to keep
   // frames near 80 ms: software rendering of 20K full strands (4M segments, 4× MSAA) takes
   // two seconds a frame. Headless runs (screenshots, demos) draw everything.
   viewer::AdaptiveBudget strand_budget_{100000};

@@ -15,6 +15,7 @@
 #include "lapis/hair_sketch/style_field.h"
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 using lapis::geometry::CameraMatrices;
 
 namespace {
@@ -81,9 +82,9 @@ Drawer start(const Head& head, double unknowns) {
   Hairstyle h;
   h.settings.head_mesh = "../head.obj";
   h.settings.scalp_mask = "../head_scalp.txt";
-  h.settings.grid_unknowns = unknowns;
+  h.settings.grid.target_unknowns = unknowns;
   h.settings.field_method = FieldMethod::Thesis;
-  h.settings.roots = 2000;
+  h.settings.roots.count = 2000;
   h.camera = look_at({0, 2.5, 5}, {0, 0.2, 0});
   return {head, Document(h), hairstyle_grid(head, h.settings)};
 }

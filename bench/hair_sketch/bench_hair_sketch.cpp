@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/stream_curve.h"
@@ -26,6 +26,7 @@
 #include "memory_bandwidth.h"
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 namespace bench = lapis::bench;
 
 namespace {

@@ -5,15 +5,16 @@
 #include <memory>
 #include <vector>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/field_solver.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/field_solver.h"
+#include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace hair_test {
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 // Loaded once: building the BVH for every test case costs more than the cases.
 inline const Head& bundled_head() {

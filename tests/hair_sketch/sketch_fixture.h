@@ -61,10 +61,10 @@ namespace hair_test {
 
 inline HairstyleSettings small_settings() {
   HairstyleSettings s;
-  s.grid_unknowns = 6000;
+  s.grid.target_unknowns = 6000;
   s.field_method = FieldMethod::Thesis;
-  s.roots = 300;
-  s.max_length = 60;
+  s.roots.count = 300;
+  s.growth.max_length = 60;
   return s;
 }
 

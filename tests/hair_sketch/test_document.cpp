@@ -71,7 +71,7 @@ TEST_CASE("hair_sketch: undo of every command restores the document and the fiel
   doc.execute({"move camera", SetCamera{top}, std::nullopt});
   record();
   HairstyleSettings changed = doc.style().settings;
-  changed.roots = 123;
+  changed.roots.count = 123;
   doc.execute({"settings", SetSettings{changed}, std::nullopt});
   record();
   CHECK(doc.style().strokes.size() == 5);

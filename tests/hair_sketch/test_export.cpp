@@ -14,6 +14,7 @@
 #include "sketch_fixture.h"
 
 using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 namespace fs = std::filesystem;
 
 namespace {

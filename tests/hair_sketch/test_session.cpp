@@ -59,7 +59,8 @@ TEST_CASE("hair_sketch: session save, load and replay give identical documents a
   const Hairstyle replayed = replay_strokes(loaded, head);
   CHECK(same_hairstyle(replayed, drawn));
   const HairstyleResult a = build_hairstyle(drawn, head), b = build_hairstyle(replayed, head);
-  REQUIRE(a.strands.count() > 0.9 * drawn.settings.roots);  // roots sample θ, φ steps: about `roots`
+  REQUIRE(a.strands.count() >
+          0.9 * drawn.settings.roots.count);  // roots sample θ, φ steps: about `roots`
   CHECK(a.strands.offsets == b.strands.offsets);
   CHECK(a.strands.points == b.strands.points);
   CHECK(a.penetrating_segments == b.penetrating_segments);

@@ -295,8 +295,7 @@ void Viewer::write_benchmark(const ViewerApp& app) const {
   std::printf("benchmark: %s\n", options_.benchmark.string().c_str());
 }
 
-int Viewer::run(ViewerApp& app) {
-  app_ = &app;
+void Viewer::open_window() {
   glfwSetErrorCallback(glfw_error);
   if (!glfwInit())
     throw Error("viewer::Viewer::run(): cannot initialise GLFW: " + last_glfw_error +
@@ -331,103 +330,126 @@ int Viewer::run(ViewerApp& app) {
   glfwSetFramebufferSizeCallback(w, GlfwCallbacks::resize);
   window_->renderer = make_gl_renderer();
   recording_.width = width_, recording_.height = height_;
+}
 
+// Redraw on demand. Drawing the same picture again costs a software renderer most of both
+// cores, which the app's worker needs: with nothing new (no input for a few frames, no
+// replay or screenshot pending, no change in busy state) wait for input or a wake()
+// instead, redrawing a few times a second while the app works so its progress shows.
+// A replay does the same between its events: idle frames are skipped, and while the app
+// works they come a few a second, so its worker is not starved by the renderer.
+void Viewer::wait_for_next_frame(bool busy) {
+  const bool settled = frame_ - last_input_frame_ > kSettleFrames && busy == was_busy_;
+  if (replaying()) {
+    const InputEvent& next = replay_->events[replay_next_];
+    const long next_frame = next.frame + replay_delay_;
+    const bool held_until_idle = next.type == EventType::Idle && next_frame <= frame_ && busy;
+    if (settled && (next_frame > frame_ || held_until_idle)) {
+      if (busy) glfwWaitEventsTimeout(kBusyRedrawSeconds);
+      else frame_ = next_frame;
+    }
+    glfwPollEvents();
+  } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames && !(finishing_run(options_) && !busy)) {
+    glfwWaitEventsTimeout(busy ? kBusyRedrawSeconds : kIdleRedrawSeconds);
+  } else {
+    glfwPollEvents();
+  }
+  was_busy_ = busy;
+}
+
+void Viewer::play_due_events() {
+  if (!replay_) return;
+  while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame + replay_delay_ <= frame_) {
+    if (replay_->events[replay_next_].type == EventType::Idle) {
+      // Hold here while the app works; what follows is delayed by the frames waited.
+      if (app_->busy()) {
+        ++replay_delay_;
+        break;
+      }
+      ++replay_next_;
+      continue;
+    }
+    dispatch(replay_->events[replay_next_++]);
+  }
+}
+
+void Viewer::draw_frame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  // The app's idea of the cursor (replayed or real) is what ImGui sees too.
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = ImVec2(static_cast<float>(cursor_.x()), static_cast<float>(cursor_.y()));
+  for (int b = 0; b < 3; ++b) io.MouseDown[b] = io.MouseDown[b] || buttons_[b];
+  if (replay_) for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttons_[b];
+  ImGui::NewFrame();
+
+  app_->on_frame(*this);
+  app_->on_gui(*this);
+  draw_overlay();
+  ImGui::Render();
+  window_->renderer->render(scene_, camera_matrices(), width_, height_);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+  if (pending_screenshot_) {
+    take_screenshot(*pending_screenshot_);
+    pending_screenshot_.reset();
+  }
+}
+
+bool Viewer::close_when_done() {
+  const bool replay_done = !replaying();
+  const bool auto_shot = !options_.screenshot.empty() && (replay_ || options_.headless);
+  if (!(replay_done && (auto_shot || (replay_ && options_.exit_after_replay)) && frame_ >= 3)) return true;
+  GLFWwindow* w = window_->handle;
+  if (app_->busy()) {
+    if (idle_since_replay_ < 0) idle_since_replay_ = time();
+    if (time() - idle_since_replay_ > options_.idle_timeout_s) {
+      std::fprintf(stderr, "viewer: the app stayed busy for %.0f s after the replay; giving up\n",
+                   options_.idle_timeout_s);
+      glfwSetWindowShouldClose(w, GLFW_TRUE);
+      return false;
+    }
+  } else if (++idle_frames_after_replay_ >= 2) {
+    // The second idle frame: panels that size themselves to their content (the overlay)
+    // take one frame to fit what the result just changed.
+    if (auto_shot) take_screenshot(options_.screenshot), options_.screenshot.clear();
+    if (options_.exit_after_replay || options_.headless) glfwSetWindowShouldClose(w, GLFW_TRUE);
+  }
+  return true;
+}
+
+void Viewer::finish_run() {
+  app_->on_exit(*this);
+  if (!options_.record.empty()) {
+    recording_.save(options_.record);
+    std::printf("recorded %zu events: %s\n", recording_.events.size(), options_.record.string().c_str());
+  }
+  if (!options_.benchmark.empty()) write_benchmark(*app_);
+  app_ = nullptr;
+  window_.reset();
+}
+
+int Viewer::run(ViewerApp& app) {
+  app_ = &app;
+  open_window();
   app.on_start(*this);
   int exit_code = 0;
-  double idle_since_replay = -1;
-  int idle_frames_after_replay = 0;
-  bool was_busy = false;
-  while (!glfwWindowShouldClose(w)) {
-    // Redraw on demand. Drawing the same picture again costs a software renderer most of both
-    // cores, which the app's worker needs: with nothing new (no input for a few frames, no
-    // replay or screenshot pending, no change in busy state) wait for input or a wake()
-    // instead, redrawing a few times a second while the app works so its progress shows.
-    // A replay does the same between its events: idle frames are skipped, and while the app
-    // works they come a few a second, so its worker is not starved by the renderer.
-    const bool busy = app.busy();
-    const bool settled = frame_ - last_input_frame_ > kSettleFrames && busy == was_busy;
-    if (replaying()) {
-      const InputEvent& next = replay_->events[replay_next_];
-      const long next_frame = next.frame + replay_delay_;
-      const bool held_until_idle = next.type == EventType::Idle && next_frame <= frame_ && busy;
-      if (settled && (next_frame > frame_ || held_until_idle)) {
-        if (busy) glfwWaitEventsTimeout(kBusyRedrawSeconds);
-        else frame_ = next_frame;
-      }
-      glfwPollEvents();
-    } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames && !(finishing_run(options_) && !busy)) {
-      glfwWaitEventsTimeout(busy ? kBusyRedrawSeconds : kIdleRedrawSeconds);
-    } else {
-      glfwPollEvents();
-    }
-    was_busy = busy;
+  idle_since_replay_ = -1;
+  idle_frames_after_replay_ = 0;
+  was_busy_ = false;
+  while (!glfwWindowShouldClose(window_->handle)) {
+    wait_for_next_frame(app.busy());
     const auto frame_start = Clock::now();
-    if (replay_)
-      while (replay_next_ < replay_->events.size() && replay_->events[replay_next_].frame + replay_delay_ <= frame_) {
-        if (replay_->events[replay_next_].type == EventType::Idle) {
-          // Hold here while the app works; what follows is delayed by the frames waited.
-          if (app.busy()) {
-            ++replay_delay_;
-            break;
-          }
-          ++replay_next_;
-          continue;
-        }
-        dispatch(replay_->events[replay_next_++]);
-      }
-
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    // The app's idea of the cursor (replayed or real) is what ImGui sees too.
-    ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = ImVec2(static_cast<float>(cursor_.x()), static_cast<float>(cursor_.y()));
-    for (int b = 0; b < 3; ++b) io.MouseDown[b] = io.MouseDown[b] || buttons_[b];
-    if (replay_) for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttons_[b];
-    ImGui::NewFrame();
-
-    app.on_frame(*this);
-    app.on_gui(*this);
-    draw_overlay();
-    ImGui::Render();
-    window_->renderer->render(scene_, camera_matrices(), width_, height_);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-    if (pending_screenshot_) {
-      take_screenshot(*pending_screenshot_);
-      pending_screenshot_.reset();
-    }
-    const bool replay_done = !replaying();
-    const bool auto_shot = !options_.screenshot.empty() && (replay_ || options_.headless);
-    if (replay_done && (auto_shot || (replay_ && options_.exit_after_replay)) && frame_ >= 3) {
-      if (app.busy()) {
-        if (idle_since_replay < 0) idle_since_replay = time();
-        if (time() - idle_since_replay > options_.idle_timeout_s) {
-          std::fprintf(stderr, "viewer: the app stayed busy for %.0f s after the replay; giving up\n",
-                       options_.idle_timeout_s);
-          exit_code = 1;
-          glfwSetWindowShouldClose(w, GLFW_TRUE);
-        }
-      } else if (++idle_frames_after_replay >= 2) {
-        // The second idle frame: panels that size themselves to their content (the overlay)
-        // take one frame to fit what the result just changed.
-        if (auto_shot) take_screenshot(options_.screenshot), options_.screenshot.clear();
-        if (options_.exit_after_replay || options_.headless) glfwSetWindowShouldClose(w, GLFW_TRUE);
-      }
-    }
-    glfwSwapBuffers(w);
+    play_due_events();
+    draw_frame();
+    if (!close_when_done()) exit_code = 1;
+    glfwSwapBuffers(window_->handle);
     // The frame's own work (events to swap), not the waits between on-demand frames.
     last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     frame_ms_.push_back(last_frame_ms_);
     ++frame_;
   }
-  app.on_exit(*this);
-  if (!options_.record.empty()) {
-    recording_.save(options_.record);
-    std::printf("recorded %zu events: %s\n", recording_.events.size(), options_.record.string().c_str());
-  }
-  if (!options_.benchmark.empty()) write_benchmark(app);
-  app_ = nullptr;
-  window_.reset();
+  finish_run();
   return exit_code;
 }
 

@@ -6,6 +6,8 @@
 #include "lapis/core/error.h"
 
 namespace lapis::hair_sketch::detail {
+using hair_field::Constraint;
+using hair_field::Grid;
 
 std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, double h,
                                       const char* who) {

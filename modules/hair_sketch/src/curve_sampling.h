@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
 
 namespace lapis::hair_sketch::detail {
 
@@ -20,12 +20,12 @@ std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& polyli
 
 // Appends a constraint on each of the 8 corners of the grid cell containing p (those inside
 // the grid): a segment's "neighbouring grid points".
-void constrain_cell(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
-                    std::vector<Constraint>& out);
+void constrain_cell(const hair_field::Grid& grid, const Eigen::Vector3d& p,
+                    const Eigen::Vector3d& dir, std::vector<hair_field::Constraint>& out);
 
 // Appends a constraint on the grid node nearest p, if p is inside the grid.
-void constrain_nearest(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
-                       std::vector<Constraint>& out);
+void constrain_nearest(const hair_field::Grid& grid, const Eigen::Vector3d& p,
+                       const Eigen::Vector3d& dir, std::vector<hair_field::Constraint>& out);
 
 // Unit vectors u, v completing t to an orthonormal frame.
 void orthonormal_frame(const Eigen::Vector3d& t, Eigen::Vector3d& u, Eigen::Vector3d& v);

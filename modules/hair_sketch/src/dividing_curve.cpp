@@ -5,6 +5,9 @@
 #include "curve_sampling.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::Grid;
+
 namespace {
 
 struct Frame {

@@ -11,6 +11,9 @@
 #include "lapis/geometry/io.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Field;
+using hair_field::Grid;
+
 namespace {
 
 void check_field(const Grid& grid, const Field& field, const char* fn) {

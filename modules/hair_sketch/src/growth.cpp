@@ -15,6 +15,8 @@
 #endif
 
 namespace lapis::hair_sketch {
+using hair_field::Field;
+using hair_field::Grid;
 
 SampledField::SampledField(const Grid& grid, const Field& field)
     : grid_(grid), data_(field.data(), field.data() + field.size()) {

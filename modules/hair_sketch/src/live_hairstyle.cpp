@@ -12,20 +12,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-RootOptions root_options(const HairstyleSettings& s) {
-  RootOptions r;
-  r.count = s.roots;
-  r.seed = s.seed;
-  return r;
-}
-
 }  // namespace
 
 LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings)
     : head_(&head),
       settings_(settings),
-      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.omega),
-      roots_(sample_roots(head, root_options(settings))) {}
+      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field),
+      roots_(sample_roots(head, settings.roots)) {}
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {
   LiveUpdate out;
@@ -39,10 +32,7 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, 
   out.solve_ms = ms_since(t0);
   out.constraints = field_.constraints().size();
   const auto t1 = std::chrono::steady_clock::now();
-  GrowthOptions growth;
-  growth.step = settings_.step;
-  growth.max_length = settings_.max_length;
-  grower_.set_options(growth);
+  grower_.set_options(settings_.growth);
   grower_.grow(SampledField(field_.grid(), field_.field()), roots_, out.strands);
   out.growth_ms = ms_since(t1);
   out.total_ms = ms_since(t0);

@@ -8,6 +8,9 @@
 #include "lapis/core/error.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::Grid;
+
 namespace {
 
 // Arc-length parameterized spine: nearest-point projection and evaluation.

@@ -6,6 +6,9 @@
 #include "lapis/core/error.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::Field;
+using hair_field::Grid;
 
 std::vector<Constraint> scalp_avoidance_constraints(const Grid& grid, const Field& field,
                                                     const Head& head,

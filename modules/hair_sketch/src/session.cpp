@@ -12,6 +12,8 @@
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
+using hair_field::FieldMethod;
+
 namespace {
 
 using nlohmann::json;
@@ -232,16 +234,16 @@ class Reader {
     HairstyleSettings s;
     s.head_mesh = string(j, path, "head_mesh");
     s.scalp_mask = string(j, path, "scalp_mask");
-    s.grid_unknowns = number(j, path, "grid_unknowns", 8, 1e9);
+    s.grid.target_unknowns = number(j, path, "grid_unknowns", 8, 1e9);
     s.field_method = method(j, path);
-    s.omega = number(j, path, "omega", 1e-6, 1e12);
-    s.roots = static_cast<int>(integer(j, path, "roots", 0, 10'000'000));
-    s.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffL));
-    s.step = number(j, path, "step", 1e-3, 10);
-    s.max_length = number(j, path, "max_length", 0, 1e6);
+    s.field.omega = number(j, path, "omega", 1e-6, 1e12);
+    s.roots.count = static_cast<int>(integer(j, path, "roots", 0, 10'000'000));
+    s.roots.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffL));
+    s.growth.step = number(j, path, "step", 1e-3, 10);
+    s.growth.max_length = number(j, path, "max_length", 0, 1e6);
     s.scalp_avoidance = boolean(j, path, "scalp_avoidance");
     s.support = support(j, path);
-    s.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
+    s.sketch.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
     return s;
   }
 
@@ -257,12 +259,18 @@ std::string session_to_json(const Hairstyle& style) {
   json j;
   j["format"] = "lapis-hair-session";
   j["version"] = 1;
-  j["settings"] = {{"head_mesh", s.head_mesh},       {"scalp_mask", s.scalp_mask},
-                   {"grid_unknowns", s.grid_unknowns}, {"field_method", method_name(s.field_method)},
-                   {"omega", s.omega},               {"roots", s.roots},
-                   {"seed", s.seed},                 {"step", s.step},
-                   {"max_length", s.max_length},     {"scalp_avoidance", s.scalp_avoidance},
-                   {"support", to_string(s.support)}, {"tail_segments", s.tail_segments}};
+  j["settings"] = {{"head_mesh", s.head_mesh},
+                   {"scalp_mask", s.scalp_mask},
+                   {"grid_unknowns", s.grid.target_unknowns},
+                   {"field_method", method_name(s.field_method)},
+                   {"omega", s.field.omega},
+                   {"roots", s.roots.count},
+                   {"seed", s.roots.seed},
+                   {"step", s.growth.step},
+                   {"max_length", s.growth.max_length},
+                   {"scalp_avoidance", s.scalp_avoidance},
+                   {"support", to_string(s.support)},
+                   {"tail_segments", s.sketch.tail_segments}};
   j["camera"] = to_json(style.camera);
   j["primitives"] = json::array();
   for (const auto& p : style.primitives) j["primitives"].push_back(to_json(p));

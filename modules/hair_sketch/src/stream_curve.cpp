@@ -3,6 +3,8 @@
 #include "curve_sampling.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::Grid;
 
 std::vector<Constraint> StreamCurve::constraints(const Grid& grid) const {
   const auto p = detail::resample(points, grid.spacing, "hair_sketch::StreamCurve::constraints()");

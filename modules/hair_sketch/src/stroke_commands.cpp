@@ -4,6 +4,8 @@
 #include "lapis/hair_sketch/style_field.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Grid;
+
 namespace {
 
 constexpr const char* kFn = "hair_sketch::command_from_stroke()";

@@ -6,6 +6,16 @@
 #include "lapis/hair_sketch/scalp_avoidance.h"
 
 namespace lapis::hair_sketch {
+using hair_field::Constraint;
+using hair_field::ConstraintSet;
+using hair_field::diff;
+using hair_field::FieldMethod;
+using hair_field::FieldSolveReport;
+using hair_field::FieldSolverOptions;
+using hair_field::Grid;
+using hair_field::make_field_solver;
+using hair_field::make_grid;
+
 namespace {
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
@@ -15,15 +25,12 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings) {
-  GridOptions g;
-  g.target_unknowns = settings.grid_unknowns;
-  return make_grid(head.box, g);
+  return make_grid(head.box, settings.grid);
 }
 
 SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings) {
-  SketchOptions o;
+  SketchOptions o = settings.sketch;
   o.spacing = grid.spacing;
-  o.tail_segments = settings.tail_segments;
   return o;
 }
 
@@ -46,12 +53,9 @@ ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, c
   return ConstraintSet::merge(groups);
 }
 
-StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, double omega)
-    : head_(&head), grid_(grid) {
-  FieldSolverOptions o;
-  o.omega = omega;
-  solver_ = make_field_solver(grid, method, o);
-}
+StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method,
+                       const FieldSolverOptions& options)
+    : head_(&head), grid_(grid), solver_(make_field_solver(grid, method, options)) {}
 
 FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitives,
                                     const std::vector<Constraint>& extra) {
@@ -69,7 +73,7 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   HairstyleResult r;
   auto t0 = std::chrono::steady_clock::now();
   r.grid = hairstyle_grid(head, s);
-  StyleField field(head, r.grid, s.field_method, s.omega);
+  StyleField field(head, r.grid, s.field_method, s.field);
   r.grid_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   r.solves.push_back(field.update(style.primitives));
@@ -80,13 +84,7 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   r.field = field.field();
   r.constraints = field.constraints().size();
   t0 = std::chrono::steady_clock::now();
-  RootOptions roots;
-  roots.count = s.roots;
-  roots.seed = s.seed;
-  GrowthOptions growth;
-  growth.step = s.step;
-  growth.max_length = s.max_length;
-  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, roots), growth);
+  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, s.roots), s.growth);
   r.growth_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   r.penetrating_segments = count_penetrating_segments(r.strands, head);

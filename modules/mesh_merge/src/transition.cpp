@@ -83,39 +83,34 @@ std::pair<int, double> locate_on_loop(const std::vector<double>& params, double 
   return {k, span > 0 ? std::clamp((u - params[k]) / span, 0.0, 1.0) : 0.0};
 }
 
-TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
-                               const std::vector<double>& loop_u, double width, bool reversed, const char* which) {
-  if (!(width > 0) || !std::isfinite(width))
-    fail(which, "transition width must be finite and > 0, got " + format_number(width));
-  if (loop.size() < 3 || loop_u.size() != loop.size())
-    fail(which, "merging loop needs at least 3 vertices and one parameter per vertex");
-  const int nv = mesh.num_vertices();
-  const std::string w = "of width " + format_number(width);
+namespace {
 
-  // §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
-  // shorter than the width; its faces are those touching such a vertex.
+// §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
+// shorter than the width; its faces are those touching such a vertex.
+std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
+                            double width, const std::string& w, const char* which) {
+  const int nv = mesh.num_vertices();
   geometry::DijkstraOptions d;
   d.max_distance = width;
   const geometry::ShortestPaths sp = geometry::dijkstra(conn, loop, geometry::edge_length_cost(mesh), d);
   std::vector<char> near(static_cast<size_t>(nv), 0);
-  TransitionBand b;
-  b.loop = loop;
+  std::vector<int> faces;
   int beyond = 0;
   for (int v = 0; v < nv; ++v) {
     near[v] = sp.distance[v] < width;
     beyond += !near[v] && !conn.is_isolated_vertex(v);
   }
   for (int f = 0; f < mesh.num_faces(); ++f)
-    if (near[mesh.F(f, 0)] || near[mesh.F(f, 1)] || near[mesh.F(f, 2)]) b.faces.push_back(f);
-  if (beyond == 0 || static_cast<int>(b.faces.size()) == mesh.num_faces())
+    if (near[mesh.F(f, 0)] || near[mesh.F(f, 1)] || near[mesh.F(f, 2)]) faces.push_back(f);
+  if (beyond == 0 || static_cast<int>(faces.size()) == mesh.num_faces())
     fail(which, "transition band " + w + " covers the whole mesh (no face is that far from the merging loop)");
+  return faces;
+}
 
-  // The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
-  TriMesh sub;
-  sub.V = mesh.V;
-  sub.F.resize(static_cast<Eigen::Index>(b.faces.size()), 3);
-  for (size_t i = 0; i < b.faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(b.faces[i]);
-  const Connectivity sc(sub);
+// The band's inner rim: its boundary loop other than the merging loop, in the seam's
+// direction. Throws unless the band is an annulus between the two.
+std::vector<int> band_rim(const Connectivity& conn, const Connectivity& sc, const std::vector<int>& loop,
+                          bool reversed, const std::string& w, const char* which) {
   const auto& borders = sc.boundary_loops();
   const std::string not_annulus = "transition band " + w +
                                   " is not an annulus between the merging loop and one inner rim (it reaches another "
@@ -126,20 +121,23 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
   if (borders.size() != 2 || li < 0 || borders[li].size() != loop.size() || geometry::euler_characteristic(sc) != 0)
     fail(which, not_annulus);
   std::vector<int> rim = borders[1 - li];
-  std::vector<char> on_rim(static_cast<size_t>(nv), 0), on_loop(static_cast<size_t>(nv), 0);
+  std::vector<char> on_rim(static_cast<size_t>(sc.num_vertices()), 0);
   for (int v : rim) {
     // A rim on the mesh's border would leave the other side of the seam without a surface.
     if (on_rim[v] || conn.is_boundary_vertex(v)) fail(which, not_annulus);
     on_rim[v] = 1;
   }
-  for (int v : loop) on_loop[v] = 1;
   // Boundary loops keep the band on their left, so the rim runs against the loop's own
   // direction: flip it to the seam's direction.
   if (!reversed) std::reverse(rim.begin(), rim.end());
-  for (int v = 0; v < nv; ++v)
-    if (!sc.is_isolated_vertex(v) && !on_rim[v]) b.vertices.push_back(v);
+  return rim;
+}
 
-  // The cut: a shortest path from the key vertex to the rim that leaves the loop at once.
+// The cut: a shortest path from the key vertex to the rim that leaves the loop at once.
+std::vector<int> band_cut(const TriMesh& mesh, const Connectivity& sc, const std::vector<int>& loop,
+                          const std::vector<int>& rim, const std::string& w, const char* which) {
+  std::vector<char> on_loop(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : loop) on_loop[v] = 1;
   auto cost = [&](int, int from, int to) {
     return from != loop[0] && on_loop[from] ? kInf : (mesh.V.row(from) - mesh.V.row(to)).norm();
   };
@@ -148,13 +146,14 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
   for (int v : rim)
     if (std::isfinite(cp.distance[v]) && (end < 0 || cp.distance[v] < cp.distance[end])) end = v;
   if (end < 0) fail(which, "transition band " + w + " cannot be cut from key vertex " + std::to_string(loop[0]) + " to its rim");
-  b.cut = geometry::extract_path(cp, end);
-  std::rotate(rim.begin(), std::find(rim.begin(), rim.end(), end), rim.end());
-  b.rim = rim;
-  const std::vector<double> rim_u = arc_length_params(mesh.V, rim);
+  return geometry::extract_path(cp, end);
+}
 
-  // Parameter-domain vertices: one per band and rim vertex, a second (u = 1) per cut vertex.
-  b.param_of.assign(static_cast<size_t>(nv), -1);
+// Parameter-domain vertices: one per band and rim vertex, a second (u = 1) per cut vertex,
+// and the band's faces on them, cut open. Returns the u = 1 copies, one per cut vertex.
+std::vector<int> cut_open_domain(TransitionBand& b, const Connectivity& sc, const geometry::Faces& F,
+                                 bool reversed, const char* which) {
+  const int nv = static_cast<int>(b.param_of.size());
   for (int v = 0; v < nv; ++v)
     if (!sc.is_isolated_vertex(v)) {
       b.param_of[v] = static_cast<int>(b.param_vertex.size());
@@ -165,29 +164,35 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
     upper_copy[k] = static_cast<int>(b.param_vertex.size());
     b.param_vertex.push_back(b.cut[k]);
   }
-  b.param_faces = sub.F;
-  for (Eigen::Index f = 0; f < sub.F.rows(); ++f)
-    for (int j = 0; j < 3; ++j) b.param_faces(f, j) = b.param_of[sub.F(f, j)];
+  b.param_faces = F;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int j = 0; j < 3; ++j) b.param_faces(f, j) = b.param_of[F(f, j)];
   for (size_t k = 0; k < b.cut.size(); ++k) {
     const auto fan = sc.vertex_faces(b.cut[k]);
-    const std::vector<char> upper = upper_side(sc, sub.F, b.cut, k, reversed, which);
+    const std::vector<char> upper = upper_side(sc, F, b.cut, k, reversed, which);
     for (size_t i = 0; i < fan.size(); ++i)
       if (upper[i])
         for (int j = 0; j < 3; ++j)
-          if (sub.F(fan[i], j) == b.cut[k]) b.param_faces(fan[i], j) = upper_copy[k];
+          if (F(fan[i], j) == b.cut[k]) b.param_faces(fan[i], j) = upper_copy[k];
   }
+  return upper_copy;
+}
 
-  // Boundary values on the square, then Tutte's embedding inside.
+// Boundary values on the square (loop at v = 0, rim at v = 1, the cut's two copies at u = 0
+// and u = 1), then Tutte's embedding inside.
+void embed_in_square(TransitionBand& b, const Vertices& V, const std::vector<double>& loop_u,
+                     const std::vector<int>& upper_copy) {
+  const std::vector<double> rim_u = arc_length_params(V, b.rim);
   const int np = static_cast<int>(b.param_vertex.size());
   b.uv = Eigen::MatrixX2d::Zero(np, 2);
   std::vector<char> fixed(static_cast<size_t>(np), 0);
   auto set = [&](int p, double u, double v) { b.uv(p, 0) = u, b.uv(p, 1) = v, fixed[p] = 1; };
-  for (size_t i = 0; i < loop.size(); ++i) set(b.param_of[loop[i]], loop_u[i], 0.0);
-  for (size_t i = 0; i < rim.size(); ++i) set(b.param_of[rim[i]], rim_u[i], 1.0);
+  for (size_t i = 0; i < b.loop.size(); ++i) set(b.param_of[b.loop[i]], loop_u[i], 0.0);
+  for (size_t i = 0; i < b.rim.size(); ++i) set(b.param_of[b.rim[i]], rim_u[i], 1.0);
   double cut_length = 0;
   std::vector<double> along(b.cut.size(), 0.0);
   for (size_t k = 1; k < b.cut.size(); ++k)
-    along[k] = cut_length += (mesh.V.row(b.cut[k]) - mesh.V.row(b.cut[k - 1])).norm();
+    along[k] = cut_length += (V.row(b.cut[k]) - V.row(b.cut[k - 1])).norm();
   for (size_t k = 0; k < b.cut.size(); ++k) {
     const double v = k + 1 == b.cut.size() ? 1.0 : along[k] / cut_length;
     set(b.param_of[b.cut[k]], 0.0, v);
@@ -195,26 +200,59 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
   }
   std::vector<int> inner, boundary;
   for (int p = 0; p < np; ++p) (fixed[p] ? boundary : inner).push_back(p);
-  if (!inner.empty()) {
-    TriMesh domain;
-    domain.V = Vertices::Zero(np, 3);
-    domain.F = b.param_faces;
-    const Eigen::SparseMatrix<double> L = geometry::uniform_laplacian(domain);
-    solver::SparseMatrix rows(static_cast<Eigen::Index>(inner.size()), np);
-    std::vector<Eigen::Triplet<double, int>> t;
-    for (size_t r = 0; r < inner.size(); ++r)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(L, inner[r]); it; ++it)
-        t.emplace_back(static_cast<int>(r), static_cast<int>(it.row()), it.value());  // L is symmetric
-    rows.setFromTriplets(t.begin(), t.end());
-    solver::LeastSquares tutte(np);
-    tutte.add_block(rows, 1.0, "Tutte embedding");
-    tutte.set_fixed(boundary);
-    tutte.precompute();
-    solver::DenseMatrix values(static_cast<Eigen::Index>(boundary.size()), 2);
-    for (size_t k = 0; k < boundary.size(); ++k) values.row(static_cast<Eigen::Index>(k)) = b.uv.row(boundary[k]);
-    const solver::DenseMatrix x = tutte.solve({solver::DenseMatrix()}, values);
-    for (int p : inner) b.uv.row(p) = x.row(p);
-  }
+  if (inner.empty()) return;
+  TriMesh domain;
+  domain.V = Vertices::Zero(np, 3);
+  domain.F = b.param_faces;
+  const Eigen::SparseMatrix<double> L = geometry::uniform_laplacian(domain);
+  solver::SparseMatrix rows(static_cast<Eigen::Index>(inner.size()), np);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (size_t r = 0; r < inner.size(); ++r)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(L, inner[r]); it; ++it)
+      t.emplace_back(static_cast<int>(r), static_cast<int>(it.row()), it.value());  // L is symmetric
+  rows.setFromTriplets(t.begin(), t.end());
+  solver::LeastSquares tutte(np);
+  tutte.add_block(rows, 1.0, "Tutte embedding");
+  tutte.set_fixed(boundary);
+  tutte.precompute();
+  solver::DenseMatrix values(static_cast<Eigen::Index>(boundary.size()), 2);
+  for (size_t k = 0; k < boundary.size(); ++k) values.row(static_cast<Eigen::Index>(k)) = b.uv.row(boundary[k]);
+  const solver::DenseMatrix x = tutte.solve({solver::DenseMatrix()}, values);
+  for (int p : inner) b.uv.row(p) = x.row(p);
+}
+
+}  // namespace
+
+TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
+                               const std::vector<double>& loop_u, double width, bool reversed, const char* which) {
+  if (!(width > 0) || !std::isfinite(width))
+    fail(which, "transition width must be finite and > 0, got " + format_number(width));
+  if (loop.size() < 3 || loop_u.size() != loop.size())
+    fail(which, "merging loop needs at least 3 vertices and one parameter per vertex");
+  const int nv = mesh.num_vertices();
+  const std::string w = "of width " + format_number(width);
+  TransitionBand b;
+  b.loop = loop;
+  b.faces = band_faces(mesh, conn, loop, width, w, which);
+
+  // The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
+  TriMesh sub;
+  sub.V = mesh.V;
+  sub.F.resize(static_cast<Eigen::Index>(b.faces.size()), 3);
+  for (size_t i = 0; i < b.faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(b.faces[i]);
+  const Connectivity sc(sub);
+  std::vector<int> rim = band_rim(conn, sc, loop, reversed, w, which);
+  std::vector<char> on_rim(static_cast<size_t>(nv), 0);
+  for (int v : rim) on_rim[v] = 1;
+  for (int v = 0; v < nv; ++v)
+    if (!sc.is_isolated_vertex(v) && !on_rim[v]) b.vertices.push_back(v);
+
+  b.cut = band_cut(mesh, sc, loop, rim, w, which);
+  std::rotate(rim.begin(), std::find(rim.begin(), rim.end(), b.cut.back()), rim.end());
+  b.rim = rim;
+  b.param_of.assign(static_cast<size_t>(nv), -1);
+  const std::vector<int> upper_copy = cut_open_domain(b, sc, sub.F, reversed, which);
+  embed_in_square(b, mesh.V, loop_u, upper_copy);
   return b;
 }
 

@@ -148,41 +148,67 @@ Eigen::RowVector3d blend(const BandPoint& p, const Vertices& X) {
   return r;
 }
 
-}  // namespace
-
-MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
-                                  const MergeOptions& o) {
-  auto t0 = std::chrono::steady_clock::now();
-  MergeResult r;
-  const Connectivity tconn(target);
-  const std::vector<BoundaryCorrespondence> corr = correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
-
-  // The source at the target's scale (§3.3.1's s_i would bring it there anyway): source widths,
-  // the deformer's mean edge length and the overlap are then independent of the placement.
+// The source at the target's scale (§3.3.1's s_i would bring it there anyway): source widths,
+// the deformer's mean edge length and the overlap are then independent of the placement.
+TriMesh source_at_target_scale(const TriMesh& source, const TriMesh& target,
+                               const std::vector<BoundaryCorrespondence>& corr) {
   double ps = 0, pt = 0;
   for (const auto& c : corr) ps += perimeter(source.V, c.source_loop), pt += perimeter(target.V, c.target_loop);
   TriMesh src = source;
   src.V = ((source.V.rowwise() - source.V.colwise().mean()) * (pt / ps)).eval();
   flip_loop_ears(src, corr);
-  const Connectivity sconn(src);
-  const int ns = src.num_vertices(), nt = target.num_vertices();
+  return src;
+}
 
-  // Bands, cut and parameterized; u along both loops follows the key correspondences.
+// u along the source loop: each source vertex's correspondence point on the target loop,
+// whose u is tu.
+std::vector<double> source_loop_params(const BoundaryCorrespondence& c, const std::vector<double>& tu) {
+  std::vector<double> su(c.source_loop.size());
+  for (size_t i = 0; i < su.size(); ++i) {
+    const int e = c.target_edge[i];
+    const double next = e + 1 < static_cast<int>(tu.size()) ? tu[e + 1] : 1.0;
+    su[i] = tu[e] + c.target_t[i] * (next - tu[e]);
+  }
+  return su;
+}
+
+// The boundary condition of §3.3.1, moved to where the bands overlap: the source loop goes
+// onto the target band's rim (kept, fixed), at the same u.
+BoundaryCorrespondence onto_rim(const BoundaryCorrespondence& c, const std::vector<double>& su,
+                                const TriMesh& target, const std::vector<int>& rim) {
+  BoundaryCorrespondence rc;
+  rc.source_loop = c.source_loop;
+  rc.target_loop = rim;
+  const std::vector<double> rim_u = arc_length_params(target.V, rim);
+  const int nr = static_cast<int>(rc.target_loop.size());
+  rc.target_points.resize(static_cast<Eigen::Index>(su.size()), 3);
+  for (size_t i = 0; i < su.size(); ++i) {
+    const auto [k, t] = locate_on_loop(rim_u, su[i]);
+    rc.target_edge.push_back(k);
+    rc.target_t.push_back(t);
+    rc.target_points.row(static_cast<Eigen::Index>(i)) =
+        (1 - t) * target.V.row(rc.target_loop[k]) + t * target.V.row(rc.target_loop[(k + 1) % nr]);
+  }
+  return rc;
+}
+
+// Every pair's bands, cut and parameterized (u along both loops follows the key
+// correspondences), and its source loop's correspondence onto the target rim (on_rim).
+// Throws when two pairs' bands overlap or a rim lies inside another pair's band.
+std::vector<PairBands> make_bands(const TriMesh& src, const Connectivity& sconn, const TriMesh& target,
+                                  const Connectivity& tconn, const std::vector<BoundaryCorrespondence>& corr,
+                                  const TransitionOptions& o, std::vector<BoundaryCorrespondence>& on_rim) {
+  const int ns = src.num_vertices(), nt = target.num_vertices();
   std::vector<PairBands> bands;
-  std::vector<BoundaryCorrespondence> on_rim(corr.size());
+  on_rim.assign(corr.size(), {});
   std::vector<int> band_of(static_cast<size_t>(ns + nt), -1);
   for (size_t p = 0; p < corr.size(); ++p) {
     const BoundaryCorrespondence& c = corr[p];
     const std::vector<double> tu = arc_length_params(target.V, c.target_loop);
-    std::vector<double> su(c.source_loop.size());
-    for (size_t i = 0; i < su.size(); ++i) {
-      const int e = c.target_edge[i];
-      const double next = e + 1 < static_cast<int>(tu.size()) ? tu[e + 1] : 1.0;
-      su[i] = tu[e] + c.target_t[i] * (next - tu[e]);
-    }
+    const std::vector<double> su = source_loop_params(c, tu);
     PairBands b;
-    b.target = transition_band(target, tconn, c.target_loop, tu, o.transition.target_width, true, "target");
-    b.source = transition_band(src, sconn, c.source_loop, su, o.transition.source_width, false, "source");
+    b.target = transition_band(target, tconn, c.target_loop, tu, o.target_width, true, "target");
+    b.source = transition_band(src, sconn, c.source_loop, su, o.source_width, false, "source");
     for (const auto& [list, offset] : {std::pair{&b.source.vertices, 0}, std::pair{&b.target.vertices, ns}})
       for (int v : *list) {
         if (band_of[v + offset] >= 0) bands_overlap(band_of[v + offset], p);
@@ -190,21 +216,7 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
       }
     b.source_on_target = overlap_points(b.source, b.target);
     b.target_on_source = overlap_points(b.target, b.source);
-    // The boundary condition of §3.3.1, moved to where the bands overlap: the source loop goes
-    // onto the target band's rim (kept, fixed), at the same u.
-    BoundaryCorrespondence& rc = on_rim[p];
-    rc.source_loop = c.source_loop;
-    rc.target_loop = b.target.rim;
-    const std::vector<double> rim_u = arc_length_params(target.V, b.target.rim);
-    const int nr = static_cast<int>(rc.target_loop.size());
-    rc.target_points.resize(static_cast<Eigen::Index>(su.size()), 3);
-    for (size_t i = 0; i < su.size(); ++i) {
-      const auto [k, t] = locate_on_loop(rim_u, su[i]);
-      rc.target_edge.push_back(k);
-      rc.target_t.push_back(t);
-      rc.target_points.row(static_cast<Eigen::Index>(i)) =
-          (1 - t) * target.V.row(rc.target_loop[k]) + t * target.V.row(rc.target_loop[(k + 1) % nr]);
-    }
+    on_rim[p] = onto_rim(c, su, target, b.target.rim);
     bands.push_back(std::move(b));
   }
   // A rim inside another pair's band would move under the loop that is constrained onto it.
@@ -212,11 +224,18 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     for (const auto& [list, offset] : {std::pair{&bands[p].source.rim, 0}, std::pair{&bands[p].target.rim, ns}})
       for (int v : *list)
         if (band_of[v + offset] >= 0 && band_of[v + offset] != static_cast<int>(p)) bands_overlap(band_of[v + offset], p);
-  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, on_rim, false);
+  return bands;
+}
 
-  // One implicit Laplacian system over both meshes (source first, then the target): the whole
-  // source and the target bands deform, the target beyond its bands is the fixed region, and
-  // E_T ties each band vertex's transformed δ to the other band's at the same (u, 1 − v).
+// One implicit Laplacian system over both meshes (source first, then the target): the whole
+// source and the target bands deform, the target beyond its bands is the fixed region, and
+// E_T ties each band vertex's transformed δ to the other band's at the same (u, 1 − v).
+// Returns both meshes' deformed vertices; records the ROI, the source boundary, the solver's
+// figures and the setup and solve times (setup counted from t0) in r.
+Vertices deform_both(const TriMesh& src, const TriMesh& target, const std::vector<PairBands>& bands,
+                     const std::vector<BoundaryConstraint>& cons, const MergeOptions& o, MergeResult& r,
+                     std::chrono::steady_clock::time_point t0) {
+  const int ns = src.num_vertices(), nt = target.num_vertices();
   TriMesh both;
   both.V.resize(ns + nt, 3);
   both.V << src.V, target.V;
@@ -246,18 +265,19 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   r.timings.setup_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  const Vertices X = deformer.deform(tf);
+  Vertices X = deformer.deform(tf);
   r.solver = deformer.stats();
   r.timings.solve_ms = ms_since(t0) - r.solver.setup_ms;
   r.timings.setup_ms += r.solver.setup_ms;
-  r.source_rest = src;
-  r.source_deformed = X.topRows(ns);
+  return X;
+}
 
-  // §3.3.3, Fig. 3.7 (b): the surface keeps one band's connectivity; the other band goes and
-  // the seam is zipped where the kept band meets the rest of the other mesh.
-  t0 = std::chrono::steady_clock::now();
-  const bool keep_source = o.transition.keep == TransitionKeep::Source;
-  const Vertices Xt = X.bottomRows(nt);
+// §3.3.3, Fig. 3.7 (b): the surface keeps one band's connectivity; the other band goes and
+// the seam is zipped where the kept band meets the rest of the other mesh. Fills r's source
+// and target vertex maps into the zipped mesh.
+ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertices& Xt,
+                        const std::vector<PairBands>& bands, bool keep_source, MergeResult& r) {
+  const int ns = src.num_vertices(), nt = target.num_vertices();
   std::vector<BoundaryCorrespondence> seams(bands.size());
   std::vector<int> cut_map, removed;
   for (const PairBands& b : bands) {
@@ -288,13 +308,17 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     const int c = keep_source ? v : cut_map[v];
     if (c >= 0) r.source_map[v] = z.source_map[c];
   }
-  r.timings.zip_ms = ms_since(t0);
+  return z;
+}
 
-  // "We first apply the implicitly defined local deformation gradients onto the LCs before
-  // interpolating them": each kept band vertex wants τ (target) + (1 − τ) (source) of the
-  // deformed curvature normals, τ the target's share (v on the target band, 1 − v on the
-  // source band's: 1 next to the kept target, 0 next to the rest of the source).
-  t0 = std::chrono::steady_clock::now();
+// "We first apply the implicitly defined local deformation gradients onto the LCs before
+// interpolating them": each kept band vertex wants τ (target) + (1 − τ) (source) of the
+// deformed curvature normals, τ the target's share (v on the target band, 1 − v on the
+// source band's: 1 next to the kept target, 0 next to the rest of the source). Reconstructs
+// the kept bands in z.mesh and lists their vertices and shares in r.
+void blend_kept_band(const TriMesh& src, const Connectivity& sconn, const TriMesh& target,
+                     const Connectivity& tconn, const Vertices& Xt, const std::vector<PairBands>& bands,
+                     bool keep_source, ZipResult& z, MergeResult& r) {
   std::vector<int> src_listed, tgt_listed;
   for (const PairBands& b : bands) {
     src_listed.insert(src_listed.end(), b.source.param_vertex.begin(), b.source.param_vertex.end());
@@ -321,6 +345,35 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
     }
   }
   reconstruct_band(z.mesh, r.transition_vertices, wanted);
+}
+
+}  // namespace
+
+MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
+                                  const MergeOptions& o) {
+  auto t0 = std::chrono::steady_clock::now();
+  MergeResult r;
+  const Connectivity tconn(target);
+  const std::vector<BoundaryCorrespondence> corr = correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
+  const TriMesh src = source_at_target_scale(source, target, corr);
+  const Connectivity sconn(src);
+  const int ns = src.num_vertices(), nt = target.num_vertices();
+  std::vector<BoundaryCorrespondence> on_rim;
+  const std::vector<PairBands> bands = make_bands(src, sconn, target, tconn, corr, o.transition, on_rim);
+  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, on_rim, false);
+
+  const Vertices X = deform_both(src, target, bands, cons, o, r, t0);
+  r.source_rest = src;
+  r.source_deformed = X.topRows(ns);
+
+  t0 = std::chrono::steady_clock::now();
+  const bool keep_source = o.transition.keep == TransitionKeep::Source;
+  const Vertices Xt = X.bottomRows(nt);
+  ZipResult z = zip_kept_band(src, target, Xt, bands, keep_source, r);
+  r.timings.zip_ms = ms_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  blend_kept_band(src, sconn, target, tconn, Xt, bands, keep_source, z, r);
   r.timings.smooth_ms = ms_since(t0);  // the band replaces the seam smoothing
   r.mesh = std::move(z.mesh);
   r.strip_faces = std::move(z.strip_faces);

@@ -109,6 +109,15 @@ class Viewer {
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
   void record(const InputEvent& e);
+  // The steps of run(): open the window with ImGui and the renderer; per frame, wait until
+  // something is new, play the replay's due events, draw, and close the window when a replay
+  // or headless run is done (returns false when the app stayed busy too long); then finish.
+  void open_window();
+  void wait_for_next_frame(bool busy);
+  void play_due_events();
+  void draw_frame();
+  bool close_when_done();
+  void finish_run();
   friend struct GlfwCallbacks;
 
   ViewerOptions options_;
@@ -132,6 +141,9 @@ class Viewer {
   std::optional<EventLog> replay_;
   size_t replay_next_ = 0;
   long replay_delay_ = 0;  // frames the replay waited at Idle events
+  bool was_busy_ = false;  // the app's busy state in the previous frame
+  double idle_since_replay_ = -1;  // when the app was first seen busy after the replay
+  int idle_frames_after_replay_ = 0;
 };
 
 }  // namespace lapis::viewer

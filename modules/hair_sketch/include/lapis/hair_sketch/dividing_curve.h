@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace lapis::hair_sketch {
@@ -25,7 +25,8 @@ struct DividingCurve {
   int samples_per_side = 3;       // Gaussian-tangent constraints per side, 1 grid spacing apart
 
   // Throws InvalidArgument for a degenerate curve.
-  std::vector<Constraint> constraints(const Grid& grid, const Head& head) const;
+  std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid,
+                                                  const Head& head) const;
 };
 
 // The local frame's x axis (pointing to the +x side) at arc-length fraction s of the

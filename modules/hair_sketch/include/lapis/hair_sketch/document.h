@@ -13,8 +13,8 @@
 #include <Eigen/Core>
 
 #include "lapis/geometry/camera.h"
+#include "lapis/hair_field/field_solver.h"
 #include "lapis/hair_sketch/dividing_curve.h"
-#include "lapis/hair_sketch/field_solver.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/ponytail.h"
 #include "lapis/hair_sketch/sketch.h"
@@ -38,17 +38,19 @@ bool same_primitive(const StylePrimitive& a, const StylePrimitive& b);
 struct HairstyleSettings {
   std::string head_mesh;        // path; relative paths are relative to the session file
   std::string scalp_mask;       // path or empty (cap above a plane, see load_head)
-  double grid_unknowns = 25000;  // thesis §4.6: about 25K for smooth styles, 50K ponytails
-  FieldMethod field_method = FieldMethod::Auto;
-  double omega = 100;           // constraint weight ω, thesis §4.4.1
-  int roots = 5000;             // strands to grow (RootOptions::count)
-  std::uint32_t seed = 1;       // root jitter seed
-  double step = 0.5;            // growth step l in grid spacings, thesis §4.6
-  double max_length = 120;      // strand length cap in grid spacings
+  hair_field::GridOptions grid;  // grid.target_unknowns: thesis §4.6
+  hair_field::FieldMethod field_method = hair_field::FieldMethod::Auto;
+  hair_field::FieldSolverOptions field;  // field.omega: constraint weight ω, thesis §4.4.1
+  RootOptions roots;            // roots.count strands to grow, roots.seed their jitter (§4.6)
+  GrowthOptions growth;         // growth.step l and growth.max_length, thesis §4.6
   bool scalp_avoidance = true;  // thesis §4.6's one-shot avoidance step before growing
   SupportMode support = SupportMode::Strip;  // supporting surface of new curves
-  int tail_segments = 3;        // fading tail of new stream curves (§4.5)
+  SketchOptions sketch;  // sketch.tail_segments of new stream curves (§4.5); its
+                         // spacing is the grid's (sketch_options)
 };
+// Equal in what a session stores: the paths, grid.target_unknowns, field_method,
+// field.omega, roots.count and .seed, growth.step and .max_length, scalp_avoidance, support
+// and sketch.tail_segments.
 bool operator==(const HairstyleSettings& a, const HairstyleSettings& b);
 
 // What a recorded stroke did: create a primitive or edit primitive `target`.

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "lapis/hair_sketch/grid.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/grid.h"
+#include "lapis/hair_field/grid_operators.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace lapis::hair_sketch {
@@ -19,16 +19,16 @@ namespace lapis::hair_sketch {
 // The field as growth reads it: float, x y z of a node contiguous.
 class SampledField {
  public:
-  SampledField(const Grid& grid, const Field& field);
+  SampledField(const hair_field::Grid& grid, const hair_field::Field& field);
   // Trilinear interpolation at a world point; zero outside the grid.
   Eigen::Vector3f operator()(const Eigen::Vector3f& p) const;
   // The same at grid coordinates q = (p − origin) / spacing, as growth steps them.
   Eigen::Vector3f at_grid(const Eigen::Vector3f& q) const;
-  const Grid& grid() const { return grid_; }
+  const hair_field::Grid& grid() const { return grid_; }
   const float* data() const { return data_.data(); }  // x y z per node, node-major
 
  private:
-  Grid grid_;
+  hair_field::Grid grid_;
   std::vector<float> data_;  // 3 per node
 };
 

@@ -59,9 +59,11 @@ struct RootOptions {
   // Density: number of roots wanted; the θ and φ sampling steps (thesis §4.6 "hair density
   // is controlled via the sampling steps of these two angles") are derived from it so that
   // roots are uniform per solid angle (φ step grows as 1/sin θ).
-  int count = 10000;
+  // 5000 keeps the interactive loop's regrowth well within a frame; the thesis leaves the
+  // density to the user (§4.6).
+  int count = 5000;
   double jitter = 0.35;      // random offset in units of a step ("a small amount of randomness")
-  std::uint32_t seed = 1;
+  std::uint32_t seed = 1;    // root jitter seed
   double lift = 1e-3;        // roots are moved this far (× head size) outward off the surface
 };
 

@@ -17,7 +17,7 @@ namespace lapis::hair_sketch {
 
 struct LiveUpdate {
   Strands strands;
-  std::vector<FieldSolveReport> solves;  // the style solve, then the avoidance solve
+  std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
   int constraints = 0;
   double solve_ms = 0;     // constraint diff + field update(s)
   double growth_ms = 0;    // regrowing every strand
@@ -36,8 +36,8 @@ class LiveHairstyle {
   LiveUpdate update(const std::vector<StylePrimitive>& primitives, Strands reuse = {});
 
   const HairstyleSettings& settings() const { return settings_; }
-  const Grid& grid() const { return field_.grid(); }
-  const Field& field() const { return field_.field(); }
+  const hair_field::Grid& grid() const { return field_.grid(); }
+  const hair_field::Field& field() const { return field_.field(); }
   const std::vector<Eigen::Vector3d>& roots() const { return roots_; }
 
  private:

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
 
 namespace lapis::hair_sketch {
 
@@ -31,7 +31,7 @@ struct Ponytail {
   // Throws InvalidArgument for degenerate curves.
   Section first_section() const;
 
-  std::vector<Constraint> constraints(const Grid& grid) const;
+  std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid) const;
 };
 
 }  // namespace lapis::hair_sketch

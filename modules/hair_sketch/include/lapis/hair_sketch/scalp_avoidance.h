@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
+#include "lapis/hair_field/grid_operators.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace lapis::hair_sketch {
@@ -21,8 +21,8 @@ struct ScalpAvoidanceOptions {
 // Constraints from the current field (n by 3 on grid). Nodes just inside the surface are
 // included: trilinear lookups just outside it read them. Nodes with a vanishing direction
 // are left free.
-std::vector<Constraint> scalp_avoidance_constraints(const Grid& grid, const Field& field,
-                                                    const Head& head,
-                                                    const ScalpAvoidanceOptions& options = {});
+std::vector<hair_field::Constraint> scalp_avoidance_constraints(
+    const hair_field::Grid& grid, const hair_field::Field& field, const Head& head,
+    const ScalpAvoidanceOptions& options = {});
 
 }  // namespace lapis::hair_sketch

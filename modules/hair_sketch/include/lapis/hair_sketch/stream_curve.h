@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
 
 namespace lapis::hair_sketch {
 
@@ -18,7 +18,7 @@ struct StreamCurve {
   int tail_segments = 0;  // thesis §4.5: optional "few extra segments" fading 1 → 0
 
   // Throws InvalidArgument for fewer than 2 points, non-finite or zero-length curves.
-  std::vector<Constraint> constraints(const Grid& grid) const;
+  std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid) const;
 };
 
 }  // namespace lapis::hair_sketch

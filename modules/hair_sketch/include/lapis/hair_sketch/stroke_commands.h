@@ -3,8 +3,8 @@
 // from its input alone. A rejected stroke throws StrokeRejected and changes nothing.
 #pragma once
 
+#include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/document.h"
-#include "lapis/hair_sketch/grid.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace lapis::hair_sketch {
@@ -13,10 +13,11 @@ namespace lapis::hair_sketch {
 // StrokeRejected for an uninterpretable stroke, a missing or wrong-kind target, or the
 // wrong number of strokes for the action.
 Command command_from_stroke(const Hairstyle& style, const RecordedStroke& stroke, const Head& head,
-                            const Grid& grid);
+                            const hair_field::Grid& grid);
 
 // command_from_stroke, then Document::execute.
-void apply_stroke(Document& document, const RecordedStroke& stroke, const Head& head, const Grid& grid);
+void apply_stroke(Document& document, const RecordedStroke& stroke, const Head& head,
+                  const hair_field::Grid& grid);
 
 // The session's settings and camera with the primitives rebuilt from its recorded strokes
 // alone (grid from the settings). Throws StrokeRejected naming the stroke's index when one

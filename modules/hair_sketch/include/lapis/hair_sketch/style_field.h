@@ -7,25 +7,27 @@
 #include <memory>
 #include <vector>
 
-#include "lapis/hair_sketch/constraints.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/field_solver.h"
+#include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/document.h"
-#include "lapis/hair_sketch/field_solver.h"
-#include "lapis/hair_sketch/grid.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 
 namespace lapis::hair_sketch {
 
-// The field's grid for a head and the document's settings (make_grid with grid_unknowns).
-Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
+// The field's grid for a head and the document's settings (make_grid with settings.grid).
+hair_field::Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
 
 // Sketch options matching the grid (curves resampled at its spacing) and the settings.
-SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings);
+SketchOptions sketch_options(const hair_field::Grid& grid, const HairstyleSettings& settings);
 
 // The constraints of one primitive / all of them merged (§4.5).
-std::vector<Constraint> primitive_constraints(const StylePrimitive& p, const Grid& grid, const Head& head);
-ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const Grid& grid,
-                                const Head& head);
+std::vector<hair_field::Constraint> primitive_constraints(const StylePrimitive& p,
+                                                          const hair_field::Grid& grid,
+                                                          const Head& head);
+hair_field::ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives,
+                                            const hair_field::Grid& grid, const Head& head);
 
 // Precompute once (the solver), then update per document revision: the new constraint set
 // is diffed against the last one and only the diff is applied. Undo is just another update,
@@ -33,29 +35,30 @@ ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, c
 class StyleField {
  public:
   // Throws ResourceLimit when the method's memory estimate exceeds the solver's limit.
-  StyleField(const Head& head, const Grid& grid, FieldMethod method, double omega = 100);
+  StyleField(const Head& head, const hair_field::Grid& grid, hair_field::FieldMethod method,
+             const hair_field::FieldSolverOptions& options = {});
   // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance).
-  FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
-                          const std::vector<Constraint>& extra = {});
-  const Field& field() const { return solver_->field(); }
-  const ConstraintSet& constraints() const { return current_; }
-  const Grid& grid() const { return grid_; }
-  FieldMethod method() const { return solver_->method(); }
+  hair_field::FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
+                                      const std::vector<hair_field::Constraint>& extra = {});
+  const hair_field::Field& field() const { return solver_->field(); }
+  const hair_field::ConstraintSet& constraints() const { return current_; }
+  const hair_field::Grid& grid() const { return grid_; }
+  hair_field::FieldMethod method() const { return solver_->method(); }
 
  private:
   const Head* head_;
-  Grid grid_;
-  std::unique_ptr<FieldSolver> solver_;
-  ConstraintSet current_;
+  hair_field::Grid grid_;
+  std::unique_ptr<hair_field::FieldSolver> solver_;
+  hair_field::ConstraintSet current_;
 };
 
 struct HairstyleResult {
-  Grid grid;
-  Field field;
+  hair_field::Grid grid;
+  hair_field::Field field;
   Strands strands;
   int constraints = 0;
   int penetrating_segments = 0;
-  std::vector<FieldSolveReport> solves;  // the style solve, then the avoidance solve
+  std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
   double grid_ms = 0, solve_ms = 0, growth_ms = 0, penetration_ms = 0;
 };
 

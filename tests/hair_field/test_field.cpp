@@ -6,12 +6,14 @@
 #include <random>
 
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/grid.h"
-#include "lapis/hair_sketch/grid_operators.h"
-#include "lapis/hair_sketch/multigrid_field_solver.h"
+#include "lapis/hair_field/grid.h"
+#include "lapis/hair_field/grid_operators.h"
+#include "lapis/hair_field/multigrid_field_solver.h"
 #include "lapis/solver/cholesky.h"
+#include "random_curve.h"
 
-using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
+using hair_field_test::random_curve;
 
 namespace {
 
@@ -33,28 +35,9 @@ Field exact_field(const Grid& g, const ConstraintSet& s, double omega = 100) {
   return ldlt.solve(Eigen::MatrixXd(b));
 }
 
-// A random "curve": a walk of nodes with a smoothly turning direction.
-std::vector<Constraint> random_curve(const Grid& g, std::mt19937& rng, int len) {
-  std::uniform_int_distribution<int> ux(1, g.dims[0] - 2), uy(1, g.dims[1] - 2),
-      uz(1, g.dims[2] - 2);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<Constraint> out;
-  int i = ux(rng), j = uy(rng), k = uz(rng);
-  Eigen::Vector3d dir(u(rng), u(rng), u(rng));
-  for (int s = 0; s < len; ++s) {
-    dir = (dir + 0.3 * Eigen::Vector3d(u(rng), u(rng), u(rng))).normalized();
-    out.push_back({g.index(i, j, k), dir});
-    const int a = std::abs(dir.x()) > std::abs(dir.y()) ? (std::abs(dir.x()) > std::abs(dir.z()) ? 0 : 2)
-                                                         : (std::abs(dir.y()) > std::abs(dir.z()) ? 1 : 2);
-    int* c[3] = {&i, &j, &k};
-    *c[a] = std::clamp(*c[a] + (dir[a] > 0 ? 1 : -1), 0, g.dims[a] - 1);
-  }
-  return out;
-}
-
 }  // namespace
 
-TEST_CASE("hair_sketch: matrix-free normal operator equals the assembled DtD + W") {
+TEST_CASE("hair_field: matrix-free normal operator equals the assembled DtD + W") {
   const Grid g = cube_grid(6);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -71,7 +54,7 @@ TEST_CASE("hair_sketch: matrix-free normal operator equals the assembled DtD + W
   CHECK((laplacian_matrix(g) * Eigen::MatrixXd(C)).norm() <= 1e-12);
 }
 
-TEST_CASE("hair_sketch: multigrid field within 1e-6 of the exact minimizer over an edit sequence") {
+TEST_CASE("hair_field: multigrid field within 1e-6 of the exact minimizer over an edit sequence") {
   const Grid g = cube_grid(14);
   MultigridFieldOptions options;
   // Cubic prolongation transfers through stored matrices, linear matrix-free.
@@ -99,7 +82,7 @@ TEST_CASE("hair_sketch: multigrid field within 1e-6 of the exact minimizer over 
   CHECK(max_iter > 0);
 }
 
-TEST_CASE("hair_sketch: multigrid on a grid of one level (the dense solve alone) matches the exact field") {
+TEST_CASE("hair_field: multigrid on a grid of one level (the dense solve alone) matches the exact field") {
   // No smoothing step runs, so the CG's dot products come from the cycle's fallback.
   const Grid g = cube_grid(6);
   MultigridFieldSolver mg(g);
@@ -112,13 +95,13 @@ TEST_CASE("hair_sketch: multigrid on a grid of one level (the dense solve alone)
   CHECK((mg.field() - ref).norm() <= 1e-6 * ref.norm());
 }
 
-TEST_CASE("hair_sketch: multigrid within 1e-6 of a direct solve on an 18K grid after a stroke and an edit") {
+TEST_CASE("hair_field: multigrid within 1e-6 of a direct solve on an 18K grid after a stroke and an edit") {
   // Closer to the interactive setting than the small grids above: a style of eight curves,
   // then a stroke added, then that stroke replaced, each against a supernodal factorization;
   // with the automatic cycle, with four coarse corrections per visit of every coarser level,
   // with V-cycles, and with the warm start relaxed near each edit (local_relaxation.h).
   // A small coarsest level gives this grid five levels, so that the coarse corrections after
-  // the first (computed on the coarse level alone, multigrid_hierarchy.cpp) are exercised:
+  // the first (computed on the coarse level alone, multigrid_cycle.cpp) are exercised:
   // with the default 500 nodes the level below the finest would already be solved exactly.
   const Grid g = cube_grid(26);
   MultigridFieldOptions options;

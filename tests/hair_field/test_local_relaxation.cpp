@@ -6,10 +6,10 @@
 
 #include <random>
 
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/grid_operators.h"
 #include "local_relaxation.h"
 
-using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
 namespace {
 
@@ -48,7 +48,7 @@ double energy(const Problem& p, const Field& x) {
 
 }  // namespace
 
-TEST_CASE("hair_sketch: local relaxation's node update is the assembled row's minimizer, anywhere in the box") {
+TEST_CASE("hair_field: local relaxation's node update is the assembled row's minimizer, anywhere in the box") {
   Problem p = random_problem(3);
   const auto& d = p.g.dims;
   // Interior (two or more from every face), one from a face, on a face, an edge, a corner,
@@ -80,7 +80,7 @@ TEST_CASE("hair_sketch: local relaxation's node update is the assembled row's mi
   }
 }
 
-TEST_CASE("hair_sketch: local relaxation lowers the energy, stays inside its nodes and solves the local problem") {
+TEST_CASE("hair_field: local relaxation lowers the energy, stays inside its nodes and solves the local problem") {
   Problem p = random_problem(5);
   const auto& d = p.g.dims;
   std::vector<char> mark(static_cast<size_t>(p.g.num_nodes()), 0);

@@ -1,4 +1,4 @@
-#include "lapis/hair_sketch/cholesky_field_solver.h"
+#include "lapis/hair_field/cholesky_field_solver.h"
 
 #include <chrono>
 #include <string>
@@ -8,14 +8,14 @@
 #include "lapis/core/error.h"
 #include "lapis/solver/updatable_cholesky.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 CholeskyFieldSolver::CholeskyFieldSolver(const Grid& grid, const FieldSolverOptions& options,
                                          solver::ModifyMethod modify)
     : grid_(grid), omega_(options.omega), modify_(modify) {
   const double bytes = estimate_cholesky_bytes(grid.num_nodes());
   if (bytes > options.memory_limit_bytes)
-    throw ResourceLimit("hair_sketch::CholeskyFieldSolver(): the factor of " +
+    throw ResourceLimit("hair_field::CholeskyFieldSolver(): the factor of " +
                         std::to_string(grid.num_nodes()) + " unknowns needs about " +
                         std::to_string(static_cast<long long>(bytes / (1 << 20))) +
                         " MiB, more than the limit of " +
@@ -35,7 +35,7 @@ FieldSolveReport CholeskyFieldSolver::apply(const ConstraintDiff& diff,
   const auto t0 = std::chrono::steady_clock::now();
   const int n = static_cast<int>(field_.rows());
   FieldSolveReport rep = detail::start_report(method(), diff, current, n,
-                                              "hair_sketch::CholeskyFieldSolver::apply()");
+                                              "hair_field::CholeskyFieldSolver::apply()");
   // WᵀW has ω² per constrained node (§4.4.1).
   const double w = omega_ * omega_;
   std::vector<int> idx;
@@ -83,4 +83,4 @@ FieldSolveReport CholeskyFieldSolver::apply(const ConstraintDiff& diff,
   return rep;
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -8,16 +8,16 @@
 
 #include <memory>
 
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 namespace detail {
 class MultigridHierarchy;
 }
 
 struct MultigridFieldOptions {
-  double omega = 100;             // ω, thesis §4.4.1
+  FieldSolverOptions field;  // the energy's ω (thesis §4.4.1) and the memory limit
   // Stop when the estimated relative 2-norm error of the field is below this. The field must
   // be within 1e-6; against direct solves the estimate was 1.1–3.3× the true error once the
   // iteration had settled, and the factor 2 here is margin on top of that.
@@ -27,7 +27,7 @@ struct MultigridFieldOptions {
   // coarse correction per cycle on the finest level and several per visit of each coarser
   // one. The V-cycle's coarse correction weakens with depth, and a strong one lets the costly
   // fine level smooth less. The corrections after the first cost one product on the coarser
-  // level only (multigrid_hierarchy.cpp), so four are cheap where the hierarchy is deep: at
+  // level only (multigrid_cycle.cpp), so four are cheap where the hierarchy is deep: at
   // 250K and 1M four corrections save 3–4 iterations over two, at 50K (4 levels) none, hence
   // the automatic choice. The measurements, and the variants that were slower (degree 1, a
   // W-cycle on the finest level too), are in docs/decisions.md.
@@ -71,8 +71,15 @@ class MultigridFieldSolver final : public FieldSolver {
   std::unique_ptr<detail::MultigridHierarchy> mg_;
   // Relaxes the warm start near the diff's nodes; returns how many nodes it relaxed.
   int relax_near_edit(const ConstraintDiff& diff);
+  // Preconditioned CG from the warm start in work_->x for the current weights and targets.
+  struct Pcg {
+    int iterations = 0;
+    double error_estimate = 0;
+    bool converged = false;
+  };
+  Pcg solve_from_warm_start(const ConstraintSet& current);
   struct Work;  // the iteration's vectors, kept between solves
   std::unique_ptr<Work> work_;
 };
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 // 1D rule: the coarse neighbours of fine coordinate f (one with weight 1, or two with 1/2).
 struct CoarseNeighbours {
@@ -99,4 +99,4 @@ void restrict_to_coarse(const std::array<int, 3>& fd, const std::array<int, 3>& 
   }
 }
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

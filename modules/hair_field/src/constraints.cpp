@@ -1,21 +1,21 @@
-#include "lapis/hair_sketch/constraints.h"
+#include "lapis/hair_field/constraints.h"
 
 #include <algorithm>
 #include <string>
 
 #include "lapis/core/error.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 ConstraintSet ConstraintSet::merge(std::span<const std::vector<Constraint>> groups) {
   std::vector<Constraint> all;
   for (const auto& g : groups) {
     for (const auto& c : g) {
       if (c.node < 0)
-        throw InvalidArgument("hair_sketch::ConstraintSet::merge(): negative node " +
+        throw InvalidArgument("hair_field::ConstraintSet::merge(): negative node " +
                               std::to_string(c.node));
       if (!c.direction.allFinite())
-        throw InvalidArgument("hair_sketch::ConstraintSet::merge(): non-finite direction at node " +
+        throw InvalidArgument("hair_field::ConstraintSet::merge(): non-finite direction at node " +
                               std::to_string(c.node));
     }
     all.insert(all.end(), g.begin(), g.end());
@@ -63,4 +63,4 @@ ConstraintDiff diff(const ConstraintSet& before, const ConstraintSet& after, dou
   return d;
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -9,7 +9,7 @@
 
 #include "lapis/hair_sketch/growth.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_app {
 
 struct StrandDisplayOptions {
   int max_segments = 200000;        // total budget (met on average over the strands); 0: no limit
@@ -18,7 +18,8 @@ struct StrandDisplayOptions {
 
 // The strands to draw. `kept` (optional) receives, per returned strand, the index of the
 // strand it comes from, so callers can keep per-strand attributes (colour) stable.
-Strands display_strands(const Strands& strands, const StrandDisplayOptions& options = {},
-                        std::vector<int>* kept = nullptr);
+hair_sketch::Strands display_strands(const hair_sketch::Strands& strands,
+                                     const StrandDisplayOptions& options = {},
+                                     std::vector<int>* kept = nullptr);
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_app

@@ -1,10 +1,10 @@
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/grid_operators.h"
 
 #include <vector>
 
 #include "grid_stencil.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 namespace {
 
 // Calls f(j) for each grid neighbour j of (i, j, k); returns their count.
@@ -61,4 +61,4 @@ void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const 
   detail::normal_operator(g.dims, weights.data(), X.data(), Y.data(), false, buffers);
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

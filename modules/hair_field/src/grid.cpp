@@ -1,11 +1,11 @@
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/grid.h"
 
 #include <cmath>
 #include <string>
 
 #include "lapis/core/error.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 double estimate_multigrid_bytes(std::int64_t n) {
   const double nd = static_cast<double>(n);
@@ -27,13 +27,13 @@ double estimate_cholesky_bytes(std::int64_t n) {
 Grid make_grid(const Eigen::AlignedBox3d& head_box, const GridOptions& options) {
   if (head_box.isEmpty() || !head_box.min().allFinite() || !head_box.max().allFinite() ||
       (head_box.max() - head_box.min()).minCoeff() <= 0)
-    throw InvalidArgument("hair_sketch::make_grid(): head box is empty or not finite");
+    throw InvalidArgument("hair_field::make_grid(): head box is empty or not finite");
   if (!(options.target_unknowns >= 8) || !std::isfinite(options.target_unknowns))
-    throw InvalidArgument("hair_sketch::make_grid(): target_unknowns must be >= 8, got " +
+    throw InvalidArgument("hair_field::make_grid(): target_unknowns must be >= 8, got " +
                           std::to_string(options.target_unknowns));
   const double est = estimate_multigrid_bytes(static_cast<std::int64_t>(options.target_unknowns));
   if (est > options.memory_limit_bytes)
-    throw ResourceLimit("hair_sketch::make_grid(): a grid of " +
+    throw ResourceLimit("hair_field::make_grid(): a grid of " +
                         std::to_string(static_cast<long long>(options.target_unknowns)) +
                         " unknowns needs about " + std::to_string(est / (1 << 20)) +
                         " MiB, more than the limit of " +
@@ -62,4 +62,4 @@ Grid make_grid(const Eigen::AlignedBox3d& head_box, const GridOptions& options) 
   return g;
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -8,11 +8,11 @@
 #include <random>
 
 #include "grid_stencil.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/grid_operators.h"
 
-using namespace lapis::hair_sketch;
+using namespace lapis::hair_field;
 
-TEST_CASE("hair_sketch: the plane-interleaved normal operator equals DtD + W for any thread split, in place too") {
+TEST_CASE("hair_field: the plane-interleaved normal operator equals DtD + W for any thread split, in place too") {
   const int threads_before = omp_get_max_threads();
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);

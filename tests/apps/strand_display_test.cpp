@@ -3,10 +3,11 @@
 #include <random>
 
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/strand_display.h"
+#include "strand_display.h"
 
 using namespace lapis;
-using namespace lapis::hair_sketch;
+using namespace lapis::hair_app;
+using lapis::hair_sketch::Strands;
 
 namespace {
 
@@ -25,7 +26,7 @@ Strands random_strands(int count, int max_points, unsigned seed) {
 
 }  // namespace
 
-TEST_CASE("hair_sketch: display strands within budget are the strands themselves") {
+TEST_CASE("hair_app: display strands within budget are the strands themselves") {
   const Strands s = random_strands(50, 40, 1);
   std::vector<int> kept;
   const Strands d = display_strands(s, {.max_segments = s.segments(), .max_points_per_strand = 8}, &kept);
@@ -35,7 +36,7 @@ TEST_CASE("hair_sketch: display strands within budget are the strands themselves
   CHECK(display_strands(s, {.max_segments = 0}).points.size() == s.points.size());
 }
 
-TEST_CASE("hair_sketch: display strands meet the budget with decimated, evenly spread strands") {
+TEST_CASE("hair_app: display strands meet the budget with decimated, evenly spread strands") {
   const Strands s = random_strands(20000, 200, 2);
   for (int budget : {1000, 50000, 150000}) {
     CAPTURE(budget);

@@ -24,9 +24,9 @@
 #include <Eigen/SparseCore>
 
 #include "grid_stencil.h"
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/grid.h"
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 // Precision of the cycle: the preconditioner only needs a few digits.
 using Real = float;
@@ -35,14 +35,23 @@ using FieldF = Eigen::Matrix<Real, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using RowSparseD = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using RowSparseF = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
 
+// Below this many stored entries a sparse product runs on one thread. The threshold counts
+// entries, not rows: level 1 of a 50K grid has only 7.4K rows but 0.9M entries (up to 125
+// a row), the costliest product of the cycle, and a row threshold left it on one thread.
+inline constexpr std::ptrdiff_t parallel_nonzeros = 50000;
+// Element-wise passes: below this many nodes one thread.
+inline constexpr int parallel_nodes = 20000;
+
+// The cycle's parameters, as MultigridFieldOptions (multigrid_field_solver.h) gives them;
+// the defaults live there.
 struct MultigridOptions {
-  int smoothing_degree = 2;      // Chebyshev polynomial degree, pre and post
-  int cycle_index = 1;           // coarse-grid corrections per visit of the finest level
+  int smoothing_degree = 0;      // Chebyshev polynomial degree, pre and post
+  int cycle_index = 0;           // coarse-grid corrections per visit of the finest level
   int coarse_cycle_index = 0;    // ... and per visit of each coarser level (1: V-cycle;
                                  // 0: 4 on hierarchies of 5 or more levels, else 2, and
                                  // at most 2 into a level whose products run on one thread)
-  double smoothing_range = 0.12; // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
-  int coarsest_nodes = 500;      // dense LDLᵀ at or below this size
+  double smoothing_range = 0;    // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
+  int coarsest_nodes = 0;        // dense LDLᵀ at or below this size
   bool cubic = false;            // cubic (else linear) prolongation
 };
 
@@ -120,4 +129,4 @@ class MultigridHierarchy {
   std::vector<double> dot_partials_;  // per thread, 8 doubles apart
 };
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

@@ -6,10 +6,10 @@
 
 #include <memory>
 
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 #include "lapis/solver/updatable_cholesky.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 class CholeskyFieldSolver final : public FieldSolver {
  public:
@@ -39,4 +39,4 @@ class CholeskyFieldSolver final : public FieldSolver {
   std::unique_ptr<solver::UpdatableCholesky> factor_;  // null until a constraint exists
 };
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

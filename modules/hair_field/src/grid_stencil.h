@@ -13,9 +13,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/grid.h"
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 // |N(i)| for node i of an x-line, given the line's y/z neighbour count.
 inline int neighbour_count(int i, int nx, int yz_neighbours) {
@@ -164,4 +164,4 @@ void normal_operator(const std::array<int, 3>& dims, const W* w, const T* x, T* 
                         });
 }
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include "lapis/hair_sketch/constraints.h"
-#include "lapis/hair_sketch/grid.h"
-#include "lapis/hair_sketch/grid_operators.h"
+#include "lapis/hair_field/constraints.h"
+#include "lapis/hair_field/grid.h"
+#include "lapis/hair_field/grid_operators.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 enum class FieldMethod {
   Auto,         // chosen from the grid size and memory (see choose_field_method)
@@ -50,7 +50,7 @@ struct FieldSolverOptions {
   // (3–5× at 25K and 50K on the bundled head; docs/decisions.md) and its hierarchy is built
   // in a fraction of the factorization's time. At 1M the factor (~28 GiB) would not fit.
   double thesis_max_factor_bytes = 48.0 * (1 << 20);
-  double memory_limit_bytes = 16.0 * (1ull << 30);
+  double memory_limit_bytes = kDefaultMemoryLimitBytes;
 };
 
 // The method Auto picks for grid.
@@ -61,4 +61,4 @@ FieldMethod choose_field_method(const Grid& grid, const FieldSolverOptions& opti
 std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod method,
                                                const FieldSolverOptions& options = {});
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

@@ -1,15 +1,16 @@
-#include "lapis/hair_sketch/strand_display.h"
+#include "strand_display.h"
 
 #include <algorithm>
 #include <numeric>
 
 #include "lapis/core/error.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_app {
+using hair_sketch::Strands;
 
 Strands display_strands(const Strands& strands, const StrandDisplayOptions& options, std::vector<int>* kept) {
   if (options.max_segments < 0 || options.max_points_per_strand < 2)
-    throw InvalidArgument("hair_sketch::display_strands(): max_segments must be >= 0 and max_points_per_strand >= 2");
+    throw InvalidArgument("hair_app::display_strands(): max_segments must be >= 0 and max_points_per_strand >= 2");
   const int count = strands.count();
   if (kept) kept->clear();
   if (options.max_segments == 0 || strands.segments() <= options.max_segments) {
@@ -47,4 +48,4 @@ Strands display_strands(const Strands& strands, const StrandDisplayOptions& opti
   return out;
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_app

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 inline double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -29,4 +29,4 @@ inline FieldSolveReport start_report(FieldMethod method, const ConstraintDiff& d
   return rep;
 }
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 // Grid node `node` should carry `direction` (its length is the constraint's magnitude:
 // 1 for curve tangents, fading in stream-curve tails, 0.3 / 0.6 for discontinuity,
@@ -53,4 +53,4 @@ struct ConstraintDiff {
 ConstraintDiff diff(const ConstraintSet& before, const ConstraintSet& after,
                     double tolerance = 0.0);
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

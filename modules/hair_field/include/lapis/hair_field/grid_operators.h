@@ -6,9 +6,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "lapis/hair_sketch/grid.h"
+#include "lapis/hair_field/grid.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 // One direction vector per grid node, n by 3 (x, y, z solved together, §4.4.1).
 using Field = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
@@ -25,4 +25,4 @@ SparseMatrix normal_matrix(const Grid& grid, const Eigen::VectorXd& weights);
 void apply_normal_operator(const Grid& grid, const Eigen::VectorXd& weights, const Field& X,
                            Field& Y);
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

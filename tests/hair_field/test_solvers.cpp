@@ -1,17 +1,16 @@
 // The thesis path (UpdatableCholesky update/downdate) against fresh factorizations and the
-// fast path against both, over random sequences of primitive additions, edits, removals.
+// fast path against both, over random sequences of curve additions, edits and removals.
 #include <doctest/doctest.h>
 
 #include <random>
 
-#include "fixture.h"
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/cholesky_field_solver.h"
-#include "lapis/hair_sketch/multigrid_field_solver.h"
-#include "lapis/hair_sketch/stream_curve.h"
+#include "lapis/hair_field/cholesky_field_solver.h"
+#include "lapis/hair_field/multigrid_field_solver.h"
 #include "lapis/solver/cholesky.h"
+#include "random_curve.h"
 
-using namespace hair_test;
+using namespace hair_field_test;
 
 namespace {
 
@@ -25,24 +24,13 @@ Field fresh_factorization(const Grid& g, const ConstraintSet& s, double omega = 
   return lapis::solver::solve_spd(normal_matrix(g, w), b);
 }
 
-StreamCurve random_stream_curve(const Grid& g, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.15, 0.85), t(-1, 1);
-  const Eigen::Vector3d span = g.max_corner() - g.origin;
-  Eigen::Vector3d p = g.origin + Eigen::Vector3d(u(rng), u(rng), u(rng)).cwiseProduct(span);
-  Eigen::Vector3d dir(t(rng), t(rng), t(rng));
-  StreamCurve c;
-  c.tail_segments = static_cast<int>(rng() % 3);
-  for (int i = 0; i < 6; ++i) {
-    c.points.push_back(p);
-    dir = (dir.normalized() + 0.4 * Eigen::Vector3d(t(rng), t(rng), t(rng))).normalized();
-    p += 1.7 * g.spacing * dir;
-  }
-  return c;
+double cosine(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return a.dot(b) / (a.norm() * b.norm() + 1e-300);
 }
 
 }  // namespace
 
-TEST_CASE("hair_sketch: constraint diff lists added, removed and changed nodes") {
+TEST_CASE("hair_field: constraint diff lists added, removed and changed nodes") {
   const ConstraintSet a = ConstraintSet::from({{1, {1, 0, 0}}, {4, {0, 1, 0}}, {7, {0, 0, 1}}});
   const ConstraintSet b = ConstraintSet::from({{4, {0, 1, 0}}, {7, {0, 1, 1}}, {9, {1, 1, 0}}});
   const ConstraintDiff d = diff(a, b);
@@ -58,11 +46,11 @@ TEST_CASE("hair_sketch: constraint diff lists added, removed and changed nodes")
   REQUIRE(m.size() == 1);
   CHECK((*m.find(3) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-15);
   CHECK_THROWS_WITH_AS(ConstraintSet::from({{-2, {1, 0, 0}}}),
-                       "hair_sketch::ConstraintSet::merge(): negative node -2",
+                       "hair_field::ConstraintSet::merge(): negative node -2",
                        lapis::InvalidArgument);
 }
 
-TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 random edits; "
+TEST_CASE("hair_field: thesis path equals a fresh factorization after 100 random edits; "
           "multigrid stays within 1e-6") {
   Grid g;
   g.dims = {12, 14, 11};
@@ -77,22 +65,20 @@ TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 rando
   relax_always.relax_budget = 1e9;
   MultigridFieldSolver relaxed(g, relax_always);
   std::mt19937 rng(11);
-  std::vector<StreamCurve> curves;
+  std::vector<std::vector<Constraint>> curves;
   ConstraintSet prev;
   double worst_thesis = 0, worst_fast = 0, worst_relaxed = 0;
   int updowns = 0, rebuilt = 0;
   for (int step = 0; step < 100; ++step) {
     const unsigned op = rng() % 4;
     if (curves.empty() || op == 0 || (op == 1 && curves.size() < 4)) {
-      curves.push_back(random_stream_curve(g, rng));
+      curves.push_back(random_curve(g, rng, 16));
     } else if (op == 1 || op == 2) {
-      curves[rng() % curves.size()] = random_stream_curve(g, rng);  // edit
+      curves[rng() % curves.size()] = random_curve(g, rng, 16);  // edit
     } else {
       curves.erase(curves.begin() + rng() % curves.size());
     }
-    std::vector<std::vector<Constraint>> groups;
-    for (const auto& c : curves) groups.push_back(c.constraints(g));
-    const ConstraintSet cur = ConstraintSet::merge(groups);
+    const ConstraintSet cur = ConstraintSet::merge(curves);
     const ConstraintDiff d = diff(prev, cur);
     const auto rt = thesis.apply(d, cur);
     fast.apply(d, cur);
@@ -120,7 +106,7 @@ TEST_CASE("hair_sketch: thesis path equals a fresh factorization after 100 rando
   CHECK(rebuilt == 0);
 }
 
-TEST_CASE("hair_sketch: target-only changes touch the right-hand side alone") {
+TEST_CASE("hair_field: target-only changes touch the right-hand side alone") {
   Grid g;
   g.dims = {8, 9, 7};
   CholeskyFieldSolver thesis(g);
@@ -132,17 +118,18 @@ TEST_CASE("hair_sketch: target-only changes touch the right-hand side alone") {
   CHECK(cosine(thesis.field().row(20).transpose(), {0, 0, 1}) > 0.999);
 }
 
-TEST_CASE("hair_sketch: grids that would not fit in memory are refused before allocation") {
+TEST_CASE("hair_field: grids that would not fit in memory are refused before allocation") {
+  const Eigen::AlignedBox3d unit_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
   GridOptions o;
   o.target_unknowns = 5e9;
-  CHECK_THROWS_AS(make_grid(bundled_head().box, o), lapis::ResourceLimit);
+  CHECK_THROWS_AS(make_grid(unit_box, o), lapis::ResourceLimit);
   o.target_unknowns = 1e6;
   o.memory_limit_bytes = 64.0 * (1 << 20);
   try {
-    make_grid(bundled_head().box, o);
+    make_grid(unit_box, o);
     FAIL("expected ResourceLimit");
   } catch (const lapis::ResourceLimit& e) {
-    CHECK(std::string(e.what()).rfind("hair_sketch::make_grid(): a grid of 1000000 unknowns", 0) == 0);
+    CHECK(std::string(e.what()).rfind("hair_field::make_grid(): a grid of 1000000 unknowns", 0) == 0);
   }
   // The thesis path's factor at 1M unknowns (≈ 28 GiB) does not fit 16 GiB.
   Grid big;
@@ -151,7 +138,7 @@ TEST_CASE("hair_sketch: grids that would not fit in memory are refused before al
   CHECK(choose_field_method(big) == FieldMethod::Multigrid);
 }
 
-TEST_CASE("hair_sketch: Auto picks the method from the grid size and the report names it") {
+TEST_CASE("hair_field: Auto picks the method from the grid size and the report names it") {
   Grid g;
   g.dims = {9, 10, 8};
   const ConstraintSet s = ConstraintSet::from({{5, {1, 0, 0}}, {300, {0, 1, 0}}});
@@ -169,7 +156,7 @@ TEST_CASE("hair_sketch: Auto picks the method from the grid size and the report 
   CHECK((fast->field() - small->field()).norm() <= 1e-6 * small->field().norm());
   CHECK_THROWS_WITH_AS(small->apply(diff(s, ConstraintSet::from({{5000, {1, 0, 0}}})),
                                     ConstraintSet::from({{5000, {1, 0, 0}}})),
-                       "hair_sketch::CholeskyFieldSolver::apply(): constraint node 5000 outside "
+                       "hair_field::CholeskyFieldSolver::apply(): constraint node 5000 outside "
                        "the grid of 720 nodes",
                        lapis::InvalidArgument);
 }

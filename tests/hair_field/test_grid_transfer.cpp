@@ -8,7 +8,7 @@
 
 #include "grid_transfer.h"
 
-using namespace lapis::hair_sketch::detail;
+using namespace lapis::hair_field::detail;
 
 namespace {
 
@@ -37,7 +37,7 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> prolongation_matrix(const std::arra
 
 }  // namespace
 
-TEST_CASE("hair_sketch: matrix-free multigrid transfers equal the prolongation matrix and its transpose") {
+TEST_CASE("hair_field: matrix-free multigrid transfers equal the prolongation matrix and its transpose") {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
   for (const std::array<int, 3> fd : {std::array<int, 3>{9, 8, 7}, std::array<int, 3>{40, 13, 30}}) {

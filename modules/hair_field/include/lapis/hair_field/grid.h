@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 // Node (i, j, k) sits at origin + spacing * (i, j, k); index = i + dims[0] * (j + dims[1] * k).
 struct Grid {
@@ -40,17 +40,21 @@ struct Grid {
   Eigen::Vector3d to_grid(const Eigen::Vector3d& p) const { return (p - origin) / spacing; }
 };
 
+// What the field may allocate by default (bytes): GridOptions and FieldSolverOptions start
+// from it.
+inline constexpr double kDefaultMemoryLimitBytes = 16.0 * (1ull << 30);
+
 struct GridOptions {
   // Unknowns per field component. Thesis §4.6: "about 25K" for smooth styles, "about 50K"
   // for complex ones such as ponytails; the interactive targets go up to 1M.
-  double target_unknowns = 50000;
+  double target_unknowns = 25000;
   // Enlargement of the head box, in head-box extents. The thesis only says "bounding
   // volume"; hair below the shoulders needs room under the head (y is up).
   double margin_side = 0.3;    // each of ±x, ±z
   double margin_top = 0.15;    // +y
   double margin_below = 1.0;   // -y: long hair
   // Memory the field may use (bytes); make_grid throws ResourceLimit beyond it.
-  double memory_limit_bytes = 16.0 * (1ull << 30);
+  double memory_limit_bytes = kDefaultMemoryLimitBytes;
 };
 
 // Bytes the fast (multigrid) field path needs for n nodes: fine and coarse operators in
@@ -67,4 +71,4 @@ double estimate_cholesky_bytes(std::int64_t n);
 // the fast path would exceed memory_limit_bytes.
 Grid make_grid(const Eigen::AlignedBox3d& head_box, const GridOptions& options = {});
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

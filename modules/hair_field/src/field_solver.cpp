@@ -1,10 +1,10 @@
-#include "lapis/hair_sketch/field_solver.h"
+#include "lapis/hair_field/field_solver.h"
 
 #include "lapis/core/error.h"
-#include "lapis/hair_sketch/cholesky_field_solver.h"
-#include "lapis/hair_sketch/multigrid_field_solver.h"
+#include "lapis/hair_field/cholesky_field_solver.h"
+#include "lapis/hair_field/multigrid_field_solver.h"
 
-namespace lapis::hair_sketch {
+namespace lapis::hair_field {
 
 const char* to_string(FieldMethod m) {
   switch (m) {
@@ -32,13 +32,13 @@ std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod met
       return std::make_unique<CholeskyFieldSolver>(grid, options, solver::ModifyMethod::Refactorize);
     default: {
       if (estimate_multigrid_bytes(grid.num_nodes()) > options.memory_limit_bytes)
-        throw ResourceLimit("hair_sketch::make_field_solver(): the multigrid field of " +
+        throw ResourceLimit("hair_field::make_field_solver(): the multigrid field of " +
                             std::to_string(grid.num_nodes()) + " unknowns exceeds the memory limit");
       MultigridFieldOptions mo;
-      mo.omega = options.omega;
+      mo.field = options;
       return std::make_unique<MultigridFieldSolver>(grid, mo);
     }
   }
 }
 
-}  // namespace lapis::hair_sketch
+}  // namespace lapis::hair_field

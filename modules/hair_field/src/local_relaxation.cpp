@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 namespace {
 
 // A node's grid position and its 6-neighbours (those inside the grid).
@@ -119,4 +119,4 @@ void gauss_seidel(const std::array<int, 3>& d, const double* w, const double* c,
     }
 }
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail

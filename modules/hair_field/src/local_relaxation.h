@@ -22,7 +22,7 @@
 #include <span>
 #include <vector>
 
-namespace lapis::hair_sketch::detail {
+namespace lapis::hair_field::detail {
 
 // The nodes within Chebyshev distance `radius` (in nodes) of any seed, ascending. `mark` is
 // scratch of one entry per node, all zero on entry and on return.
@@ -36,4 +36,4 @@ std::vector<int> nodes_near(const std::array<int, 3>& dims, std::span<const int>
 void gauss_seidel(const std::array<int, 3>& dims, const double* w, const double* c,
                   std::span<const int> nodes, int sweeps, double* x);
 
-}  // namespace lapis::hair_sketch::detail
+}  // namespace lapis::hair_field::detail
