@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
-#include <optional>
 
+#include "implicit_first_system.h"
 #include "implicit_rest.h"
 #include "lapis/geometry/polar.h"
-#include "lapis/solver/blas_threads.h"
 #include "lapis/solver/least_squares.h"
+#include "lapis/solver/side_by_side.h"
 #include "rotation_fit.h"
 #include "rotation_guide.h"
 #include "sparse_rows.h"
@@ -20,43 +19,6 @@ namespace lapis::mesh_deform {
 using detail::SparseRows;
 
 namespace {
-
-// The metric of E_R: the Laplacian of the pair graph (degree on the diagonal, −1 per pair)
-// over `slots` vertices, ⊗ I₃ (rows 3s + a, a = x y z). Written column by column: the same
-// matrix from ~1M pairs as setFromTriplets on their 12 triplets each took 2–3× longer, most of
-// it allocating and sorting the 12M triplets. Each pair appears once.
-solver::SparseMatrix pair_graph_laplacian(int slots, const std::vector<std::pair<int, int>>& pairs) {
-  std::vector<int> start(static_cast<size_t>(slots) + 1, 0);
-  for (const auto& [a, b] : pairs) ++start[a + 1], ++start[b + 1];
-  for (int v = 0; v < slots; ++v) start[v + 1] += start[v];
-  std::vector<int> adjacent(static_cast<size_t>(start[slots]));
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (const auto& [a, b] : pairs) adjacent[fill[a]++] = b, adjacent[fill[b]++] = a;
-  const std::ptrdiff_t entries = 3 * (static_cast<std::ptrdiff_t>(start[slots]) + slots);
-  solver::SparseMatrix M(3 * slots, 3 * slots);
-  M.resizeNonZeros(entries);
-  int* outer = M.outerIndexPtr();
-  int* inner = M.innerIndexPtr();
-  double* value = M.valuePtr();
-  std::ptrdiff_t at = 0;
-  for (int v = 0; v < slots; ++v) {
-    int* first = adjacent.data() + start[v];
-    int* last = adjacent.data() + start[v + 1];
-    std::sort(first, last);
-    const int* diagonal = std::lower_bound(first, last, v);
-    const double degree = static_cast<double>(last - first);
-    for (int a = 0; a < 3; ++a) {
-      outer[3 * v + a] = static_cast<int>(at);
-      for (const int* u = first; u != last; ++u) {
-        if (u == diagonal) inner[at] = 3 * v + a, value[at++] = degree;
-        inner[at] = 3 * *u + a, value[at++] = -1.0;
-      }
-      if (diagonal == last) inner[at] = 3 * v + a, value[at++] = degree;
-    }
-  }
-  outer[3 * slots] = static_cast<int>(at);
-  return M;
-}
 
 // The mesh's edges as an n by n pattern: the skeleton on which Eq. 2.8's normal matrix is
 // ordered (solver/ordering.h). Its columns couple vertices four rings apart, and METIS on
@@ -157,6 +119,57 @@ struct ImplicitLaplacianDeformer::Impl {
     return in;
   }
 
+  // Eq. 2.8's blocks (first_system_rows), assembled and factorized.
+  void build_first_system(const ImplicitOptions& options, const std::vector<LaplacianBlend>& blends, double blend_weight) {
+    const Vertices& P = w.displaced;
+    const int n = w.mesh.num_vertices();
+    // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
+    // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
+    stencil = w.stencil;
+    detail::reweight(stencil, P, w.mesh.F, options.weights);
+    const Vertices deltaP = detail::laplacian_coordinates(stencil, P);
+    G = detail::gradient_stencils(stencil, P, w.active);
+    const double h = detail::mean_edge_length(stencil, w.mesh.V);
+    detail::FirstSystemRows rows = detail::first_system_rows(w, stencil, G, deltaP, free, constrained, blends);
+    transform_vertex = std::move(rows.transform_vertex);
+    transform_handle = std::move(rows.transform_handle);
+    first = solver::LeastSquares(n);
+    weight_R = options.coherence_weight * h * h;
+    weight_T = options.transform_weight * h * h;
+    // Each block goes to the solver by value, moved (tens of MB at 50K vertices, each page
+    // of a copy faulted in afresh).
+    first.add_block(std::move(rows.laplacian), 1.0, "E_L (Eq. 2.6)");
+    if (rows.coherence.rows() > 0)
+      block_R = first.add_block(std::move(rows.coherence), weight_R, "E_R (Eq. 2.7)", std::move(rows.coherence_metric));
+    if (rows.transform.rows() > 0) block_T = first.add_block(std::move(rows.transform), weight_T, "M_c = W_c (Eq. 2.8)");
+    if (rows.blend.rows() > 0) block_B = first.add_block(std::move(rows.blend), blend_weight, "E_T (§3.3.3)");
+    first.set_fixed(constrained);
+    first.set_ordering_skeleton(edge_graph(stencil));
+    has_coherence = block_R >= 0;
+    // M_c(v') and E_T's rows at the rest state; no rows when the block is absent.
+    const auto at_rest = [&](int block) {
+      return block >= 0 ? solver::DenseMatrix(first.block_matrix(block) * solver::DenseMatrix(P)) : solver::DenseMatrix(0, 3);
+    };
+    transform_rest = at_rest(block_T);
+    blend_rest = at_rest(block_B);
+    first.precompute();
+  }
+
+  // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
+  // Laplacian the details.
+  void build_second_system(LaplacianWeights weights) {
+    const int n = w.mesh.num_vertices();
+    detail::Stencil s0 = w.stencil;
+    detail::reweight(s0, w.mesh.V, w.mesh.F, weights);
+    SparseRows D(n);
+    for (int i : free) detail::add_laplacian_row(D, s0, i);
+    second = solver::LeastSquares(n);
+    second.add_block(D.matrix(), 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
+    second.set_fixed(constrained);
+    delta = second.block_matrix(0) * solver::DenseMatrix(w.mesh.V);
+    second.precompute();
+  }
+
   // X_I and Φ. Parameter column 4h + b of region handle h enters coordinate a with weight
   // T_h(a, b): through the fixed values (p_b, or 1 for the translation b = 3) of the handle's
   // vertices and the transformation rows 3t + b of its constrained vertices (b < 3); column
@@ -251,152 +264,17 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   auto m = std::make_unique<Impl>();
   m->w = detail::build_work_mesh(mesh_, layout, options_);
   const detail::WorkMesh& w = m->w;
-  const int n = w.mesh.num_vertices();
-  const Vertices& P = w.displaced;
-  for (int v = 0; v < n; ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
+  for (int v = 0; v < w.mesh.num_vertices(); ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
   m->polar_start.assign(m->free.size(), Eigen::Quaterniond::Identity());
-
-  // Eq. 2.10/2.11's system is built and factorized on a second thread while Eq. 2.8's is built,
-  // ordered and factorized on this one: started before E_L and E_R are assembled, it is done
-  // before the first factorization is, and the first system's ordering (nested dissection,
-  // CAMD) runs on one core and would leave the other idle.
-  std::future<void> second_done;
-  // Two factorizations at once: one BLAS thread each (blas_threads.h), else OpenBLAS' idle
-  // threads busy-wait on the cores the other factorization needs.
-  std::optional<solver::ScopedBlasThreads> one_blas_thread;
-  if (options_.shearing != ShearingRemoval::None) {
-    one_blas_thread.emplace(1);
-    // It reads w, free and constrained, which this thread only reads, and writes only
-    // m->second and m->delta, which this thread reads after joining. On an exception below,
-    // second_done's destructor joins before m is destroyed.
-    second_done = std::async(std::launch::async, [&m = *m, &w, n, weights = options_.weights] {
-      // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
-      // Laplacian the details.
-      detail::Stencil s0 = w.stencil;
-      detail::reweight(s0, w.mesh.V, w.mesh.F, weights);
-      SparseRows D(n);
-      for (int i : m.free) detail::add_laplacian_row(D, s0, i);
-      m.second = solver::LeastSquares(n);
-      m.second.add_block(D.matrix(), 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");  // taken, not copied
-      m.second.set_fixed(m.constrained);
-      m.delta = m.second.block_matrix(0) * solver::DenseMatrix(w.mesh.V);
-      m.second.precompute();
-    });
-  }
-
-  // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
-  // normal (cotangent weights; uniform ones add the tangential part of Fig. 2.5).
-  detail::Stencil s = w.stencil;
-  detail::reweight(s, P, w.mesh.F, options_.weights);
-  const Vertices deltaP = detail::laplacian_coordinates(s, P);
-  m->G = detail::gradient_stencils(s, P, w.active);
-  const detail::GradientStencils& G = m->G;
-  const double h = detail::mean_edge_length(s, w.mesh.V);
-
-  // Does M_i depend on a free unknown? Terms that do not are constants and left out.
-  std::vector<char> touches(static_cast<size_t>(n), 0);
-  for (int i = 0; i < n; ++i)
-    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k)
-      if (w.role[G.vertex[k]] == VertexRole::Free) touches[i] = 1;
-
-  // E_L (Eq. 2.6): D(ṽ_i) − M_i δ_i, one row per free vertex and coordinate.
-  SparseRows EL(n);
-  for (int i : m->free) {
-    detail::add_laplacian_row(EL, s, i);
-    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) EL.add(G.vertex[k], -G.g[k].dot(deltaP.row(i)));
-  }
-  // E_R (Eq. 2.7): Σ ‖M_i − M_j‖² over pairs within 2 rings (footnote 1). M_i's rows are
-  // linear in the positions (the gradient stencil g_i), so E_R = Σ_a xᵀ G_aᵀ (Dᵀ D) G_a x with
-  // D the pairs' incidence matrix: three rows g_i(a) per vertex in a pair, measured in the
-  // metric Dᵀ D ⊗ I₃ (the pair graph's Laplacian), rather than three rows g_i(a) − g_j(a) per
-  // pair — the same energy from a normal matrix that costs several times less to assemble.
-  SparseRows ER(n);
-  std::vector<int> slot(static_cast<size_t>(n), -1);  // vertex → its three rows / 3
-  std::vector<std::pair<int, int>> pairs;              // slots of the vertices of each pair
-  auto slot_of = [&](int i) {
-    if (slot[i] < 0) {
-      slot[i] = ER.rows() / 3;
-      for (int a = 0; a < 3; ++a) {
-        ER.begin_row();
-        for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) ER.add(G.vertex[k], G.g[k](a));
-      }
-    }
-    return slot[i];
-  };
-  std::vector<int> stamp(static_cast<size_t>(n), -1);
-  for (int i = 0; i < n; ++i) {
-    if (!w.active[i]) continue;
-    stamp[i] = i;
-    auto visit = [&](int j) {
-      if (stamp[j] == i) return;
-      stamp[j] = i;
-      if (j < i || !w.active[j] || !(touches[i] || touches[j])) return;
-      const int si = slot_of(i);
-      pairs.emplace_back(si, slot_of(j));
-    };
-    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-      const int j = s.nbr[k];
-      visit(j);
-      for (int l = s.offsets[j]; l < s.offsets[j + 1]; ++l) visit(s.nbr[l]);
-    }
-  }
-  // Eq. 2.8 transformation constraints: region handles carry their transform's linear part,
-  // the border of the fixed region the identity. Point handles constrain positions only.
-  SparseRows T(n);
-  for (int c : m->constrained) {
-    if (!w.active[c] || !touches[c] || w.role[c] == VertexRole::PointHandle) continue;
-    m->transform_vertex.push_back(c);
-    m->transform_handle.push_back(w.role[c] == VertexRole::RegionHandle ? w.handle_of[c] : -1);
-    for (int a = 0; a < 3; ++a) {
-      T.begin_row();
-      for (int k = G.offsets[c]; k < G.offsets[c + 1]; ++k) T.add(G.vertex[k], G.g[k](a));
-    }
-  }
-
-  // E_T (§3.3.3): row M_i δ_i − Σ_j b_j M_j δ_j, linear in the unknowns like E_L's M_i δ_i.
-  SparseRows EB(n);
-  auto add_transformed = [&](int i, double b) {
-    for (int k = G.offsets[i]; k < G.offsets[i + 1]; ++k) EB.add(G.vertex[k], b * G.g[k].dot(deltaP.row(i)));
-  };
-  for (const LaplacianBlend& t : blends_) {
-    bool defined = G.offsets[t.vertex] < G.offsets[t.vertex + 1], free = touches[t.vertex];
-    for (int j : t.others) defined = defined && G.offsets[j] < G.offsets[j + 1], free = free || touches[j];
-    if (!defined || !free) continue;
-    EB.begin_row();
-    add_transformed(t.vertex, 1.0);
-    for (int k = 0; k < 3; ++k)
-      if (t.weights[k] != 0) add_transformed(t.others[k], -t.weights[k]);
-  }
-
-  m->first = solver::LeastSquares(n);
-  m->weight_R = options_.coherence_weight * h * h;
-  m->weight_T = options_.transform_weight * h * h;
-  // Each block goes to the solver as the builder's temporary, taken without a copy (tens of
-  // MB at 50K vertices, each page of a copy faulted in afresh).
-  m->first.add_block(EL.matrix(), 1.0, "E_L (Eq. 2.6)");
-  if (ER.rows() > 0)
-    m->block_R = m->first.add_block(ER.matrix(), m->weight_R, "E_R (Eq. 2.7)", pair_graph_laplacian(ER.rows() / 3, pairs));
-  if (T.rows() > 0) m->block_T = m->first.add_block(T.matrix(), m->weight_T, "M_c = W_c (Eq. 2.8)");
-  if (EB.rows() > 0) m->block_B = m->first.add_block(EB.matrix(), blend_weight_, "E_T (§3.3.3)");
-  m->first.set_fixed(m->constrained);
-  m->first.set_ordering_skeleton(edge_graph(s));
-  m->stencil = s;
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
-  m->has_coherence = m->block_R >= 0;
-  // M_c(v') and E_T's rows at the rest state; no rows when the block is absent.
-  const auto at_rest = [&](int block) {
-    return block >= 0 ? solver::DenseMatrix(m->first.block_matrix(block) * solver::DenseMatrix(P)) : solver::DenseMatrix(0, 3);
-  };
-  m->transform_rest = at_rest(m->block_T);
-  m->blend_rest = at_rest(m->block_B);
 
-  try {
-    m->first.precompute();
-  } catch (...) {
-    if (second_done.valid()) second_done.wait();  // the first system's error is the one to report
-    throw;
-  }
-  if (second_done.valid()) second_done.get();  // rethrows the second system's error
+  // Eq. 2.10/2.11's system is built and factorized beside Eq. 2.8's: the first system's
+  // ordering (nested dissection, CAMD) runs on one core and would leave the other idle. The
+  // second reads w, free and constrained and writes only second and delta.
+  const auto first = [&] { m->build_first_system(options_, blends_, blend_weight_); };
+  if (options_.shearing == ShearingRemoval::None) first();
+  else solver::side_by_side(first, [&m = *m, weights = options_.weights] { m.build_second_system(weights); });
+
   m->region_handles = layout.num_region_handles;
   m->point_handles = layout.num_point_handles;
   const int parameters = 4 * m->region_handles + m->point_handles;
