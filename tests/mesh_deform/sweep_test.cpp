@@ -24,3 +24,12 @@ TEST_CASE("mesh_deform sweep: ARAP agrees with CGAL's converged ORIGINAL_ARAP on
     sweep::check_arap_against_cgal(sweep::load_external(name), 20, 0.01);
   }
 }
+
+TEST_CASE("mesh_deform sweep: implicit editing turns real meshes the commanded way over 270 and 360 degrees") {
+  for (const std::string name : {"camel", "dino", "armadillo"}) {
+    CAPTURE(name);
+    const TriMesh m = sweep::load_external(name);
+    sweep::check_large_twist(m, 270);
+    sweep::check_large_twist(m, 360);
+  }
+}

@@ -228,8 +228,9 @@ ImplicitLaplacianDeformer::~ImplicitLaplacianDeformer() = default;
 void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
   constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_options()";
   if (!(options.degenerate_condition > 1)) throw InvalidArgument(std::string(fn) + ": degenerate_condition must be > 1");
-  if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0))
-    throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight and transform_weight must be > 0");
+  if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0) ||
+      !(options.guide_weight > 0))
+    throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight, transform_weight and guide_weight must be > 0");
   options_ = options;
   mark_dirty();
 }
@@ -334,7 +335,7 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
     m.guided->add_block(m.first.block_matrix(m.block_R), m.weight_R, "E_R (Eq. 2.7)", m.first.block_metric(m.block_R));
   if (m.block_T >= 0) m.guided->add_block(m.first.block_matrix(m.block_T), m.weight_T, "M_c = W_c (Eq. 2.8)");
   if (m.block_B >= 0) m.guided->add_block(m.first.block_matrix(m.block_B), blend_weight_, "E_T (§3.3.3)");
-  m.guided->add_block(A_G, m.weight_T, "guide bands (§2.5)");
+  m.guided->add_block(A_G, options_.guide_weight * m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);
   m.guided->set_ordering_skeleton(edge_graph(m.stencil));
   m.guided->precompute();
