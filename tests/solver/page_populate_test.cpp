@@ -39,9 +39,25 @@ struct FreshMapping {
   }
 };
 
+// MADV_POPULATE_WRITE (Linux 5.14) on a fresh page: without it the populator does nothing,
+// and the case that checks what it faulted in is reported as skipped.
+bool kernel_populates() {
+  const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  void* p = ::mmap(nullptr, page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) return false;
+#ifdef MADV_POPULATE_WRITE
+  const bool ok = ::madvise(p, page, MADV_POPULATE_WRITE) == 0;
+#else
+  const bool ok = ::madvise(p, page, 23 /* MADV_POPULATE_WRITE */) == 0;
+#endif
+  ::munmap(p, page);
+  return ok;
+}
+
 }  // namespace
 
-TEST_CASE("solver: the page populator faults in a whole fresh range and leaves its contents alone") {
+TEST_CASE("solver: the page populator faults in a whole fresh range and leaves its contents alone" *
+          doctest::skip(!kernel_populates())) {
   const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
   const std::size_t pages = 3000;  // ~12 MB: several of the helper's 2 MB chunks
   FreshMapping m(pages * page);
@@ -52,10 +68,6 @@ TEST_CASE("solver: the page populator faults in a whole fresh range and leaves i
     // From mid-page to mid-page: only whole pages inside the range are the helper's.
     PagePopulator populate(m.data + page / 2, (pages - 1) * page, /*min_bytes=*/0);
     populate.wait();
-    if (populate.populated_bytes() == 0) {
-      MESSAGE("MADV_POPULATE_WRITE is not supported by this kernel: nothing to check");
-      return;
-    }
     CHECK(populate.populated_bytes() == (pages - 2) * page);
   }
   CHECK(m.resident_pages(1, pages - 1) == pages - 2);
