@@ -120,7 +120,7 @@ TEST_CASE("geometry: BVH handles degenerate input") {
   CHECK(hit->t == 1.0);
   TriMesh bad = make_icosphere(0);
   bad.V(3, 1) = std::nan("");
-  CHECK_THROWS_WITH_AS(Bvh{bad}, "geometry::Bvh(): vertex 3 has non-finite coordinates", lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(Bvh{bad}, doctest::Contains("geometry::Bvh(): vertex 3 = ("), lapis::InvalidArgument);
 }
 
 TEST_CASE("geometry: BVH builds over coordinates whose span overflows a double") {

@@ -5,6 +5,7 @@
 #include <bit>
 
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "test_util.h"
@@ -138,6 +139,30 @@ TEST_CASE("geometry: writers are atomic and leave no temporary files") {
                        doctest::Contains("geometry::write_file_atomically(): "), lapis::IoError);
   CHECK_THROWS_WITH_AS(write_mesh(dir / "m.xyz", test::tetrahedron()),
                        doctest::Contains("unknown extension '.xyz'"), lapis::IoError);
+}
+
+TEST_CASE("geometry: writers refuse non-finite positions and leave the previous file") {
+  const fs::path dir = test::scratch_dir() / "finite";
+  fs::create_directories(dir);
+  TriMesh bad = test::tetrahedron();
+  bad.V(2, 1) = -std::numeric_limits<double>::quiet_NaN();
+  bad.V(2, 2) = std::numeric_limits<double>::infinity();
+  for (const char* name : {"m.obj", "m.off", "m.ply", "m.stl"}) {
+    CAPTURE(name);
+    const fs::path path = dir / name;
+    write_mesh(path, test::tetrahedron());
+    const std::string ext = path.extension().string().substr(1);
+    CHECK_THROWS_WITH_AS(write_mesh(path, bad),
+                         ("geometry::write_" + ext + "(): vertex 2 = (" + lapis::format_number(bad.V(2, 0)) +
+                          ", -nan, inf) is not finite").c_str(),
+                         lapis::InvalidArgument);
+    CHECK(read_mesh(path).num_faces() == 4);  // the previous file
+    CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
+    fs::remove(path);
+  }
+  CHECK_THROWS_WITH_AS(write_obj_polylines(dir / "l.obj", {{Eigen::Vector3d::Zero(), Eigen::Vector3d(1, std::nan(""), 0)}}),
+                       "geometry::write_obj_polylines(): point 1 of polyline 0 is not finite", lapis::InvalidArgument);
+  CHECK_FALSE(fs::exists(dir / "l.obj"));
 }
 
 TEST_CASE("geometry: the real meshes in assets/external load and validate") {

@@ -136,9 +136,7 @@ struct BvhBuilder {
 
 Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_(options) {
   require_indices_in_range(mesh, "geometry::Bvh()");
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (!mesh.V.row(v).allFinite())
-      throw InvalidArgument("geometry::Bvh(): vertex " + std::to_string(v) + " has non-finite coordinates");
+  require_finite_vertices(mesh, "geometry::Bvh()");
   if (options.max_leaf_size < 1) throw InvalidArgument("geometry::Bvh(): max_leaf_size must be at least 1");
   const int nf = mesh.num_faces();
   BvhBuilder b{*this, std::vector<Box>(nf), std::vector<Eigen::Vector3d>(nf)};

@@ -300,6 +300,7 @@ void put(std::string& s, T v, bool swap) {
 
 void write_ply(const std::filesystem::path& path, const TriMesh& mesh, PlyFormat format) {
   require_indices_in_range(mesh, "geometry::write_ply()");
+  require_finite_vertices(mesh, "geometry::write_ply()");
   const char* name = format == PlyFormat::Ascii ? "ascii"
                      : format == PlyFormat::BinaryLittleEndian ? "binary_little_endian" : "binary_big_endian";
   const bool swap = format != PlyFormat::Ascii &&
