@@ -39,10 +39,7 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, 
   out.solve_ms = ms_since(t0);
   out.constraints = field_.constraints().size();
   const auto t1 = std::chrono::steady_clock::now();
-  GrowthOptions growth;
-  growth.step = settings_.step;
-  growth.max_length = settings_.max_length;
-  grower_.set_options(growth);
+  grower_.set_options(growth_options(settings_));
   grower_.grow(SampledField(field_.grid(), field_.field()), roots_, out.strands);
   out.growth_ms = ms_since(t1);
   out.total_ms = ms_since(t0);

@@ -14,7 +14,15 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+GrowthOptions growth_options(const HairstyleSettings& settings) {
+  GrowthOptions growth;
+  growth.step = settings.step;
+  growth.max_length = settings.max_length;
+  return growth;
+}
+
 Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings) {
+  check_growth(settings.roots, growth_options(settings), "hair_sketch::hairstyle_grid()");
   GridOptions g;
   g.target_unknowns = settings.grid_unknowns;
   return make_grid(head.box, g);
@@ -83,10 +91,7 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   RootOptions roots;
   roots.count = s.roots;
   roots.seed = s.seed;
-  GrowthOptions growth;
-  growth.step = s.step;
-  growth.max_length = s.max_length;
-  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, roots), growth);
+  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, roots), growth_options(s));
   r.growth_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   r.penetrating_segments = count_penetrating_segments(r.strands, head);

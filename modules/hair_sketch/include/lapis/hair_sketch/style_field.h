@@ -17,7 +17,12 @@
 namespace lapis::hair_sketch {
 
 // The field's grid for a head and the document's settings (make_grid with grid_unknowns).
+// It is the first step of every hairstyle, so it also checks, before any work, that the
+// strands the settings ask for fit in memory (check_growth): ResourceLimit otherwise.
 Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
+
+// Growth options from the document's settings (step, max_length).
+GrowthOptions growth_options(const HairstyleSettings& settings);
 
 // Sketch options matching the grid (curves resampled at its spacing) and the settings.
 SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings);
