@@ -96,8 +96,10 @@ int run(const std::vector<std::string>& argv) {
               {"arap_energy", q.arap_energy}}}};
   if (implicit) r["degenerate_vertices"] = implicit->stats().degenerate_vertices;
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
+  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
   emit_report(r, args);
+  outputs.commit();
   return 0;
 }
 

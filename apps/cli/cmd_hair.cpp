@@ -54,6 +54,7 @@ int run(const std::vector<std::string>& argv) {
   const HairstyleResult r = build_hairstyle(style, head);
 
   t = std::chrono::steady_clock::now();
+  geometry::AtomicFileGroup outputs;  // .hair, .obj, .vtk and the report: all new or all old
   write_hair_file(out_hair, to_hair_file(r.strands));
   if (args.has("--out-obj")) write_strands_obj(args.get("--out-obj"), r.strands);
   if (args.has("--out-field")) write_field_vtk(args.get("--out-field"), r.grid, r.field);
@@ -77,6 +78,7 @@ int run(const std::vector<std::string>& argv) {
                      {"growth", r.growth_ms},   {"penetration", r.penetration_ms},
                      {"write", write_ms},       {"total", ms_since(t0)}};
   emit_report(j, args);
+  outputs.commit();
   return 0;
 }
 

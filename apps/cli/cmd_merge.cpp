@@ -106,8 +106,10 @@ int run(const std::vector<std::string>& argv) {
                  {"max_distance", d.max_distance},
                  {"mean_distance", d.mean_distance}};
   require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
+  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
   geometry::write_mesh(out, r.mesh);
   emit_report(j, args);
+  outputs.commit();
   if (!q.valid()) {
     std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
     return 1;

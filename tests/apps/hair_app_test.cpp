@@ -138,3 +138,21 @@ TEST_CASE("apps: hair app — every bundled session renders headless with a plau
   }
   CHECK(sessions >= 3);
 }
+
+TEST_CASE("apps: hair app — a headless export that cannot be written fails the run, naming the cause") {
+  const fs::path dir = scratch_dir();
+  std::ofstream(dir / "a_file") << "not a directory";
+  const fs::path log = dir / "export_failed.log";
+  const int status = run_under_xvfb("timeout 300 " + kApp + " --headless --size 320x240 --export-hair " +
+                                    (dir / "a_file" / "s.hair").string() + " --export-obj " +
+                                    (dir / "a_file" / "s.obj").string() + " --save-session " +
+                                    (dir / "a_file" / "s.json").string() + " > " + log.string() + " 2>&1");
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CAPTURE(output);
+  CHECK(status == 1);  // not 0 (the export failed) and not an abort (134: uncaught filesystem_error)
+  CHECK(output.find("export failed: geometry::create_parent_directories(): ") != std::string::npos);
+  CHECK(output.find("exported") == std::string::npos);
+  // The autosave beside --save-session F/s.json, F a file, is reported, not an abort.
+  CHECK(output.find("autosave on exit failed: geometry::create_parent_directories(): ") != std::string::npos);
+}

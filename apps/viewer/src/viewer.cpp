@@ -272,7 +272,7 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
   for (int y = 0; y < height_; ++y)  // GL's first row is the bottom one
     std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
   for (size_t k = 3; k < image.rgba.size(); k += 4) image.rgba[k] = 255;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  geometry::create_parent_directories(path);
   write_png(path, image);
   std::printf("screenshot: %s\n", path.string().c_str());
 }
@@ -290,7 +290,7 @@ void Viewer::write_benchmark(const ViewerApp& app) const {
   j["width"] = width_;
   j["height"] = height_;
   app.benchmark_fields(j);
-  if (options_.benchmark.has_parent_path()) std::filesystem::create_directories(options_.benchmark.parent_path());
+  geometry::create_parent_directories(options_.benchmark);
   geometry::write_file_atomically(options_.benchmark, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
   std::printf("benchmark: %s\n", options_.benchmark.string().c_str());
 }
@@ -398,7 +398,9 @@ int Viewer::run(ViewerApp& app) {
     }
     const bool replay_done = !replaying();
     const bool auto_shot = !options_.screenshot.empty() && (replay_ || options_.headless);
-    if (replay_done && (auto_shot || (replay_ && options_.exit_after_replay)) && frame_ >= 3) {
+    // A headless run has nobody to close its window: it ends once idle, with or without a
+    // screenshot (it used to spin a core forever without one).
+    if (replay_done && (auto_shot || options_.headless || (replay_ && options_.exit_after_replay)) && frame_ >= 3) {
       if (app.busy()) {
         if (idle_since_replay < 0) idle_since_replay = time();
         if (time() - idle_since_replay > options_.idle_timeout_s) {
@@ -421,6 +423,7 @@ int Viewer::run(ViewerApp& app) {
     ++frame_;
   }
   app.on_exit(*this);
+  exit_code = std::max(exit_code, app.exit_status());
   if (!options_.record.empty()) {
     recording_.save(options_.record);
     std::printf("recorded %zu events: %s\n", recording_.events.size(), options_.record.string().c_str());

@@ -24,7 +24,8 @@ struct ViewerOptions {
   std::string title = "Lapis";
   int width = 1280, height = 800;
   int msaa_samples = 4;
-  bool headless = false;                 // hidden window; still needs an X display (Xvfb)
+  bool headless = false;                 // hidden window, closed once the app is idle (after a
+                                         // replay, if any); still needs an X display (Xvfb)
   std::filesystem::path replay;          // replay this event log
   std::filesystem::path record;          // record the input stream to this file on exit
   std::filesystem::path screenshot;      // written when the app is idle (after a replay)
@@ -55,6 +56,9 @@ class ViewerApp {
   virtual bool busy() const { return false; }
   // Extra fields for the --benchmark report.
   virtual void benchmark_fields(nlohmann::json&) const {}
+  // The process exit code the app asks for after on_exit (non-zero: a batch step failed,
+  // e.g. the export a headless run was started for).
+  virtual int exit_status() const { return 0; }
 };
 
 class Viewer {
