@@ -128,6 +128,7 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
     else if (a == "--screenshot") o.screenshot = value(i, "--screenshot");
     else if (a == "--exit-after-replay") o.exit_after_replay = true;
     else if (a == "--benchmark") o.benchmark = value(i, "--benchmark");
+    else if (a == "--ready-file") o.ready_file = value(i, "--ready-file");
     else if (a == "--size") {
       const std::string s = value(i, "--size");
       if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
@@ -186,6 +187,9 @@ void Viewer::wake() { glfwPostEmptyEvent(); }
 
 void Viewer::dispatch(const InputEvent& e) {
   last_input_frame_ = frame_;
+  ++handled_events_;
+  handled_buttons_ += e.type == EventType::MouseButton;
+  handled_keys_ += e.type == EventType::Key;
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
   switch (e.type) {
@@ -275,6 +279,15 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
   geometry::create_parent_directories(path);
   write_png(path, image);
   std::printf("screenshot: %s\n", path.string().c_str());
+}
+
+void Viewer::report_ready(bool busy) {
+  const std::string state = " events=" + std::to_string(handled_events_) + " buttons=" + std::to_string(handled_buttons_) +
+                            " keys=" + std::to_string(handled_keys_) + " busy=" + (busy ? "1" : "0");
+  if (state == last_ready_) return;
+  last_ready_ = state;
+  geometry::write_file_atomically(options_.ready_file,
+                                  [&](std::ostream& out) { out << "frame=" << frame_ << state << "\n"; });
 }
 
 void Viewer::write_benchmark(const ViewerApp& app) const {
@@ -417,6 +430,7 @@ int Viewer::run(ViewerApp& app) {
       }
     }
     glfwSwapBuffers(w);
+    if (!options_.ready_file.empty()) report_ready(app.busy());
     // The frame's own work (events to swap), not the waits between on-demand frames.
     last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     frame_ms_.push_back(last_frame_ms_);

@@ -32,10 +32,15 @@ struct ViewerOptions {
   bool exit_after_replay = false;        // quit once the replay is over and the app idle
   std::filesystem::path benchmark;       // write frame statistics here on exit
   double idle_timeout_s = 300;           // give up waiting for a busy app after a replay
+  // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
+  // first frame and after every frame that handled input or changed the app's busy state, as
+  // one line "frame=F events=N buttons=B keys=K busy=0|1" (input events, mouse button and key
+  // events handled so far). Waiting on it replaces sleeps that a loaded machine outlasts.
+  std::filesystem::path ready_file;
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --exit-after-replay, --benchmark F, --size WxH, --msaa N) and returns the arguments it did not
+// --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N) and returns the arguments it did not
 // consume. Throws InvalidArgument on a flag missing its value.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
@@ -113,6 +118,7 @@ class Viewer {
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
   void record(const InputEvent& e);
+  void report_ready(bool busy);  // options_.ready_file, when the state changed
   friend struct GlfwCallbacks;
 
   ViewerOptions options_;
@@ -136,6 +142,8 @@ class Viewer {
   std::optional<EventLog> replay_;
   size_t replay_next_ = 0;
   long replay_delay_ = 0;  // frames the replay waited at Idle events
+  long handled_events_ = 0, handled_buttons_ = 0, handled_keys_ = 0;  // for the ready file
+  std::string last_ready_;  // its last content but the frame
 };
 
 }  // namespace lapis::viewer
