@@ -1,10 +1,6 @@
 #include "args.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-
-#include "lapis/core/format.h"
+#include "lapis/core/checked_number.h"
 
 namespace lapis::cli {
 
@@ -33,29 +29,15 @@ std::string Args::get(const std::string& flag, const std::string& fallback) cons
   return it == values_.end() ? fallback : it->second;
 }
 
+// The numbers are read by core's checked readers, like the numbers of every file format.
 long Args::get_int(const std::string& flag, long fallback, long lo, long hi) const {
   const auto it = values_.find(flag);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  errno = 0;
-  const long v = std::strtol(it->second.c_str(), &end, 10);
-  if (errno || end == it->second.c_str() || *end)
-    throw UsageError(flag + " expects an integer, got '" + it->second + "'");
-  if (v < lo || v > hi)
-    throw UsageError(flag + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + it->second);
-  return v;
+  return it == values_.end() ? fallback : static_cast<long>(parse_integer<UsageError>(it->second, flag, lo, hi));
 }
 
 double Args::get_double(const std::string& flag, double fallback, double lo, double hi) const {
   const auto it = values_.find(flag);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  if (end == it->second.c_str() || *end || !std::isfinite(v))
-    throw UsageError(flag + " expects a finite number, got '" + it->second + "'");
-  if (v < lo || v > hi)
-    throw UsageError(flag + " must be in [" + format_number(lo) + ", " + format_number(hi) + "], got " + it->second);
-  return v;
+  return it == values_.end() ? fallback : parse_finite<UsageError>(it->second, flag, lo, hi);
 }
 
 void Args::allow_only(const std::set<std::string>& known) const {

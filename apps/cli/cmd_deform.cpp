@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "cli_io.h"
 #include "command.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
@@ -55,7 +56,7 @@ int run(const std::vector<std::string>& argv) {
   if (weights != "cotan" && weights != "uniform")
     throw UsageError("--weights must be cotan or uniform, not '" + weights + "'");
   const std::string out_path = args.get("--out");
-  const geometry::TriMesh mesh = geometry::read_mesh(args.get("--mesh"));
+  const geometry::TriMesh mesh = read_valid_mesh(args.get("--mesh"));
   Drag drag = read_handles(args.get("--handles"));
   drag.selection.roi = read_roi_arg(args.get("--roi"), mesh.num_vertices());
   const LaplacianWeights w = weights == "cotan" ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
@@ -80,7 +81,6 @@ int run(const std::vector<std::string>& argv) {
     result.V = d->deform(t);
     frame_ms.push_back(ms(t0));
   }
-  geometry::write_mesh(out_path, result);
 
   const Distortion q = distortion(mesh, result.V);
   json r = {{"method", method},
@@ -95,10 +95,11 @@ int run(const std::vector<std::string>& argv) {
               {"angle", summary(q.angle)},
               {"arap_energy", q.arap_energy}}}};
   if (implicit) r["degenerate_vertices"] = implicit->stats().degenerate_vertices;
-  const std::string text = r.dump(2);
-  std::printf("%s\n", text.c_str());
-  if (args.has("--report"))
-    geometry::write_file_atomically(args.get("--report"), [&](std::ostream& o) { o << text << "\n"; });
+  require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
+  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
+  geometry::write_mesh(out_path, result);
+  emit_report(r, args);
+  outputs.commit();
   return 0;
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "cli_io.h"
 #include "command.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/hair_sketch/export.h"
@@ -56,6 +57,7 @@ int run(const std::vector<std::string>& argv) {
   const HairstyleResult r = build_hairstyle(style, head);
 
   t = std::chrono::steady_clock::now();
+  geometry::AtomicFileGroup outputs;  // .hair, .obj, .vtk and the report: all new or all old
   write_hair_file(out_hair, to_hair_file(r.strands));
   if (args.has("--out-obj")) write_strands_obj(args.get("--out-obj"), r.strands);
   if (args.has("--out-field")) write_field_vtk(args.get("--out-field"), r.grid, r.field);
@@ -78,10 +80,8 @@ int run(const std::vector<std::string>& argv) {
   j["timings_ms"] = {{"replay", replay_ms},     {"grid", r.grid_ms},     {"solve", r.solve_ms},
                      {"growth", r.growth_ms},   {"penetration", r.penetration_ms},
                      {"write", write_ms},       {"total", ms_since(t0)}};
-  const std::string text = j.dump(2);
-  std::printf("%s\n", text.c_str());
-  if (args.has("--report"))
-    geometry::write_file_atomically(args.get("--report"), [&](std::ostream& out) { out << text << "\n"; });
+  emit_report(j, args);
+  outputs.commit();
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "cli_io.h"
 #include "command.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
@@ -59,8 +60,8 @@ int run(const std::vector<std::string>& argv) {
   o.smooth_iterations = static_cast<int>(args.get_int("--smooth", o.smooth_iterations, 0, 1000));
   o.roi_width = args.get_double("--roi-width", 0.0, 0.0, 1e300);
   const std::string out = args.get("--out");
-  const geometry::TriMesh source = geometry::read_mesh(args.get("--source"));
-  const geometry::TriMesh target = geometry::read_mesh(args.get("--target"));
+  const geometry::TriMesh source = read_valid_mesh(args.get("--source"));
+  const geometry::TriMesh target = read_valid_mesh(args.get("--target"));
   const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
   if (transition) {
     // Only values the module rejects with a clearer message (<= 0) pass the flag parser as well.
@@ -72,7 +73,6 @@ int run(const std::vector<std::string>& argv) {
   const mesh_merge::MergeResult r = mesh_merge::merge(source, target, pairs, o);
   const mesh_merge::SeamQuality q = mesh_merge::seam_quality(target, r);
   const mesh_merge::DetailPreservation d = mesh_merge::detail_preservation(source, r);
-  geometry::write_mesh(out, r.mesh);
 
   nlohmann::json j;
   j["mode"] = mode;
@@ -105,10 +105,11 @@ int run(const std::vector<std::string>& argv) {
   j["detail"] = {{"laplacian_residual", d.laplacian_residual},
                  {"max_distance", d.max_distance},
                  {"mean_distance", d.mean_distance}};
-  const std::string text = j.dump(2);
-  std::printf("%s\n", text.c_str());
-  if (args.has("--report"))
-    geometry::write_file_atomically(args.get("--report"), [&](std::ostream& s) { s << text << "\n"; });
+  require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
+  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
+  geometry::write_mesh(out, r.mesh);
+  emit_report(j, args);
+  outputs.commit();
   if (!q.valid()) {
     std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
     return 1;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "args.h"
+#include "cli_io.h"
 #include "command.h"
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/connectivity.h"
@@ -41,10 +42,7 @@ int run(const std::vector<std::string>& argv) {
     j["euler_characteristic"] = geometry::euler_characteristic(conn);
     j["genus"] = geometry::genus(conn);
   }
-  const std::string text = j.dump(2);
-  std::printf("%s\n", text.c_str());
-  if (args.has("--report"))
-    geometry::write_file_atomically(args.get("--report"), [&](std::ostream& out) { out << text << "\n"; });
+  emit_report(j, args);
   if (!report.ok()) {
     std::fprintf(stderr, "lapis mesh: error: invalid mesh: %s\n", report.summary(3).c_str());
     return 1;

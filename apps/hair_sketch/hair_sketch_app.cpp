@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "lapis/geometry/atomic_file.h"
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
@@ -260,7 +261,7 @@ void HairSketchApp::save(viewer::Viewer& v, const std::filesystem::path& path) {
   try {
     Hairstyle style = document_.style();
     style.camera = v.camera_matrices();
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    geometry::create_parent_directories(path);
     save_session(path, style);
     v.flash("saved " + path.string());
     std::printf("saved session: %s\n", path.string().c_str());
@@ -287,16 +288,24 @@ void HairSketchApp::load(viewer::Viewer& v, const std::filesystem::path& path) {
   }
 }
 
-void HairSketchApp::export_strands(viewer::Viewer& v) {
-  if (!last_) return v.flash("no strands yet");
+bool HairSketchApp::export_strands(viewer::Viewer& v) {
+  if (!last_) {
+    v.flash("no strands yet");
+    return false;
+  }
   try {
     for (const auto* p : {&paths_.export_hair, &paths_.export_obj})
-      if (p->has_parent_path()) std::filesystem::create_directories(p->parent_path());
+      geometry::create_parent_directories(*p);
+    geometry::AtomicFileGroup pair;  // both new or both old, never a new .hair beside an old .obj
     write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
     write_strands_obj(paths_.export_obj, last_->update.strands);
+    pair.commit();
     v.flash("exported " + paths_.export_hair.string() + " and " + paths_.export_obj.string());
+    return true;
   } catch (const Error& e) {
     v.flash(std::string("export failed: ") + e.what());
+    std::fprintf(stderr, "lapis-hair-sketch: export failed: %s\n", e.what());
+    return false;
   }
 }
 
@@ -315,13 +324,15 @@ void HairSketchApp::on_exit(viewer::Viewer& v) {
   worker_.set_on_done({});  // the window goes away after this
   receive_regrowth(v);
   if (paths_.export_on_exit) {
-    export_strands(v);
-    std::printf("exported %s and %s\n", paths_.export_hair.string().c_str(), paths_.export_obj.string().c_str());
+    if (export_strands(v))
+      std::printf("exported %s and %s\n", paths_.export_hair.string().c_str(), paths_.export_obj.string().c_str());
+    else
+      exit_status_ = 1;
   }
   try {
     Hairstyle style = document_.style();
     style.camera = v.camera_matrices();
-    if (paths_.autosave.has_parent_path()) std::filesystem::create_directories(paths_.autosave.parent_path());
+    geometry::create_parent_directories(paths_.autosave);
     save_session(paths_.autosave, style);
   } catch (const Error& e) {
     std::fprintf(stderr, "lapis-hair-sketch: autosave on exit failed: %s\n", e.what());

@@ -56,6 +56,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
   bool busy() const override;
+  int exit_status() const override { return exit_status_; }
   void benchmark_fields(nlohmann::json& j) const override;
 
   const Document& document() const { return document_; }
@@ -76,7 +77,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   // Files.
   void save(viewer::Viewer& v, const std::filesystem::path& path);
   void load(viewer::Viewer& v, const std::filesystem::path& path);
-  void export_strands(viewer::Viewer& v);
+  bool export_strands(viewer::Viewer& v);  // false (and the reason flashed) on failure
   void autosave_if_due(viewer::Viewer& v);
 
   // Engine.
@@ -103,6 +104,7 @@ class HairSketchApp final : public viewer::ViewerApp {
 
   Tool tool_ = Tool::StreamCurve;
   int selected_ = -1;
+  int exit_status_ = 0;  // 1 when the export on exit failed
   std::set<int> hidden_;
   bool drawing_ = false;
   Stroke stroke_;                       // the stroke being drawn

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: lapis-hair-sketch [--session FILE] [--head MESH] [--headless] [--replay EVENTS]\n"
           "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
-          "                         [--benchmark OUT.json] [--size WxH] [--export-hair OUT.hair]\n"
+          "                         [--benchmark OUT.json] [--ready-file F] [--size WxH] [--export-hair OUT.hair]\n"
           "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
           "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
           "                         adapted to the frame time in a window, all with --headless)\n"

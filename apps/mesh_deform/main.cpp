@@ -2,7 +2,7 @@
 //              [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]
 //              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
-//              [--exit-after-replay] [--benchmark OUT.json] [--size WxH]
+//              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
 #include <cstdio>
 
 #include "args.h"
@@ -19,7 +19,7 @@ constexpr const char* kUsage =
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
     "                    [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
-    "                    [--exit-after-replay] [--benchmark OUT.json] [--size WxH]\n"
+    "                    [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
     "Opens MESH (OBJ/OFF/PLY/STL; default external/armadillo.off of the assets: $LAPIS_ASSET_DIR,\n"
     "share/lapis of the install or assets/ of the source tree) and the selection files if the ROI\n"
     "file exists (else Ctrl+S creates them). Paint with B (brush) or L\n"

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: lapis-merge [--source MESH --target MESH | --preset N] [--export PREFIX] [--headless]\n"
           "                   [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
-          "                   [--benchmark OUT.json] [--size WxH]\n"
+          "                   [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
           "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
           "Left-click with the current tool: 1 pair loops, 2 key correspondences, 3 fixed handles; left-drag:\n"
           "4 moves the source with the gizmo, 5 paints a region (Shift erases) that C cuts off. Right-drag orbits,\n"

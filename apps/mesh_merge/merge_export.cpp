@@ -29,8 +29,9 @@ void MergeApp::export_all(viewer::Viewer& v) {
   const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj", pairs = p + "_pairs.json",
                     handles = p + "_handles.json", command = p + "_command.txt";
   try {
-    if (paths_.export_prefix.has_parent_path()) std::filesystem::create_directories(paths_.export_prefix.parent_path());
+    geometry::create_parent_directories(paths_.export_prefix);
     const MergeSetup& s = setup();
+    geometry::AtomicFileGroup files;  // the merge and the files that reproduce it: all new or all old
     geometry::write_mesh(merged, last_->result.mesh);
     geometry::write_mesh(source, mesh_merge::placed_source(s));
     geometry::write_mesh(target, *s.target);
@@ -46,6 +47,7 @@ void MergeApp::export_all(viewer::Viewer& v) {
              " --keep " + (t.keep == mesh_merge::TransitionKeep::Source ? "source" : "target");
     }
     geometry::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
+    files.commit();
     v.flash("exported " + merged + " and " + pairs);
     std::printf("exported %s, %s, %s, %s\n", merged.c_str(), source.c_str(), target.c_str(), pairs.c_str());
   } catch (const Error& e) {

@@ -100,6 +100,49 @@ inline int run_under_xvfb(const std::string& command) {
   return run("DISPLAY=" + server.display() + "; export DISPLAY; unset XAUTHORITY; " + command);
 }
 
+// Shell functions for scripts that drive an app in a window (xdotool). The app runs with
+// --ready-file "$READY" and rewrites it as "frame=F events=N buttons=B keys=K busy=0|1" after
+// its first frame and after every frame that handled input: scripts wait for the state they
+// need instead of sleeping a fixed time that a loaded machine outlasts.
+//   wait_ready CONDITION [SECONDS]  until CONDITION (sh, over $frame $events $buttons $keys
+//                                   $busy) holds; status 4 after SECONDS (default 300)
+//   mark                            remembers the counts handled so far ($mark_events, ...)
+//   wait_handled KEYS BUTTONS       until KEYS key and BUTTONS mouse button events more than at
+//                                   the mark were handled and the app is idle (xdotool key
+//                                   ctrl+s is 4 key events, a click 2 button events)
+//   window NAME                     sets $w to the app's window once its first frame is drawn
+inline const char* kReadyFunctions = R"SH(
+wait_ready() {
+  i=0
+  while [ $i -lt $(( ${2:-300} * 20 )) ]; do
+    if [ -s "$READY" ]; then eval "$(cat "$READY")"; if eval "$1"; then return 0; fi; fi
+    sleep 0.05; i=$((i + 1))
+  done
+  echo "wait_ready: '$1' never held; last state: $(cat "$READY" 2>/dev/null)" >&2
+  return 4
+}
+mark() { wait_ready true; mark_events=$events; mark_keys=$keys; mark_buttons=$buttons; }
+wait_handled() {
+  wait_ready "[ \$keys -ge $((mark_keys + $1)) ] && [ \$buttons -ge $((mark_buttons + $2)) ] && [ \$busy -eq 0 ]"
+}
+window() {
+  wait_ready true || return 3
+  w=$(xdotool search --name "$1" 2>/dev/null | head -n1)
+  [ -n "$w" ] || return 3
+}
+)SH";
+
+// Writes a sh script of the ready functions, READY=ready_file and body to path; returns the
+// command that runs it.
+inline std::string ready_script(const fs::path& path, const fs::path& ready_file, const std::string& body) {
+  fs::remove(ready_file);
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return "false";
+  std::fprintf(f, "READY='%s'\n%s\n%s\n", ready_file.c_str(), kReadyFunctions, body.c_str());
+  std::fclose(f);
+  return "sh " + path.string();
+}
+
 // Fraction of pixels that differ from the image's top-left (background) pixel.
 inline double foreground_fraction(const viewer::Image& img) {
   size_t differ = 0;

@@ -87,17 +87,18 @@ PlannedDrag plan_drag(const geometry::TriMesh& mesh, const std::vector<int>& han
 
 double max_difference(const geometry::Vertices& a, const geometry::Vertices& b) { return (a - b).cwiseAbs().maxCoeff(); }
 
-// Runs the app in a visible window under Xvfb: waits for it (and 6 s more, so a small mesh's
-// setup is usually done and a drag's preview frames get solved too), runs `actions` (xdotool,
-// with $w the window), waits for `wait_for` to exist (up to 240 s), quits.
+// Runs the app in a visible window under Xvfb: waits until it has drawn and finished its
+// setup (--ready-file), runs `actions` (xdotool, with $w the window), waits for `wait_for` to
+// exist (up to 240 s), quits.
 int run_window(const std::string& app_args, const std::string& actions, const fs::path& wait_for) {
-  const std::string script =
-      "sh -c '" + kApp + kSize + " " + app_args +
-      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-deform 2>/dev/null | head -n1);"
-      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 6; " +
-      actions + "; for i in $(seq 1 2400); do [ -e " + wait_for.string() +
-      " ] && break; sleep 0.1; done; sleep 0.5; xdotool key --window $w ctrl+q; wait $app'";
-  return run_under_xvfb(script);
+  const fs::path dir = scratch_dir();
+  const std::string body =
+      kApp + kSize + " " + app_args + " --ready-file " + (dir / "deform.ready").string() + " &\napp=$!\n"
+      "window lapis-deform || { kill $app; exit 3; }\n"
+      "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n" + actions +
+      "\nfor i in $(seq 1 2400); do [ -e " + wait_for.string() + " ] && break; sleep 0.1; done\n"
+      "xdotool key --window $w ctrl+q; wait $app\n";
+  return run_under_xvfb(ready_script(dir / "deform.sh", dir / "deform.ready", body));
 }
 
 // Builds an event log frame by frame (GLFW codes: keys, buttons, Ctrl).

@@ -9,6 +9,7 @@
 #include "lapis/geometry/camera.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/session.h"
+#include "lapis/viewer/input_events.h"
 #include "lapis/viewer/orbit_camera.h"
 
 using namespace lapis;
@@ -74,21 +75,36 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
   REQUIRE(run_under_xvfb(kApp + size + " --headless --screenshot " + empty.string() + " --save-session " +
                          (dir / "unused.json").string()) == 0);
 
-  // Drag downward from the scalp in small steps (a person's drag), save, screenshot, quit.
+  // Drag downward from the scalp in small steps (a person's drag), save, screenshot, quit,
+  // each step once the app says it handled the previous one and is idle: no fixed sleeps.
   std::string drag = "xdotool mousemove --window $w " + std::to_string(int(start.x())) + " " +
                      std::to_string(int(start.y())) + " mousedown 1";
   for (int k = 1; k <= 20; ++k)
     drag += " mousemove --window $w " + std::to_string(int(start.x() + 2 * k)) + " " +
             std::to_string(int(start.y() + 9 * k)) + " sleep 0.02";
   drag += " mouseup 1";
-  const std::string script =
-      "sh -c '" + kApp + size + " --save-session " + session.string() + " --screenshot " + shot.string() +
-      " --record " + events.string() +
-      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-hair-sketch 2>/dev/null | head -n1);"
-      " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
-      drag + "; sleep 40; xdotool key --window $w ctrl+s; sleep 0.5; xdotool key --window $w ctrl+p; sleep 1;"
-      " xdotool key --window $w ctrl+q; wait $app'";
-  REQUIRE(run_under_xvfb(script) == 0);
+  const std::string body =
+      kApp + size + " --save-session " + session.string() + " --screenshot " + shot.string() + " --record " +
+      events.string() + " --ready-file " + (dir / "drawn.ready").string() + " &\napp=$!\n"
+      "window lapis-hair-sketch || { kill $app; exit 3; }\n"
+      "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"  // the first strands have grown
+      "mark; " + drag + "\n"
+      "wait_handled 0 2 || { kill $app; exit 5; }\n"  // press and release arrived, strands regrown
+      "mark; xdotool key --window $w ctrl+s; wait_handled 4 0 || { kill $app; exit 6; }\n"
+      "mark; xdotool key --window $w ctrl+p; wait_handled 4 0 || { kill $app; exit 7; }\n"
+      "xdotool key --window $w ctrl+q; wait $app\n";
+  REQUIRE(run_under_xvfb(ready_script(dir / "drawn.sh", dir / "drawn.ready", body)) == 0);
+
+  // The events arrived as sent: one press and one release of the left button, the moves between.
+  const viewer::EventLog log = viewer::EventLog::load(events);
+  int presses = 0, releases = 0, moves = 0;
+  for (const auto& e : log.events) {
+    if (e.type == viewer::EventType::MouseButton && e.button == 0) (e.action == 1 ? presses : releases)++;
+    moves += e.type == viewer::EventType::MouseMove;
+  }
+  CHECK(presses == 1);
+  CHECK(releases == 1);
+  CHECK(moves >= 20);
 
   const hair_sketch::Hairstyle style = hair_sketch::load_session(session);
   REQUIRE(style.primitives.size() == 1);
@@ -137,4 +153,22 @@ TEST_CASE("apps: hair app — every bundled session renders headless with a plau
     CHECK(hair < 0.7);   // not all hair
   }
   CHECK(sessions >= 3);
+}
+
+TEST_CASE("apps: hair app — a headless export that cannot be written fails the run, naming the cause") {
+  const fs::path dir = scratch_dir();
+  std::ofstream(dir / "a_file") << "not a directory";
+  const fs::path log = dir / "export_failed.log";
+  const int status = run_under_xvfb("timeout 300 " + kApp + " --headless --size 320x240 --export-hair " +
+                                    (dir / "a_file" / "s.hair").string() + " --export-obj " +
+                                    (dir / "a_file" / "s.obj").string() + " --save-session " +
+                                    (dir / "a_file" / "s.json").string() + " > " + log.string() + " 2>&1");
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CAPTURE(output);
+  CHECK(status == 1);  // not 0 (the export failed) and not an abort (134: uncaught filesystem_error)
+  CHECK(output.find("export failed: geometry::create_parent_directories(): ") != std::string::npos);
+  CHECK(output.find("exported") == std::string::npos);
+  // The autosave beside --save-session F/s.json, F a file, is reported, not an abort.
+  CHECK(output.find("autosave on exit failed: geometry::create_parent_directories(): ") != std::string::npos);
 }

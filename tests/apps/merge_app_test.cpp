@@ -42,13 +42,15 @@ std::string pixel(const Eigen::Vector3d& s) {
   return std::to_string(std::lround(s.x())) + " " + std::to_string(std::lround(s.y()));
 }
 
-// A shell script that starts the app under xdotool with `flags`, runs `actions` ($w is its
-// window) and quits it.
+// A shell script that starts the app under xdotool with `flags`, waits until it has drawn and
+// is idle (--ready-file), runs `actions` ($w is its window) and quits it.
 std::string xdotool_session(const std::string& flags, const std::string& actions) {
-  return "sh -c '" + kApp + kSize + " " + flags +
-         " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-merge 2>/dev/null | head -n1);"
-         " [ -n \"$w\" ] && break; sleep 0.1; done; [ -n \"$w\" ] || { kill $app; exit 3; }; sleep 2; " +
-         actions + " xdotool key --window $w ctrl+q; wait $app'";
+  const fs::path dir = scratch_dir();
+  return ready_script(dir / "merge.sh", dir / "merge.ready",
+                      kApp + kSize + " " + flags + " --ready-file " + (dir / "merge.ready").string() +
+                          " &\napp=$!\nwindow lapis-merge || { kill $app; exit 3; }\n"
+                          "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n" +
+                          actions + "\nxdotool key --window $w ctrl+q; wait $app\n");
 }
 
 std::string text_of(const fs::path& path) {
@@ -194,8 +196,8 @@ TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then me
   REQUIRE(std::min(s.y(), t.y()) > 30);
   const fs::path events = dir / "merge_events.json", prefix = dir / "live";
   REQUIRE(run_under_xvfb(xdotool_session("--record " + events.string() + " --export " + prefix.string(),
-                                         pair_and_key_clicks(s, t) + "xdotool key --window $w m; sleep 8;"
-                                         " xdotool key --window $w ctrl+e; sleep 2;")) == 0);
+                                         pair_and_key_clicks(s, t) + "mark; xdotool key --window $w m; wait_handled 2 0;"
+                                         " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.pairs.size() == 1);
   REQUIRE(e.pairs[0].keys.size() == 1);
@@ -260,7 +262,7 @@ TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis
   drag += " mouseup 1; sleep 1; ";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
                                          scene.pair_and_key() +
-                                         drag + "xdotool key --window $w m; sleep 6;")) == 0);
+                                         drag + "mark; xdotool key --window $w m; wait_handled 2 0;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.source.num_vertices() == scene.source.num_vertices());
   // A pure translation along +y: every vertex moved by the same vector.
@@ -282,11 +284,11 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
   const geometry::TriMesh source = geometry::read_mesh(cactus), target = geometry::read_mesh(other);
   const geometry::CameraMatrices cam = first_view(source, target);
   const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
-  std::string paint = "xdotool key --window $w m; sleep 1; xdotool key --window $w 5; sleep 0.3; xdotool mousemove --window $w " +
+  std::string paint = "mark; xdotool key --window $w m; wait_handled 2 0; xdotool key --window $w 5; sleep 0.3; xdotool mousemove --window $w " +
                       std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
   for (int k = 1; k <= 8; ++k)
     paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.05";
-  paint += " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; xdotool key --window $w m; sleep 2;";
+  paint += " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; mark; xdotool key --window $w m; wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) + " 2> " +
                          log.string()) == 0);
   const std::string text = text_of(log);
@@ -312,7 +314,7 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
   const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
   const std::string actions = scene.pair_and_key() +
                               "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
-                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; xdotool key --window $w m; sleep 6;";
+                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; mark; xdotool key --window $w m; wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);

@@ -48,17 +48,19 @@ TEST_CASE("apps: a replayed zoom changes the picture the way zooming should") {
 TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
   const fs::path dir = scratch_dir();
   const fs::path rec = dir / "recorded.json";
-  // A visible window under Xvfb: xdotool finds it, presses the right button, drags (orbit),
-  // scrolls, and quits with Ctrl+Q so the app exits cleanly and writes the recording.
-  const std::string script =
-      "sh -c '" + kView + " " + kMesh + " --size 640x480 --record " + rec.string() +
-      " & app=$!; for i in $(seq 1 300); do w=$(xdotool search --name lapis-view 2>/dev/null | head -n1);"
-      " [ -n \"$w\" ] && break; sleep 0.1; done;"
-      " [ -n \"$w\" ] || { kill $app; exit 3; };"
-      " sleep 0.5; xdotool mousemove --window $w 300 240 mousedown 3 mousemove --window $w 360 250"
-      " mousemove --window $w 420 260 mouseup 3 click 4 click 4; sleep 0.5;"
-      " xdotool key --window $w ctrl+q; wait $app'";
-  REQUIRE(run_under_xvfb(script) == 0);
+  // A visible window under Xvfb: xdotool finds it once it has drawn, presses the right button,
+  // drags (orbit), scrolls, and quits with Ctrl+Q once those arrived, so the app exits cleanly
+  // and writes the recording.
+  const std::string body =
+      kView + " " + kMesh + " --size 640x480 --record " + rec.string() + " --ready-file " +
+      (dir / "view.ready").string() + " &\napp=$!\n"
+      "window lapis-view || { kill $app; exit 3; }\n"
+      "mark; xdotool mousemove --window $w 300 240 mousedown 3 mousemove --window $w 360 250"
+      " mousemove --window $w 420 260 mouseup 3 click 4 click 4\n"
+      // 3 moves, 2 buttons, 2 wheel clicks (GLFW scrolls); in order, so ctrl+q comes after them
+      "wait_ready \"[ \\$buttons -ge $((mark_buttons + 2)) ] && [ \\$events -ge $((mark_events + 6)) ]\" || { kill $app; exit 4; }\n"
+      "xdotool key --window $w ctrl+q; wait $app\n";
+  REQUIRE(run_under_xvfb(ready_script(dir / "view.sh", dir / "view.ready", body)) == 0);
   const viewer::EventLog log = viewer::EventLog::load(rec);
   int presses = 0, releases = 0, scrolls = 0, moves = 0;
   for (const auto& e : log.events) {
@@ -70,4 +72,9 @@ TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
   CHECK(releases == 1);
   CHECK(scrolls == 2);
   CHECK(moves >= 2);
+}
+
+TEST_CASE("apps: lapis-view --headless without a screenshot exits once it has drawn") {
+  // It used to wait for a window close that a hidden window never gets, spinning a core.
+  REQUIRE(run_under_xvfb("timeout 120 " + kView + " " + kMesh + " --headless --size 320x240") == 0);
 }

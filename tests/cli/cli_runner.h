@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <sys/wait.h>
@@ -34,6 +35,20 @@ inline std::filesystem::path scratch_dir(const std::string& what) {
   const auto d = std::filesystem::temp_directory_path() / ("lapis_" + what + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(d);
   return d;
+}
+
+// A 3 x 3 vertex grid of 8 triangles in the z = 0 plane as OBJ, then `extra` lines.
+inline std::filesystem::path write_grid_obj(const std::filesystem::path& path, const std::string& extra = "") {
+  std::ofstream obj(path);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) obj << "v " << i << " " << j << " 0\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = j * 3 + i + 1;
+      obj << "f " << a << " " << a + 1 << " " << a + 4 << "\nf " << a << " " << a + 4 << " " << a + 3 << "\n";
+    }
+  obj << extra;
+  return path;
 }
 
 }  // namespace lapis::cli_test

@@ -130,14 +130,7 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
   const fs::path d = scratch();
   {
     // A 3 x 3 vertex grid: the left column outside the ROI, the right column the handle.
-    std::ofstream obj(d / "grid.obj");
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) obj << "v " << i << " " << j << " 0\n";
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) {
-        const int a = j * 3 + i + 1;
-        obj << "f " << a << " " << a + 1 << " " << a + 4 << "\nf " << a << " " << a + 4 << " " << a + 3 << "\n";
-      }
+    lapis::cli_test::write_grid_obj(d / "grid.obj");
     std::ofstream roi(d / "roi.txt");
     roi << "1 2 4 5 7 8\n";
     std::ofstream handles(d / "handles.json");

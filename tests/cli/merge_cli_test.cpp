@@ -98,7 +98,7 @@ TEST_CASE("cli: lapis merge fails with one line naming the cause") {
   CHECK(width.output.find("transition source_width and target_width must be finite and > 0") != std::string::npos);
   const Run range = lapis_merge("--source a --target b --pairs c --out d --mode dependent --roi-width -1");
   CHECK(range.status == 2);
-  CHECK(range.output.find("--roi-width must be in [0, 1e+300], got -1\n") != std::string::npos);  // not 300 digits
+  CHECK(range.output.find("--roi-width: expected a finite number in [0, 1e+300], found -1\n") != std::string::npos);  // not 300 digits
   const Run stray = lapis_merge("--source a --target b --pairs c --out d --target-width 0.1");
   CHECK(stray.status == 2);
   CHECK(stray.output.find("--target-width needs --mode transition") != std::string::npos);

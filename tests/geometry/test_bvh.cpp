@@ -120,5 +120,17 @@ TEST_CASE("geometry: BVH handles degenerate input") {
   CHECK(hit->t == 1.0);
   TriMesh bad = make_icosphere(0);
   bad.V(3, 1) = std::nan("");
-  CHECK_THROWS_WITH_AS(Bvh{bad}, "geometry::Bvh(): vertex 3 has non-finite coordinates", lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(Bvh{bad}, doctest::Contains("geometry::Bvh(): vertex 3 = ("), lapis::InvalidArgument);
+}
+
+TEST_CASE("geometry: BVH builds over coordinates whose span overflows a double") {
+  // A cube at ±1.7e308: every coordinate is finite, but hi - lo and lo + hi are not.
+  TriMesh cube = make_box_bar(1, 1, 1, 2, 2, 2);
+  const Eigen::RowVector3d centre = 0.5 * (cube.V.colwise().minCoeff() + cube.V.colwise().maxCoeff());
+  cube.V = (cube.V.rowwise() - centre) * 1.7e308;
+  REQUIRE(cube.V.allFinite());
+  REQUIRE(cube.num_faces() == 12);
+  const Bvh bvh(cube, BvhOptions{.max_leaf_size = 1});
+  CHECK(bvh.num_nodes() == 2 * 12 - 1);  // one triangle per leaf
+  CHECK(bvh.depth() <= 12);
 }

@@ -123,7 +123,7 @@ std::vector<Case> corpus() {
       {"trunc_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0",
        "file ends early, expected y of vertex 2"},
       {"ascii_letters.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 abc 0\n",
-       "line 1: expected y of vertex 0, found 'abc'"},
+       ":line 8: expected y of vertex 0, found 'abc'"},  // lines counted from the file's start
       {"neg_count.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n" +
            ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1) + i32(2),
        "invalid list count -1"},

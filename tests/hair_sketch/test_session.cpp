@@ -107,7 +107,10 @@ TEST_CASE("hair_sketch: malformed and hostile sessions give clear errors") {
         "$.settings.grid_unknowns: expected a number, got string");
   fails(mutate([](auto& j) { j["settings"].erase("roots"); }), "$.settings: missing key \"roots\"");
   fails(mutate([](auto& j) { j["settings"]["roots"] = -5; }), "$.settings.roots: expected an integer in [0, ");
-  fails(mutate([](auto& j) { j["settings"]["step"] = 0; }), "$.settings.step: expected a number in [0.001, 10]");
+  fails(mutate([](auto& j) { j["settings"]["step"] = 0; }), "$.settings.step: expected a finite number in [0.001, 10], found 0");
+  // An unsigned integer beyond long long is refused, not wrapped to -1 (a valid target).
+  fails(mutate([](auto& j) { j["strokes"][0]["target"] = 18446744073709551615ull; }),
+        "$.strokes[0].target: expected an integer in [-1, 1073741824], found 18446744073709551615");
   fails(mutate([](auto& j) { j["primitives"][0]["points"][2][1] = nullptr; }),  // NaN is written as null
         "$.primitives[0].points[2][1]: expected a number, got null");
   fails(mutate([](auto& j) { j["primitives"][1]["type"] = "braid"; }), "$.primitives[1].type: expected stream_curve");

@@ -83,7 +83,8 @@ TEST_CASE("mesh_deform: selection files round-trip every bit of a drag and read 
 TEST_CASE("mesh_deform: malformed selection files are IoErrors naming the file") {
   const fs::path d = scratch();
   std::ofstream(d / "bad_roi.txt") << "1 2 x 4";
-  CHECK_THROWS_WITH_AS(read_roi(d / "bad_roi.txt"), doctest::Contains("bad_roi.txt: expected whitespace-separated vertex indices"),
+  CHECK_THROWS_WITH_AS(read_roi(d / "bad_roi.txt"),
+                       doctest::Contains("bad_roi.txt: ROI entry 2: expected an integer in [0, 2147483647], found 'x'"),
                        lapis::IoError);
   CHECK_THROWS_WITH_AS(read_roi(d / "missing.txt"), doctest::Contains("cannot open ROI file"), lapis::IoError);
   std::ofstream(d / "bad_m.json") << R"({"regions": [{"vertices": [1], "transforms": [[[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
@@ -256,4 +257,32 @@ TEST_CASE("mesh_deform: growing and shrinking labels by rings works on what acts
   CHECK(painted.acting_as(VertexLabels::kRoi).size() == 20);  // columns 4 and 5
   CHECK(painted.acting_as(VertexLabels::kFixed).size() == 80);
   CHECK_THROWS_AS(grow_labels(painted, lapis::geometry::Connectivity(test::planar_grid(3, 3, 0.0)), 0, 1), lapis::InvalidArgument);
+}
+
+TEST_CASE("mesh_deform: selection files refuse indices that would wrap or truncate and numbers that are not finite") {
+  const fs::path d = scratch();
+  const auto refuses = [&](const std::string& name, const std::string& text, const std::string& message, auto read) {
+    CAPTURE(name);
+    std::ofstream(d / name) << text;
+    CHECK_THROWS_WITH_AS(read(d / name), doctest::Contains(message.c_str()), lapis::IoError);
+  };
+  const auto roi = [](const fs::path& p) { return read_roi(p); };
+  const auto handles = [](const fs::path& p) { return read_handles(p); };
+  refuses("wrap.txt", "1 4294967296 3", "ROI entry 1: expected an integer in [0, 2147483647], found 4294967296", roi);
+  refuses("negative.txt", "-1", "ROI entry 0: expected an integer in [0, 2147483647], found -1", roi);
+  refuses("fraction.txt", "2 1.5", "ROI entry 1: expected an integer in [0, 2147483647], found '1.5'", roi);
+  refuses("fraction.json", "[1, 5.7]", "ROI[1]: expected an integer in [0, 2147483647], found '5.7'", roi);
+  refuses("huge.json", "[1e20]", "ROI[0]: expected an integer in [0, 2147483647], found '1e+20'", roi);
+  refuses("wrap.json", "[4294967296]", "ROI[0]: expected an integer in [0, 2147483647], found 4294967296", roi);
+  const std::string identity = "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]";
+  refuses("point.json", R"({"points": [{"vertex": 4294967301, "translations": [[0, 0, 1]]}]})",
+          "point handle 0: vertex: expected an integer in [0, 2147483647], found 4294967301", handles);
+  refuses("point_frac.json", R"({"points": [{"vertex": 1.5, "translations": [[0, 0, 1]]}]})",
+          "point handle 0: vertex: expected an integer in [0, 2147483647], found '1.5'", handles);
+  refuses("region.json", R"({"regions": [{"vertices": [1, 4294967301], "transforms": [)" + identity + "]}]}",
+          "region handle 0: vertices[1]: expected an integer in [0, 2147483647], found 4294967301", handles);
+  refuses("translation.json", R"({"points": [{"vertex": 1, "translations": [[0, "a", 1]]}]})",
+          "point handle 0: translation 0 y: expected a finite number, found", handles);
+  refuses("short.json", R"({"points": [{"vertex": 1, "translations": [[0, 1]]}]})",
+          "point handle 0: translation 0: expected 3 numbers", handles);
 }

@@ -108,7 +108,15 @@ TEST_CASE("mesh_merge: pairs and handles files round-trip and reject malformed c
     bad << R"({"pairs": [{"keys": [{"source": 1.5, "target": 2}]}]})";
   }
   CHECK_THROWS_WITH_AS(read_pairs_file(path),
-                       ("mesh_merge::read_pairs_file(): " + path.string() + ": pairs[0].keys[0].source must be an integer vertex index").c_str(),
+                       ("mesh_merge::read_pairs_file(): " + path.string() +
+                        ": pairs[0].keys[0].source: expected an integer in [0, 2147483647], found '1.5'").c_str(),
+                       InvalidArgument);
+  // Integers beyond int are refused, not wrapped (4294967471 would be vertex 175).
+  std::ofstream(path) << R"({"pairs": [{"keys": [{"source": 4294967471, "target": 2}]}]})";
+  CHECK_THROWS_WITH_AS(read_pairs_file(path), doctest::Contains("pairs[0].keys[0].source: expected an integer in [0, 2147483647], found 4294967471"),
+                       InvalidArgument);
+  std::ofstream(hpath) << R"({"handles": [3, -4]})";
+  CHECK_THROWS_WITH_AS(read_handles_file(hpath), doctest::Contains("handles[1]: expected an integer in [0, 2147483647], found -4"),
                        InvalidArgument);
   {
     std::ofstream bad(path);

@@ -327,3 +327,23 @@ TEST_CASE("solver: weights whose removal makes the matrix indefinite throw and k
     CHECK(relative_difference(chol.solve(B), solve_spd(chol.matrix(), B)) <= 1e-9);
   }
 }
+
+TEST_CASE("solver: diagonal weights that only grow or only shrink equal a fresh factorization") {
+  // One side of the modification is empty then (no update or no downdate columns).
+  const int N = 6, n = N * N * N;
+  SparseMatrix A = hair_normal_matrix(N, {});
+  for (int i = 0; i < n; ++i) A.coeffRef(i, i) += 1.0;  // well conditioned: checks see only the modification
+  const std::vector<int> nodes = spread_nodes(n, 12, 3);
+  const DenseMatrix B = DenseMatrix::Random(n, 3);
+  for (ModifyMethod method : {ModifyMethod::UpdateDowndate, ModifyMethod::Refactorize}) {
+    CAPTURE(std::string(to_string(method)));
+    UpdatableCholesky chol({Backend::Cholmod, method});
+    chol.compute(A);
+    chol.set_diagonal_weights(nodes, std::vector<double>(nodes.size(), 1e4));  // only grows
+    SparseMatrix weighted = A;
+    for (int i : nodes) weighted.coeffRef(i, i) += 1e4;
+    CHECK(relative_difference(chol.solve(B), solve_spd(weighted, B)) <= 1e-8);
+    chol.set_diagonal_weights(nodes, std::vector<double>(nodes.size(), 0.0));  // only shrinks
+    CHECK(relative_difference(chol.solve(B), solve_spd(A, B)) <= 1e-8);
+  }
+}

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "lapis/core/checked_number.h"
 #include "lapis/core/error.h"
 #include "lapis/geometry/atomic_file.h"
 
@@ -69,8 +70,8 @@ EventLog EventLog::load(const std::filesystem::path& path) {
   EventLog log;
   try {
     if (j.value("format", "") != "lapis-events") throw IoError(fn + ": 'format' is not \"lapis-events\"");
-    log.width = j.at("width").get<int>();
-    log.height = j.at("height").get<int>();
+    log.width = static_cast<int>(json_integer<IoError>(j.at("width"), fn + ": width", 0, 1 << 16));
+    log.height = static_cast<int>(json_integer<IoError>(j.at("height"), fn + ": height", 0, 1 << 16));
     const auto& list = j.at("events");
     if (!list.is_array()) throw IoError(fn + ": 'events' is not an array");
     long last_frame = 0;
@@ -79,20 +80,26 @@ EventLog EventLog::load(const std::filesystem::path& path) {
       const std::string where = fn + ": event " + std::to_string(k);
       InputEvent e;
       e.type = parse_type(o.at("type").get<std::string>(), where);
-      e.frame = o.at("frame").get<long>();
-      e.time = o.value("time", 0.0);
+      // Optional fields: a missing key reads as 0, a present one must be in range.
+      const auto number = [&](const char* k, double lo, double hi) {
+        return o.contains(k) ? json_finite<IoError>(o[k], where + ": " + k, lo, hi) : 0.0;
+      };
+      const auto integer = [&](const char* k, long long lo, long long hi) {
+        return o.contains(k) ? json_integer<IoError>(o[k], where + ": " + k, lo, hi) : 0;
+      };
+      e.frame = static_cast<long>(json_integer<IoError>(o.at("frame"), where + ": frame", 0, LONG_MAX));
+      e.time = number("time", 0, kAnyFinite);
       if (e.frame < last_frame) throw IoError(where + ": frame " + std::to_string(e.frame) + " goes backwards");
       last_frame = e.frame;
-      e.x = o.value("x", 0.0);
-      e.y = o.value("y", 0.0);
-      e.button = o.value("button", 0);
-      e.action = o.value("action", 0);
-      e.mods = o.value("mods", 0);
-      e.key = o.value("key", 0);
-      e.codepoint = o.value("codepoint", 0u);
-      e.width = o.value("width", 0);
-      e.height = o.value("height", 0);
-      if (!std::isfinite(e.x) || !std::isfinite(e.y)) throw IoError(where + ": non-finite coordinates");
+      e.x = number("x", -kAnyFinite, kAnyFinite);
+      e.y = number("y", -kAnyFinite, kAnyFinite);
+      e.button = static_cast<int>(integer("button", INT_MIN, INT_MAX));
+      e.action = static_cast<int>(integer("action", INT_MIN, INT_MAX));
+      e.mods = static_cast<int>(integer("mods", INT_MIN, INT_MAX));
+      e.key = static_cast<int>(integer("key", INT_MIN, INT_MAX));
+      e.codepoint = static_cast<unsigned>(integer("codepoint", 0, 0x10FFFF));
+      e.width = static_cast<int>(integer("width", 0, 1 << 16));
+      e.height = static_cast<int>(integer("height", 0, 1 << 16));
       log.events.push_back(e);
     }
   } catch (const nlohmann::json::exception& e) {

@@ -128,6 +128,7 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
     else if (a == "--screenshot") o.screenshot = value(i, "--screenshot");
     else if (a == "--exit-after-replay") o.exit_after_replay = true;
     else if (a == "--benchmark") o.benchmark = value(i, "--benchmark");
+    else if (a == "--ready-file") o.ready_file = value(i, "--ready-file");
     else if (a == "--size") {
       const std::string s = value(i, "--size");
       if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
@@ -186,6 +187,9 @@ void Viewer::wake() { glfwPostEmptyEvent(); }
 
 void Viewer::dispatch(const InputEvent& e) {
   last_input_frame_ = frame_;
+  ++handled_events_;
+  handled_buttons_ += e.type == EventType::MouseButton;
+  handled_keys_ += e.type == EventType::Key;
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
   switch (e.type) {
@@ -272,9 +276,18 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
   for (int y = 0; y < height_; ++y)  // GL's first row is the bottom one
     std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
   for (size_t k = 3; k < image.rgba.size(); k += 4) image.rgba[k] = 255;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  geometry::create_parent_directories(path);
   write_png(path, image);
   std::printf("screenshot: %s\n", path.string().c_str());
+}
+
+void Viewer::report_ready(bool busy) {
+  const std::string state = " events=" + std::to_string(handled_events_) + " buttons=" + std::to_string(handled_buttons_) +
+                            " keys=" + std::to_string(handled_keys_) + " busy=" + (busy ? "1" : "0");
+  if (state == last_ready_) return;
+  last_ready_ = state;
+  geometry::write_file_atomically(options_.ready_file,
+                                  [&](std::ostream& out) { out << "frame=" << frame_ << state << "\n"; });
 }
 
 void Viewer::write_benchmark(const ViewerApp& app) const {
@@ -290,7 +303,7 @@ void Viewer::write_benchmark(const ViewerApp& app) const {
   j["width"] = width_;
   j["height"] = height_;
   app.benchmark_fields(j);
-  if (options_.benchmark.has_parent_path()) std::filesystem::create_directories(options_.benchmark.parent_path());
+  geometry::create_parent_directories(options_.benchmark);
   geometry::write_file_atomically(options_.benchmark, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
   std::printf("benchmark: %s\n", options_.benchmark.string().c_str());
 }
@@ -399,7 +412,10 @@ void Viewer::draw_frame() {
 bool Viewer::close_when_done() {
   const bool replay_done = !replaying();
   const bool auto_shot = !options_.screenshot.empty() && (replay_ || options_.headless);
-  if (!(replay_done && (auto_shot || (replay_ && options_.exit_after_replay)) && frame_ >= 3)) return true;
+  // A headless run has nobody to close its window: it ends once idle, with or without a
+  // screenshot (it used to spin a core forever without one).
+  if (!(replay_done && (auto_shot || options_.headless || (replay_ && options_.exit_after_replay)) && frame_ >= 3))
+    return true;
   GLFWwindow* w = window_->handle;
   if (app_->busy()) {
     if (idle_since_replay_ < 0) idle_since_replay_ = time();
@@ -418,8 +434,10 @@ bool Viewer::close_when_done() {
   return true;
 }
 
-void Viewer::finish_run() {
+// Returns the app's exit status (a failed export on exit, say).
+int Viewer::finish_run() {
   app_->on_exit(*this);
+  const int status = app_->exit_status();
   if (!options_.record.empty()) {
     recording_.save(options_.record);
     std::printf("recorded %zu events: %s\n", recording_.events.size(), options_.record.string().c_str());
@@ -427,6 +445,7 @@ void Viewer::finish_run() {
   if (!options_.benchmark.empty()) write_benchmark(*app_);
   app_ = nullptr;
   window_.reset();
+  return status;
 }
 
 int Viewer::run(ViewerApp& app) {
@@ -444,12 +463,13 @@ int Viewer::run(ViewerApp& app) {
     draw_frame();
     if (!close_when_done()) exit_code = 1;
     glfwSwapBuffers(window_->handle);
+    if (!options_.ready_file.empty()) report_ready(app.busy());
     // The frame's own work (events to swap), not the waits between on-demand frames.
     last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     frame_ms_.push_back(last_frame_ms_);
     ++frame_;
   }
-  finish_run();
+  exit_code = std::max(exit_code, finish_run());
   return exit_code;
 }
 

@@ -18,12 +18,24 @@ struct Box {
   Eigen::Vector3d hi = -lo;
   void grow(const Eigen::Vector3d& p) { lo = lo.cwiseMin(p), hi = hi.cwiseMax(p); }
   void grow(const Box& b) { lo = lo.cwiseMin(b.lo), hi = hi.cwiseMax(b.hi); }
+  // A quarter of the half surface area, from half extents: comparisons of costs are
+  // unchanged, and a box spanning -DBL_MAX..DBL_MAX keeps finite extents.
   double half_area() const {
     if (lo.x() > hi.x()) return 0;
-    const Eigen::Vector3d d = hi - lo;
+    const Eigen::Vector3d d = half_extent(lo, hi);
     return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
   }
+  static Eigen::Vector3d half_extent(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+    return 0.5 * hi - 0.5 * lo;
+  }
 };
+
+// Which of nb bins along [lo, lo + 2 half_extent] holds x, in [0, nb): halved terms keep a
+// span of finite coordinates finite, and the clamp keeps rounding at the ends in range.
+int bin_index(double x, double lo, double half_extent, int nb) {
+  const double t = (0.5 * x - 0.5 * lo) / half_extent;
+  return t > 0 ? std::min(nb - 1, static_cast<int>(std::min(1.0, t) * nb)) : 0;
+}
 }  // namespace
 
 struct BvhBuilder {
@@ -47,14 +59,14 @@ struct BvhBuilder {
     const int n = end - begin;
     const BvhOptions& o = bvh.options_;
     int axis = 0;
-    (cb.hi - cb.lo).maxCoeff(&axis);
-    const double lo = cb.lo[axis], extent = cb.hi[axis] - lo;
+    Box::half_extent(cb.lo, cb.hi).maxCoeff(&axis);
+    const double lo = cb.lo[axis], extent = Box::half_extent(cb.lo, cb.hi)[axis];
     if (!(extent > 0)) return n <= o.max_leaf_size ? kLeaf : kMedian;  // coincident centroids
     constexpr int kMaxBins = 64;
     const int nb = std::clamp(o.bins, 2, kMaxBins);
     std::array<Box, kMaxBins> bin_box;
     std::array<int, kMaxBins> bin_count{};
-    auto bin_of = [&](int f) { return std::min(nb - 1, static_cast<int>(nb * (centroids[f][axis] - lo) / extent)); };
+    auto bin_of = [&](int f) { return bin_index(centroids[f][axis], lo, extent, nb); };
     for (int i = begin; i < end; ++i) {
       const int f = bvh.order_[i], b = bin_of(f);
       bin_box[b].grow(boxes[f]);
@@ -103,7 +115,7 @@ struct BvhBuilder {
     if (mid == kMedian) {
       mid = begin + (end - begin) / 2;
       int axis = 0;
-      (bounds.hi - bounds.lo).maxCoeff(&axis);
+      Box::half_extent(bounds.lo, bounds.hi).maxCoeff(&axis);
       std::nth_element(bvh.order_.begin() + begin, bvh.order_.begin() + mid, bvh.order_.begin() + end,
                        [&](int a, int b) { return centroids[a][axis] < centroids[b][axis]; });
     }
@@ -124,16 +136,14 @@ struct BvhBuilder {
 
 Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_(options) {
   require_indices_in_range(mesh, "geometry::Bvh()");
-  for (int v = 0; v < mesh.num_vertices(); ++v)
-    if (!mesh.V.row(v).allFinite())
-      throw InvalidArgument("geometry::Bvh(): vertex " + std::to_string(v) + " has non-finite coordinates");
+  require_finite_vertices(mesh, "geometry::Bvh()");
   if (options.max_leaf_size < 1) throw InvalidArgument("geometry::Bvh(): max_leaf_size must be at least 1");
   const int nf = mesh.num_faces();
   BvhBuilder b{*this, std::vector<Box>(nf), std::vector<Eigen::Vector3d>(nf)};
 #pragma omp parallel for schedule(static) if (nf >= detail::kParallelMin)
   for (int f = 0; f < nf; ++f) {
     for (int k = 0; k < 3; ++k) b.boxes[f].grow(Eigen::Vector3d(mesh.V.row(mesh.F(f, k))));
-    b.centroids[f] = 0.5 * (b.boxes[f].lo + b.boxes[f].hi);
+    b.centroids[f] = 0.5 * b.boxes[f].lo + 0.5 * b.boxes[f].hi;  // lo + hi may overflow
   }
   order_.resize(nf);
   for (int f = 0; f < nf; ++f) order_[f] = f;

@@ -105,6 +105,7 @@ void append_vertex_line(std::string& s, const Eigen::Vector3d& p) {
 
 void write_obj(const std::filesystem::path& path, const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::write_obj()");
+  require_finite_vertices(mesh, "geometry::write_obj()");
   write_file_atomically(path, [&](std::ostream& out) {
     std::string s;
     for (int v = 0; v < mesh.num_vertices(); ++v) {
@@ -127,6 +128,11 @@ void write_obj_polylines(const std::filesystem::path& path,
     if (polylines[i].size() < 2)
       throw InvalidArgument("geometry::write_obj_polylines(): polyline " + std::to_string(i) + " has " +
                             std::to_string(polylines[i].size()) + " points, expected at least 2");
+  for (size_t i = 0; i < polylines.size(); ++i)
+    for (size_t k = 0; k < polylines[i].size(); ++k)
+      if (!polylines[i][k].allFinite())
+        throw InvalidArgument("geometry::write_obj_polylines(): point " + std::to_string(k) + " of polyline " +
+                              std::to_string(i) + " is not finite");
   write_file_atomically(path, [&](std::ostream& out) {
     std::string s;
     long long next = 1;

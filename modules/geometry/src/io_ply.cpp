@@ -127,7 +127,8 @@ class Body {
  public:
   Body(const std::string& text, const Header& h, const std::filesystem::path& path)
       : text_(text), path_(path), encoding_(h.encoding), pos_(h.body_offset),
-        ascii_(std::string_view(text).substr(h.body_offset), kRead, path, '\0') {}
+        ascii_(std::string_view(text).substr(h.body_offset), kRead, path, '\0',
+               1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(h.body_offset), '\n'))) {}
 
   size_t remaining() const { return encoding_ == Encoding::Ascii ? ascii_.remaining() : text_.size() - pos_; }
   bool ascii() const { return encoding_ == Encoding::Ascii; }
@@ -300,6 +301,7 @@ void put(std::string& s, T v, bool swap) {
 
 void write_ply(const std::filesystem::path& path, const TriMesh& mesh, PlyFormat format) {
   require_indices_in_range(mesh, "geometry::write_ply()");
+  require_finite_vertices(mesh, "geometry::write_ply()");
   const char* name = format == PlyFormat::Ascii ? "ascii"
                      : format == PlyFormat::BinaryLittleEndian ? "binary_little_endian" : "binary_big_endian";
   const bool swap = format != PlyFormat::Ascii &&

@@ -42,9 +42,10 @@ inline bool parse_int(std::string_view s, long long& out) {
 // Walks a text buffer line by line and token by token.
 class TextCursor {
  public:
+  // first_line: the file's line number of text's first line (a PLY body after its header).
   TextCursor(std::string_view text, std::string_view fn, const std::filesystem::path& path,
-             char comment = '#')
-      : text_(text), fn_(fn), path_(path), comment_(comment) {}
+             char comment = '#', int first_line = 1)
+      : text_(text), fn_(fn), path_(path), comment_(comment), line_(first_line) {}
 
   // Next whitespace-separated token, crossing line ends and skipping comments;
   // empty at end of input.

@@ -10,6 +10,7 @@
 
 #include "lapis/geometry/connectivity.h"
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 #include "parallel.h"
 
 namespace lapis::geometry {
@@ -181,6 +182,16 @@ void require_indices_in_range(const TriMesh& mesh, std::string_view context) {
       std::ostringstream out;
       out << context << ": face " << f << " = (" << mesh.F(f, 0) << ", " << mesh.F(f, 1) << ", "
           << mesh.F(f, 2) << ") has an index outside [0, " << mesh.num_vertices() << ")";
+      throw InvalidArgument(out.str());
+    }
+}
+
+void require_finite_vertices(const TriMesh& mesh, std::string_view context) {
+  for (Eigen::Index v = 0; v < mesh.V.rows(); ++v)
+    if (!mesh.V.row(v).allFinite()) {
+      std::ostringstream out;
+      out << context << ": vertex " << v << " = (" << format_number(mesh.V(v, 0)) << ", " << format_number(mesh.V(v, 1))
+          << ", " << format_number(mesh.V(v, 2)) << ") is not finite";
       throw InvalidArgument(out.str());
     }
 }

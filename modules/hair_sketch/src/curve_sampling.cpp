@@ -4,6 +4,7 @@
 #include <string>
 
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 
 namespace lapis::hair_sketch::detail {
 using hair_field::Constraint;
@@ -21,7 +22,16 @@ std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, 
     if (i) length += (poly[i] - poly[i - 1]).norm();
   }
   if (!(length > 0)) throw InvalidArgument(std::string(who) + ": the curve has zero length");
+  if (!(std::isfinite(h) && h > 0)) throw InvalidArgument(std::string(who) + ": spacing " + format_number(h) + " is not positive");
+  // The sample count before any sample: a point far from the others (-1e308) would otherwise
+  // have the loop below allocate until memory runs out.
+  const double samples = length / h + 2;
+  if (!(samples <= kMaxCurveSamples))
+    throw ResourceLimit(std::string(who) + ": a curve of length " + format_number(length) + " at spacing " +
+                        format_number(h) + " needs " + format_number(samples) + " samples, at most " +
+                        format_number(kMaxCurveSamples) + " allowed");
   std::vector<Eigen::Vector3d> out{poly.front()};
+  out.reserve(static_cast<size_t>(samples));
   double next = h, along = 0;
   for (size_t i = 1; i < poly.size(); ++i) {
     const double seg = (poly[i] - poly[i - 1]).norm();

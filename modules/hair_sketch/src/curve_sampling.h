@@ -12,9 +12,13 @@
 
 namespace lapis::hair_sketch::detail {
 
+// At most this many samples per curve: 2^20, about a thousand times a curve across the largest
+// grid (1e9 unknowns, 1000 nodes a side).
+constexpr double kMaxCurveSamples = 1 << 20;
+
 // Points at arc length 0, h, 2h, ... (and the end point if the remainder is > h/2).
-// Throws InvalidArgument (naming `who`) for fewer than 2 points, non-finite points or a
-// zero-length polyline.
+// Throws InvalidArgument (naming `who`) for fewer than 2 points, non-finite points, a
+// zero-length polyline or h <= 0, ResourceLimit when it needs more than kMaxCurveSamples.
 std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& polyline, double h,
                                       const char* who);
 

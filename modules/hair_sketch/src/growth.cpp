@@ -168,28 +168,49 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
 
 }  // namespace
 
+namespace {
+// At least one step (a zero length grows one segment, as sessions allow).
+double max_steps_of(const GrowthOptions& o) { return std::max(1.0, std::floor(o.max_length / o.step)); }
+}  // namespace
+
+double estimate_strand_bytes(double roots, const GrowthOptions& o) {
+  // Per point: the growth buffer and the result with 1.5x headroom; per root: its position,
+  // its offset and its block count.
+  const double points = roots * (max_steps_of(o) + 1);
+  return points * 2.5 * sizeof(Eigen::Vector3f) + roots * (sizeof(Eigen::Vector3d) + 2 * sizeof(int));
+}
+
+void check_growth(double roots, const GrowthOptions& o, const std::string& fn) {
+  if (!(std::isfinite(o.step) && o.step > 0))
+    throw InvalidArgument(fn + ": step must be positive, got " + format_number(o.step));
+  if (!(std::isfinite(o.max_length) && o.max_length >= 0))
+    throw InvalidArgument(fn + ": max_length must be non-negative, got " + format_number(o.max_length));
+  if (!(std::isfinite(o.min_magnitude) && o.min_magnitude >= 0))
+    throw InvalidArgument(fn + ": min_magnitude must be non-negative, got " + format_number(o.min_magnitude));
+  if (!(roots >= 0 && roots <= std::numeric_limits<int>::max() / 2))
+    throw InvalidArgument(fn + ": " + format_number(roots) + " roots are too many");
+  const double points = roots * (max_steps_of(o) + 1), bytes = estimate_strand_bytes(roots, o);
+  const std::string what = fn + ": " + format_number(roots) + " strands of up to " + format_number(max_steps_of(o)) +
+                           " steps (max_length " + format_number(o.max_length) + " / step " + format_number(o.step) + ")";
+  if (points > std::numeric_limits<int>::max())
+    throw ResourceLimit(what + " may have " + format_number(points) + " points, more than the " +
+                        std::to_string(std::numeric_limits<int>::max()) + " strands can index");
+  if (bytes > o.memory_limit_bytes)
+    throw ResourceLimit(what + " may need " + format_number(bytes / (1 << 20)) + " MiB, more than the limit of " +
+                        format_number(o.memory_limit_bytes / (1 << 20)) + " MiB");
+}
+
 void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
                         Strands& out) {
   constexpr const char* fn = "hair_sketch::StrandGrower::grow()";
   const GrowthOptions& o = options_;
-  if (!(std::isfinite(o.step) && o.step > 0))
-    throw InvalidArgument(std::string(fn) + ": step must be positive, got " + format_number(o.step));
-  if (!(std::isfinite(o.max_length) && o.max_length >= 0))
-    throw InvalidArgument(std::string(fn) + ": max_length must be non-negative, got " +
-                          format_number(o.max_length));
-  if (!(std::isfinite(o.min_magnitude) && o.min_magnitude >= 0))
-    throw InvalidArgument(std::string(fn) + ": min_magnitude must be non-negative, got " +
-                          format_number(o.min_magnitude));
-  if (roots.size() > static_cast<size_t>(std::numeric_limits<int>::max() / 2))
-    throw InvalidArgument(std::string(fn) + ": " + std::to_string(roots.size()) + " roots are too many");
+  check_growth(static_cast<double>(roots.size()), o, fn);
   for (size_t i = 0; i < roots.size(); ++i)
     if (!roots[i].allFinite())
       throw InvalidArgument(std::string(fn) + ": root " + std::to_string(i) + " is not finite");
   const int n = static_cast<int>(roots.size());
   const float l = static_cast<float>(o.step);
-  // At least one step (a zero length grows one segment, as sessions allow); capped so that a
-  // huge maximum length cannot overflow the step count.
-  const int max_steps = static_cast<int>(std::clamp(o.max_length / o.step, 1.0, 1e8));
+  const int max_steps = static_cast<int>(max_steps_of(o));  // check_growth keeps it in int range
   const float vmin = static_cast<float>(o.min_magnitude);
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;

@@ -6,12 +6,17 @@
 
 #include "curve_sampling.h"
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 
 namespace lapis::hair_sketch {
 using hair_field::Constraint;
 using hair_field::Grid;
 
 namespace {
+
+// At most this many points on all cross-section rings together (a ponytail across a grid of
+// 1e9 unknowns needs about a million).
+constexpr double kMaxRingPoints = 1 << 22;
 
 // Arc-length parameterized spine: nearest-point projection and evaluation.
 struct Spine {
@@ -96,6 +101,15 @@ std::vector<Constraint> Ponytail::constraints(const Grid& grid) const {
   const auto ra = profile_radii(sp, profile_a), rb = profile_radii(sp, profile_b);
   const double s2 = std::max(s1, std::min(ra.back().first, rb.back().first));
   auto radius = [&](double s) { return 0.5 * (interpolate(ra, s) + interpolate(rb, s)); };
+  auto ring_points = [&](double r) { return std::max(8.0, std::ceil(2 * std::numbers::pi * r / d)); };
+  // The rings' points before any ring: a cross-section or profile point far away (1e9) makes
+  // a ring of 2 pi r / d points. The spine's resampling bounds the number of rings.
+  double points = 0;
+  for (double s = s1; s <= s2 + 1e-9; s += d) points += ring_points(s == s1 ? c1.radius : radius(s));
+  if (!(points <= kMaxRingPoints))
+    throw ResourceLimit("hair_sketch::Ponytail::constraints(): the cross sections need " + format_number(points) +
+                        " points at grid spacing " + format_number(d) + ", at most " + format_number(kMaxRingPoints) +
+                        " allowed (cross-section radius " + format_number(c1.radius) + ")");
   std::vector<Constraint> out;
   // 1. Longitudinal directions of the surface of revolution c(s) + r(s)(cos φ u + sin φ v):
   //    ∂/∂s = t + r'(s)(cos φ u + sin φ v), at the grid nodes nearest the cross sections.
@@ -105,7 +119,7 @@ std::vector<Constraint> Ponytail::constraints(const Grid& grid) const {
     const Eigen::Vector3d t = sp.tangent(s), c = sp.at(s);
     Eigen::Vector3d u, v;
     detail::orthonormal_frame(t, u, v);
-    const int n = std::max(8, static_cast<int>(std::ceil(2 * std::numbers::pi * r / d)));
+    const int n = static_cast<int>(ring_points(r));
     for (int k = 0; k < n; ++k) {
       const double phi = 2 * std::numbers::pi * k / n;
       const Eigen::Vector3d radial = std::cos(phi) * u + std::sin(phi) * v;

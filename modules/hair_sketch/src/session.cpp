@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lapis/core/checked_number.h"
 #include "lapis/core/error.h"
-#include "lapis/core/format.h"
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
@@ -84,9 +84,8 @@ class Reader {
  public:
   Reader(std::string source, const SessionLimits& limits) : source_(std::move(source)), lim_(limits) {}
 
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw IoError("hair_sketch::session_from_json(): " + source_ + ": " + path + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const { throw IoError(where(path) + ": " + what); }
+  std::string where(const std::string& path) const { return "hair_sketch::session_from_json(): " + source_ + ": " + path; }
   static const char* type_name(const json& j) { return j.type_name(); }
 
   const json& key(const json& obj, const std::string& path, const char* k) const {
@@ -95,25 +94,17 @@ class Reader {
     if (it == obj.end()) fail(path, std::string("missing key \"") + k + "\"");
     return *it;
   }
-  double number(const json& j, const std::string& path) const {
+  double number(const json& j, const std::string& path, double lo = -kAnyFinite, double hi = kAnyFinite) const {
     if (!j.is_number()) fail(path, std::string("expected a number, got ") + type_name(j));
-    const double v = j.get<double>();
-    if (!std::isfinite(v)) fail(path, "expected a finite number");
-    return v;
+    return json_finite<IoError>(j, where(path), lo, hi);
   }
   double number(const json& obj, const std::string& path, const char* k, double lo, double hi) const {
-    const double v = number(key(obj, path, k), path + "." + k);
-    if (v < lo || v > hi)
-      fail(path + "." + k, "expected a number in [" + format_number(lo) + ", " + format_number(hi) + "]");
-    return v;
+    return number(key(obj, path, k), path + "." + k, lo, hi);
   }
-  long integer(const json& obj, const std::string& path, const char* k, long lo, long hi) const {
+  long long integer(const json& obj, const std::string& path, const char* k, long long lo, long long hi) const {
     const json& j = key(obj, path, k);
     if (!j.is_number_integer()) fail(path + "." + k, std::string("expected an integer, got ") + type_name(j));
-    const long v = j.get<long>();
-    if (v < lo || v > hi)
-      fail(path + "." + k, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v;
+    return json_integer<IoError>(j, where(path + "." + k), lo, hi);
   }
   bool boolean(const json& obj, const std::string& path, const char* k) const {
     const json& j = key(obj, path, k);
@@ -238,7 +229,7 @@ class Reader {
     s.field_method = method(j, path);
     s.field.omega = number(j, path, "omega", 1e-6, 1e12);
     s.roots.count = static_cast<int>(integer(j, path, "roots", 0, 10'000'000));
-    s.roots.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffL));
+    s.roots.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffLL));
     s.growth.step = number(j, path, "step", 1e-3, 10);
     s.growth.max_length = number(j, path, "max_length", 0, 1e6);
     s.scalp_avoidance = boolean(j, path, "scalp_avoidance");

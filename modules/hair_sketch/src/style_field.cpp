@@ -25,6 +25,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings) {
+  check_growth(settings.roots.count, settings.growth, "hair_sketch::hairstyle_grid()");
   return make_grid(head.box, settings.grid);
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "lapis/core/checked_number.h"
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::mesh_deform {
@@ -24,9 +25,18 @@ Eigen::Matrix4d matrix4(const json& m, const std::string& where) {
   Eigen::Matrix4d T;
   for (int r = 0; r < 4; ++r) {
     if (!m[r].is_array() || m[r].size() != 4) throw IoError(where + ": expected 4 rows of 4 numbers");
-    for (int c = 0; c < 4; ++c) T(r, c) = m[r][c].get<double>();
+    for (int c = 0; c < 4; ++c)
+      T(r, c) = json_finite<IoError>(m[r][c], where + ": row " + std::to_string(r) + " column " + std::to_string(c));
   }
   return T;
+}
+
+std::vector<int> indices(const json& a, const std::string& where) {
+  if (!a.is_array()) throw IoError(where + ": expected an array of vertex indices, found " + std::string(a.type_name()));
+  std::vector<int> out;
+  out.reserve(a.size());
+  for (size_t k = 0; k < a.size(); ++k) out.push_back(json_index<IoError>(a[k], where + "[" + std::to_string(k) + "]"));
+  return out;
 }
 
 json rows(const Eigen::Matrix4d& T) {
@@ -41,17 +51,18 @@ std::vector<int> read_roi(const std::filesystem::path& path) {
   const std::string text = read_text(path, "ROI");
   const size_t first = text.find_first_not_of(" \t\r\n");
   if (first != std::string::npos && text[first] == '[') {
+    json j;
     try {
-      return json::parse(text).get<std::vector<int>>();
+      j = json::parse(text);
     } catch (const json::exception& e) {
       throw IoError(path.string() + ": expected a JSON array of vertex indices (" + e.what() + ")");
     }
+    return indices(j, path.string() + ": ROI");
   }
   std::vector<int> out;
   std::istringstream is(text);
-  long v;
-  while (is >> v) out.push_back(static_cast<int>(v));
-  if (!is.eof()) throw IoError(path.string() + ": expected whitespace-separated vertex indices");
+  for (std::string token; is >> token;)
+    out.push_back(parse_index<IoError>(token, path.string() + ": ROI entry " + std::to_string(out.size())));
   return out;
 }
 
@@ -75,18 +86,24 @@ Drag read_handles(const std::filesystem::path& file) {
   size_t frames = 1;
   try {
     for (const json& r : j.value("regions", json::array())) {
-      d.selection.region_handles.push_back(r.at("vertices").get<std::vector<int>>());
-      std::vector<Eigen::Matrix4d> f;
       const std::string where = path + ": region handle " + std::to_string(region_frames.size());
+      d.selection.region_handles.push_back(indices(r.at("vertices"), where + ": vertices"));
+      std::vector<Eigen::Matrix4d> f;
       for (const json& m : r.at("transforms")) f.push_back(matrix4(m, where));
       if (f.empty()) throw IoError(where + ": no transforms");
       frames = std::max(frames, f.size());
       region_frames.push_back(std::move(f));
     }
     for (const json& p : j.value("points", json::array())) {
-      d.selection.point_handles.push_back(p.at("vertex").get<int>());
+      const std::string where = path + ": point handle " + std::to_string(point_frames.size());
+      d.selection.point_handles.push_back(json_index<IoError>(p.at("vertex"), where + ": vertex"));
       std::vector<Eigen::Vector3d> f;
-      for (const json& t : p.at("translations")) f.emplace_back(t.at(0).get<double>(), t.at(1).get<double>(), t.at(2).get<double>());
+      for (const json& t : p.at("translations")) {
+        const std::string at = where + ": translation " + std::to_string(f.size());
+        if (!t.is_array() || t.size() != 3) throw IoError(at + ": expected 3 numbers");
+        f.emplace_back(json_finite<IoError>(t[0], at + " x"), json_finite<IoError>(t[1], at + " y"),
+                       json_finite<IoError>(t[2], at + " z"));
+      }
       if (f.empty()) throw IoError(path + ": point handle without translations");
       frames = std::max(frames, f.size());
       point_frames.push_back(std::move(f));

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lapis/core/checked_number.h"
 #include "lapis/geometry/atomic_file.h"
 
 namespace lapis::mesh_merge {
@@ -21,8 +22,7 @@ nlohmann::json read_json(const std::filesystem::path& path, const std::string& f
 }
 
 int vertex_index(const nlohmann::json& j, const std::string& fn, const std::string& where) {
-  if (!j.is_number_integer()) throw InvalidArgument(fn + ": " + where + " must be an integer vertex index");
-  return j.get<int>();
+  return json_index(j, fn + ": " + where);
 }
 
 void write_json(const std::filesystem::path& path, const nlohmann::json& j) {

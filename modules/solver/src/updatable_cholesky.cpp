@@ -52,6 +52,9 @@ SparseMatrix diagonal_columns(int n, const std::vector<std::pair<int, double>>& 
   int count = 0;
   for (const auto& [i, d] : deltas) count += d * sign > 0;
   SparseMatrix C(n, count);
+  // Eigen 3.4's makeCompressed() after reserve() reads and writes outerIndex[1], which an
+  // n by 0 matrix does not have; an empty matrix is compressed already.
+  if (count == 0) return C;
   C.reserve(Eigen::VectorXi::Constant(count, 1));
   int col = 0;
   for (const auto& [i, d] : deltas)

@@ -24,17 +24,23 @@ struct ViewerOptions {
   std::string title = "Lapis";
   int width = 1280, height = 800;
   int msaa_samples = 4;
-  bool headless = false;                 // hidden window; still needs an X display (Xvfb)
+  bool headless = false;                 // hidden window, closed once the app is idle (after a
+                                         // replay, if any); still needs an X display (Xvfb)
   std::filesystem::path replay;          // replay this event log
   std::filesystem::path record;          // record the input stream to this file on exit
   std::filesystem::path screenshot;      // written when the app is idle (after a replay)
   bool exit_after_replay = false;        // quit once the replay is over and the app idle
   std::filesystem::path benchmark;       // write frame statistics here on exit
   double idle_timeout_s = 300;           // give up waiting for a busy app after a replay
+  // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
+  // first frame and after every frame that handled input or changed the app's busy state, as
+  // one line "frame=F events=N buttons=B keys=K busy=0|1" (input events, mouse button and key
+  // events handled so far). Waiting on it replaces sleeps that a loaded machine outlasts.
+  std::filesystem::path ready_file;
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --exit-after-replay, --benchmark F, --size WxH, --msaa N) and returns the arguments it did not
+// --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N) and returns the arguments it did not
 // consume. Throws InvalidArgument on a flag missing its value.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
@@ -55,6 +61,9 @@ class ViewerApp {
   virtual bool busy() const { return false; }
   // Extra fields for the --benchmark report.
   virtual void benchmark_fields(nlohmann::json&) const {}
+  // The process exit code the app asks for after on_exit (non-zero: a batch step failed,
+  // e.g. the export a headless run was started for).
+  virtual int exit_status() const { return 0; }
 };
 
 class Viewer {
@@ -111,13 +120,15 @@ class Viewer {
   void record(const InputEvent& e);
   // The steps of run(): open the window with ImGui and the renderer; per frame, wait until
   // something is new, play the replay's due events, draw, and close the window when a replay
-  // or headless run is done (returns false when the app stayed busy too long); then finish.
+  // or headless run is done (returns false when the app stayed busy too long); then finish
+  // (returns the app's exit status).
   void open_window();
   void wait_for_next_frame(bool busy);
   void play_due_events();
   void draw_frame();
   bool close_when_done();
-  void finish_run();
+  int finish_run();
+  void report_ready(bool busy);  // options_.ready_file, when the state changed
   friend struct GlfwCallbacks;
 
   ViewerOptions options_;
@@ -144,6 +155,8 @@ class Viewer {
   bool was_busy_ = false;  // the app's busy state in the previous frame
   double idle_since_replay_ = -1;  // when the app was first seen busy after the replay
   int idle_frames_after_replay_ = 0;
+  long handled_events_ = 0, handled_buttons_ = 0, handled_keys_ = 0;  // for the ready file
+  std::string last_ready_;  // its last content but the frame
 };
 
 }  // namespace lapis::viewer

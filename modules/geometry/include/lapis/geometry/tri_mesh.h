@@ -68,4 +68,8 @@ void require_valid(const TriMesh& mesh, const ValidationOptions& options = {},
 // the cheap precondition of algorithms that do not need full validation.
 void require_indices_in_range(const TriMesh& mesh, std::string_view context);
 
+// Throws InvalidArgument (starting with context) naming the first vertex with a NaN or
+// infinite coordinate: what the writers check before a file gets "nan" or "inf" in it.
+void require_finite_vertices(const TriMesh& mesh, std::string_view context);
+
 }  // namespace lapis::geometry

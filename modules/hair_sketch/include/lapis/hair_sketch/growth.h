@@ -37,7 +37,19 @@ struct GrowthOptions {
   double min_magnitude = 0.05;  // stop when |v(p)| < this (thesis §4.6)
   double max_length = 120;    // in grid spacings (the thesis stops only at the box; a cap
                               // keeps circulating flow from growing forever)
+  // Memory the strands may use (bytes): growth is refused, before it starts, when the worst
+  // case (every strand max_length / step steps long) would need more.
+  double memory_limit_bytes = 4.0 * (1ull << 30);
 };
+
+// Worst-case bytes of growing `roots` strands with these options: roots, points (the growth
+// buffers and the result with its headroom) and offsets.
+double estimate_strand_bytes(double roots, const GrowthOptions& options);
+
+// Throws InvalidArgument (naming fn) for options out of their domain, ResourceLimit with the
+// estimate when estimate_strand_bytes exceeds options.memory_limit_bytes or the points would
+// not fit int offsets. Growth calls it; callers call it before costlier work that precedes it.
+void check_growth(double roots, const GrowthOptions& options, const std::string& fn);
 
 // Polylines: strand s has points [offsets[s], offsets[s+1]).
 struct Strands {

@@ -17,6 +17,8 @@
 namespace lapis::hair_sketch {
 
 // The field's grid for a head and the document's settings (make_grid with settings.grid).
+// It is the first step of every hairstyle, so it also checks, before any work, that the
+// strands the settings ask for fit in memory (check_growth): ResourceLimit otherwise.
 hair_field::Grid hairstyle_grid(const Head& head, const HairstyleSettings& settings);
 
 // Sketch options matching the grid (curves resampled at its spacing) and the settings.
