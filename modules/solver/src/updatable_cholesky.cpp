@@ -274,8 +274,8 @@ void UpdatableCholesky::compute(const SparseMatrix& A0, const Eigen::VectorXd& d
   m.cost.reset(m.factor->path_work(), refactor_ms);
 
   // Calibrate the update/downdate constant with a real rank-8 update and its downdate (A is
-  // unchanged up to round-off); the faster of two runs, since one timing on a busy machine
-  // can be off by an order of magnitude.
+  // unchanged up to round-off); the fastest of three runs, since one timing on a busy machine
+  // can be off by an order of magnitude (a thread descheduled for a time slice in a 1 ms run).
   const int k = std::min(8, m.n);
   std::vector<Eigen::Triplet<double, int>> t;
   for (int j = 0; j < k; ++j) {
@@ -293,7 +293,7 @@ void UpdatableCholesky::compute(const SparseMatrix& A0, const Eigen::VectorXd& d
     down.emplace_back(e.row(), -e.value() * e.value());
   }
   double fastest = 0;
-  for (int rep = 0; rep < 2; ++rep) {
+  for (int rep = 0; rep < 3; ++rep) {
     const auto t1 = Clock::now();
     if (m.factor->can_update_diagonal()) {
       m.update_diagonal(up, fn);
