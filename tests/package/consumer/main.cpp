@@ -61,10 +61,10 @@ void hair_on_bundled_head() {
   check(roots.size() > 100 && outside == static_cast<int>(roots.size()), "roots sit on the scalp, none inside");
 
   hair_sketch::Hairstyle style;
-  style.settings.roots = 123;
+  style.settings.roots.count = 123;
   style.settings.head_mesh = mesh.string();
   const hair_sketch::Hairstyle back = hair_sketch::session_from_json(hair_sketch::session_to_json(style));
-  check(back.settings.roots == 123 && back.settings.head_mesh == mesh.string(), "a session round-trips");
+  check(back.settings.roots.count == 123 && back.settings.head_mesh == mesh.string(), "a session round-trips");
 }
 
 }  // namespace
