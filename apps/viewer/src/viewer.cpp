@@ -72,6 +72,7 @@ struct GlfwCallbacks {
     if (!live(v)) return;
     InputEvent e{EventType::MouseMove};
     e.x = x, e.y = y;
+    v.cursor_seen_ = true;
     v.record(e);
     v.dispatch(e);
   }
@@ -79,7 +80,11 @@ struct GlfwCallbacks {
     Viewer& v = viewer(w);
     if (!live(v)) return;
     InputEvent e{EventType::MouseButton};
-    glfwGetCursorPos(w, &e.x, &e.y);
+    // Where the pointer was at the press: the last motion handled before it. GLFW's query
+    // asks the server for where it is now, which on a loaded machine is several queued
+    // motions later (a stroke then began 60 px down, off the scalp).
+    if (v.cursor_seen_) e.x = v.cursor_.x(), e.y = v.cursor_.y();
+    else glfwGetCursorPos(w, &e.x, &e.y);
     e.button = button, e.action = action, e.mods = mods;
     v.record(e);
     v.dispatch(e);

@@ -138,6 +138,7 @@ class Viewer {
   OrbitCamera camera_;
   int width_ = 0, height_ = 0;
   Eigen::Vector2d cursor_ = Eigen::Vector2d::Zero(), drag_from_ = Eigen::Vector2d::Zero();
+  bool cursor_seen_ = false;  // a real motion event set cursor_
   bool buttons_[8] = {};
   int app_drags_ = 0;  // buttons pressed outside the panels and not yet released
   long frame_ = 0;
