@@ -18,10 +18,13 @@ TEST_CASE("mesh_deform sweep: every method on every real mesh") {
   }
 }
 
-TEST_CASE("mesh_deform sweep: ARAP agrees with CGAL's converged ORIGINAL_ARAP on every real mesh") {
+// Iteration for iteration on every mesh; converged (thousands of iterations of both) on those
+// up to 12K vertices, to keep the sweep within minutes.
+TEST_CASE("mesh_deform sweep: ARAP agrees with CGAL's ORIGINAL_ARAP on every real mesh") {
   for (const std::string& name : sweep::external_meshes()) {
     CAPTURE(name);
-    sweep::check_arap_against_cgal(sweep::load_external(name), 20, 0.01);
+    const TriMesh m = sweep::load_external(name);
+    sweep::check_arap_against_cgal(m, 20, m.num_vertices() <= 12000 ? 0.01 : -1);
   }
 }
 
