@@ -53,11 +53,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     limits.max_items = 16;
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     Hairstyle session = session_from_json(text, "<fuzz>", limits);
-    if (!affordable(session)) return;
+    if (!affordable(session)) throw lapis::ResourceLimit("fuzz_hair_session: settings beyond the fuzzing limits");
     session.settings.grid.memory_limit_bytes = kMemoryLimitBytes;
     session.settings.field.memory_limit_bytes = kMemoryLimitBytes;
     const Hairstyle style = session.strokes.empty() ? session : replay_strokes(session, head);
-    if (!affordable(style)) return;
+    if (!affordable(style)) throw lapis::ResourceLimit("fuzz_hair_session: replayed primitives beyond the fuzzing limits");
     (void)build_hairstyle(style, head);
   });
 }

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <unistd.h>
@@ -25,12 +27,16 @@ inline std::filesystem::path input_file(const std::uint8_t* data, std::size_t si
   return path;
 }
 
-// Runs `body`, treating lapis::Error as the reader's documented rejection.
+// Runs `body`, treating lapis::Error as the reader's documented rejection. With
+// LAPIS_FUZZ_VERBOSE set, says whether each input was accepted (to check a seed corpus).
 template <class Body>
 int expect_lapis_errors_only(Body&& body) {
+  static const bool verbose = std::getenv("LAPIS_FUZZ_VERBOSE") != nullptr;
   try {
     body();
-  } catch (const lapis::Error&) {
+    if (verbose) std::fprintf(stderr, "accepted\n");
+  } catch (const lapis::Error& e) {
+    if (verbose) std::fprintf(stderr, "rejected: %s\n", e.what());
   }
   return 0;
 }
