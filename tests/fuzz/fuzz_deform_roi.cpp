@@ -1,0 +1,9 @@
+// Fuzz target: the ROI file of `lapis deform` and the deform app (mesh_deform::read_roi).
+#include "fuzz_input.h"
+#include "lapis/mesh_deform/selection_io.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return lapis::fuzz::read_as_file(data, size, ".roi.txt", [](const auto& path) {
+    (void)lapis::mesh_deform::read_roi(path);
+  });
+}
