@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "lapis/core/parallel_for.h"
 #include "lapis/geometry/polar.h"
 #include "lapis/solver/cholesky.h"
 #include "rotation_fit.h"
@@ -86,16 +87,14 @@ void ArapDeformer::Impl::blend_handle_rotations(const HandleTransforms& transfor
     const Eigen::AngleAxisd aa(geometry::polar_rotation(transforms.regions[static_cast<size_t>(h)].topLeftCorner<3, 3>()));
     r[static_cast<size_t>(h)] = aa.angle() * aa.axis();
   }
-  const int nr = static_cast<int>(fitted.size());
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nr; ++k) {
-    const int i = fitted[k];
+  detail::for_vertices(fitted.size(), [&](std::ptrdiff_t k) {
+    const int i = fitted[static_cast<size_t>(k)];
     Eigen::Vector3d ri = Eigen::Vector3d::Zero();
     for (Eigen::Index h = 0; h < nh; ++h) ri += handle_fields(i, h) * r[static_cast<size_t>(h)];
     const double angle = ri.norm();
     q[i] = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, ri / angle)) : Eigen::Quaterniond::Identity();
     R[i] = q[i].toRotationMatrix();
-  }
+  });
 }
 
 void ArapDeformer::Impl::identity_rotations() {
@@ -120,9 +119,8 @@ void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets) {
   lap.resize(nf, 3);
   frame_rhs.resize(nf, 3);
   b.resize(nf, 3);
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nf; ++k) {
-    const int i = free[k];
+  detail::for_vertices(free.size(), [&](std::ptrdiff_t k) {
+    const int i = free[static_cast<size_t>(k)];
     Eigen::RowVector3d l = Eigen::RowVector3d::Zero(), c = Eigen::RowVector3d::Zero();
     for (int e = s.offsets[i]; e < s.offsets[i + 1]; ++e) {
       l += we[e].transpose();
@@ -131,47 +129,55 @@ void ArapDeformer::Impl::start_frame(const Vertices& mesh_targets) {
     }
     lap.row(k) = l;
     frame_rhs.row(k) = c - l;
-  }
+  });
 }
 
 // Local step (Sorkine & Alexa Eq. 5–6): R_i maximizes tr(R_iᵀ A_i), A_i = Σ_j w_ij ẽ_ij e_ijᵀ,
 // each fit started from the vertex's last rotation. Returns the ARAP energy of the iterate
 // under the new rotations, Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² = Σ_j w_ij (‖ẽ_ij‖² + ‖e_ij‖²) − 2 tr(R_iᵀ A_i).
 double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
-  const int nr = static_cast<int>(fitted.size());
-  double energy = 0;
-  int fell = 0;
-#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : energy, fell)
-  for (int r = 0; r < nr; ++r) {
-    const int i = fitted[r];
-    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-    double sq = rest_sq[i];
-    const Eigen::Vector3d xi = X.row(i).transpose();
-    for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
-      const Eigen::Vector3d et = xi - X.row(s.nbr[k]).transpose();
-      A.noalias() += et * we[k].transpose();
-      sq += s.w[k] * et.squaredNorm();
+  struct Sums {
+    double energy = 0;
+    int fell = 0;
+    Sums& operator+=(const Sums& o) {
+      energy += o.energy;
+      fell += o.fell;
+      return *this;
     }
-    bool fell_back = false;
-    R[i] = detail::nearest_rotation(A, q[i], &fell_back);
-    fell += fell_back;
-    energy += sq - 2 * (R[i].transpose() * A).trace();
-  }
-  fallbacks += fell;
-  return energy;
+  };
+  const Sums sums = core::parallel_sum<Sums>(0, static_cast<std::ptrdiff_t>(fitted.size()), detail::kVertexChunk,
+                                             [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    Sums part;
+    for (std::ptrdiff_t r = lo; r < hi; ++r) {
+      const int i = fitted[static_cast<size_t>(r)];
+      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+      double sq = rest_sq[i];
+      const Eigen::Vector3d xi = X.row(i).transpose();
+      for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
+        const Eigen::Vector3d et = xi - X.row(s.nbr[k]).transpose();
+        A.noalias() += et * we[k].transpose();
+        sq += s.w[k] * et.squaredNorm();
+      }
+      bool fell_back = false;
+      R[i] = detail::nearest_rotation(A, q[i], &fell_back);
+      part.fell += fell_back;
+      part.energy += sq - 2 * (R[i].transpose() * A).trace();
+    }
+    return part;
+  });
+  fallbacks += sums.fell;
+  return sums.energy;
 }
 
 // Right-hand side (Eq. 8): b_i = Σ_j w_ij/2 (R_i + R_j)(v_i − v_j)
 //                              = R_i (L V)_i / 2 + Σ_j R_j w_ij e_ij / 2, plus the frame part.
 void ArapDeformer::Impl::assemble_rhs() {
-  const int nf = static_cast<int>(free.size());
-#pragma omp parallel for schedule(dynamic, detail::kVertexChunk)
-  for (int k = 0; k < nf; ++k) {
-    const int i = free[k];
+  detail::for_vertices(free.size(), [&](std::ptrdiff_t k) {
+    const int i = free[static_cast<size_t>(k)];
     Eigen::Vector3d acc = R[i] * lap.row(k).transpose();
     for (int l = s.offsets[i]; l < s.offsets[i + 1]; ++l) acc.noalias() += R[s.nbr[l]] * we[l];
     b.row(k) = 0.5 * acc.transpose() + frame_rhs.row(k);
-  }
+  });
 }
 
 ArapDeformer::ArapDeformer(TriMesh mesh, ArapOptions options) : Deformer(std::move(mesh)) { set_options(options); }

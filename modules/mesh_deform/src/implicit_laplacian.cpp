@@ -362,7 +362,10 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   solver::DenseMatrix X;
   if (big.empty() && m.basis.cols() > 0) {
     X = solver::DenseMatrix(P) + m.at_identity;
-    X.noalias() += m.basis * m.basis_coefficients(transforms);
+    const solver::DenseMatrix c = m.basis_coefficients(transforms);
+    core::parallel_for(0, X.rows(), detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+      X.middleRows(lo, hi - lo).noalias() += m.basis.middleRows(lo, hi - lo) * c;
+    });
   } else if (big.empty()) {
     const FirstSystemInput in = m.first_input(transforms);
     X = solver::DenseMatrix(P) + m.first.solve(in.rhs, in.fixed);
@@ -411,20 +414,21 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   const int nf = static_cast<int>(m.free.size());
   solver::DenseMatrix rhs2(nf, 3);
   const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
-  int fallbacks = 0;
-#pragma omp parallel for schedule(dynamic, detail::kVertexChunk) reduction(+ : fallbacks)
-  for (int k = 0; k < nf; ++k) {
-    const int v = m.free[k];
-    const Eigen::Matrix3d M = m.G.gradient(v, Xv);
-    bool fell_back = false;
-    // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
-    const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[k], &fell_back);
-    fallbacks += fell_back;
-    const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
-    const Eigen::Vector3d d = m.delta.row(k).transpose();
-    rhs2.row(k) = (s_i * (R * d) - d).transpose();
-  }
-  stats_.polar_fallbacks = fallbacks;
+  stats_.polar_fallbacks = core::parallel_sum<int>(0, nf, detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    int fallbacks = 0;
+    for (std::ptrdiff_t k = lo; k < hi; ++k) {
+      const int v = m.free[static_cast<size_t>(k)];
+      const Eigen::Matrix3d M = m.G.gradient(v, Xv);
+      bool fell_back = false;
+      // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
+      const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[static_cast<size_t>(k)], &fell_back);
+      fallbacks += fell_back;
+      const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
+      const Eigen::Vector3d d = m.delta.row(k).transpose();
+      rhs2.row(k) = (s_i * (R * d) - d).transpose();
+    }
+    return fallbacks;
+  });
   stats_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

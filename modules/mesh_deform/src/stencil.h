@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "lapis/core/parallel_for.h"
 #include "lapis/geometry/tri_mesh.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
 
@@ -46,11 +47,20 @@ void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, Laplacian
 // δ_i for every vertex (#V by 3).
 Vertices laplacian_coordinates(const Stencil& s, const Vertices& P);
 
-// OpenMP chunk of the per-frame and per-iteration vertex loops, as schedule(dynamic,
-// kVertexChunk): the work per vertex varies (Newton steps in the rotation fits, valence), and on
-// a shared machine one thread may lose its core for a while; whole chunks keep a thread's
-// neighbour gathers local in a spatially ordered loop, at ~100 chunks per 100K vertices.
+// Chunk of the per-frame and per-iteration vertex loops (core::parallel_for): the work per
+// vertex varies (Newton steps in the rotation fits, valence), and on a shared machine one
+// thread may lose its core for a while; whole chunks keep a thread's neighbour gathers local
+// in a spatially ordered loop, at ~100 chunks per 100K vertices.
 constexpr int kVertexChunk = 1024;
+
+// f(k) for every k in [0, n), in chunks of kVertexChunk over core::parallel_for: a frame never
+// waits for a thread that is not running.
+template <class F>
+void for_vertices(std::size_t n, F f) {
+  core::parallel_for(0, static_cast<std::ptrdiff_t>(n), kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    for (std::ptrdiff_t k = lo; k < hi; ++k) f(k);
+  });
+}
 
 // Vertex order along a Morton (Z-order) curve through P's bounding box, as new index -> old:
 // surface neighbours then lie close in memory, so a per-vertex loop's gathers of neighbour

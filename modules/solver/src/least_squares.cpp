@@ -5,6 +5,7 @@
 
 #include "checks.h"
 #include "lapis/core/format.h"
+#include "lapis/core/parallel_for.h"
 #include "lapis/solver/ordering.h"
 #include "normal_equations.h"
 
@@ -178,6 +179,24 @@ void LeastSquares::precompute() {
 
 bool LeastSquares::precomputed() const { return impl_->precomputed; }
 
+namespace {
+
+// Aᵀ R, a row of the result per column of A, in chunks over core::parallel_for. Eigen's product
+// of the row-major Aᵀ would open an OpenMP team every frame (over 20,000 entries), whose barrier
+// waits on a descheduled member.
+DenseMatrix transpose_times(const SparseMatrix& A, const DenseMatrix& R) {
+  DenseMatrix g(A.cols(), R.cols());
+  core::parallel_for(0, A.cols(), 2048, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    for (std::ptrdiff_t j = lo; j < hi; ++j) {
+      g.row(j).setZero();
+      for (SparseMatrix::InnerIterator e(A, static_cast<Eigen::Index>(j)); e; ++e) g.row(j) += e.value() * R.row(e.row());
+    }
+  });
+  return g;
+}
+
+}  // namespace
+
 DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
                                      const DenseMatrix& fixed_values) const {
   constexpr const char* fn = "solver::LeastSquares::solve()";
@@ -207,8 +226,7 @@ DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
     // multiply-adds than a precomputed (W_b A_b(:, free))ᵀ has entries (millions at a 50K-vertex
     // E_R, whose assembly was a serial pass of the setup).
     const Impl::Block& B = m.blocks[i];
-    const DenseMatrix g = B.has_metric ? DenseMatrix(B.A.transpose() * DenseMatrix(B.metric * rhs[i]))
-                                       : DenseMatrix(B.A.transpose() * rhs[i]);
+    const DenseMatrix g = B.has_metric ? transpose_times(B.A, DenseMatrix(B.metric * rhs[i])) : transpose_times(B.A, rhs[i]);
     for (size_t j = 0; j < m.free.size(); ++j) b.row(static_cast<Eigen::Index>(j)) += B.weight * g.row(m.free[j]);
   }
   if (!m.fixed.empty()) {

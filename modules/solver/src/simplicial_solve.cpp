@@ -172,10 +172,10 @@ void solve_blocks(const FactorView& f, const SubtreeSchedule& s, double* Y, int 
 
   // L y = P b: the subtrees in parallel (their updates of the shared ancestors go to
   // per-thread buffers, summed afterwards), then the ancestors in order.
-#pragma omp parallel for num_threads(threads) schedule(static, 1)
-  for (int t = 0; t < threads; ++t)
+  for_each_piece(threads, [&](int t) {
     for (const ColumnRun& run : s.runs[static_cast<size_t>(t)])
       forward<M>(f, run, Y, m, shared[static_cast<size_t>(t)].data(), s.top_slot.data());
+  });
   for (int j = 0; j < f.n; ++j) {
     const int slot = s.top_slot[static_cast<size_t>(j)];
     if (slot < 0) continue;
@@ -186,19 +186,19 @@ void solve_blocks(const FactorView& f, const SubtreeSchedule& s, double* Y, int 
   for (const ColumnRun& run : s.top) forward<M>(f, run, Y, m, nullptr, s.top_slot.data());
 
   // D z = y.
-#pragma omp parallel for num_threads(threads)
-  for (int j = 0; j < f.n; ++j) {
-    const double d = f.x[f.p[j]];
-    for (size_t c = 0; c < width; ++c) Y[static_cast<size_t>(j) * width + c] /= d;
-  }
+  core::parallel_for(0, f.n, 4096, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    for (std::ptrdiff_t j = lo; j < hi; ++j) {
+      const double d = f.x[f.p[j]];
+      for (size_t c = 0; c < width; ++c) Y[static_cast<size_t>(j) * width + c] /= d;
+    }
+  });
 
   // Lᵀ x = z: the ancestors first, then the subtrees in parallel (they only read ancestors).
   for (auto it = s.top.rbegin(); it != s.top.rend(); ++it) backward<M>(f, *it, Y, m);
-#pragma omp parallel for num_threads(threads) schedule(static, 1)
-  for (int t = 0; t < threads; ++t) {
+  for_each_piece(threads, [&](int t) {
     const auto& mine = s.runs[static_cast<size_t>(t)];
     for (auto it = mine.rbegin(); it != mine.rend(); ++it) backward<M>(f, *it, Y, m);
-  }
+  });
 }
 
 }  // namespace

@@ -136,11 +136,11 @@ struct ForwardTarget {
 template <class F>
 void for_chunks(int begin, int end, bool parallel, F f) {
   if (!parallel) return f(begin, end);
-  const int chunks = 4 * omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int t = 0; t < chunks; ++t)
+  const int chunks = 4 * core::parallel_threads();
+  for_each_piece(chunks, [&](int t) {
     f(begin + static_cast<int>(static_cast<long long>(end - begin) * t / chunks),
       begin + static_cast<int>(static_cast<long long>(end - begin) * (t + 1) / chunks));
+  });
 }
 
 // L_k y_k = b_k for supernode k, then the rows below it −= L_below y_k. x: the scratch block
@@ -218,13 +218,13 @@ void solve_rows(const SupernodeView& v, const SupernodalSchedule& s, double* Y, 
 
   // L y = P b: the subtrees in parallel (their updates of the shared ancestors go to
   // per-thread buffers, summed afterwards), then the ancestors in order.
-#pragma omp parallel for num_threads(threads) schedule(static, 1)
-  for (int t = 0; t < threads; ++t)
+  for_each_piece(threads, [&](int t) {
     for (const auto& range : s.subtrees[static_cast<size_t>(t)]) {
       const ForwardTarget target{Y, shared[static_cast<size_t>(t)].data(), s.top_slot.data(), range.limit};
       for (int k = range.first; k <= range.last; ++k)
         forward_supernode(v, k, width, target, scratch[static_cast<size_t>(t)].data(), ldx, false);
     }
+  });
   for (int k : s.top)
     for (int j = v.first_column(k); j < v.first_column(k + 1); ++j) {
       const size_t slot = static_cast<size_t>(s.top_slot[static_cast<size_t>(j)]);
@@ -237,13 +237,12 @@ void solve_rows(const SupernodeView& v, const SupernodalSchedule& s, double* Y, 
   // Lᵀ x = y: the ancestors first, then the subtrees in parallel (they only read ancestors).
   for (auto it = s.top.rbegin(); it != s.top.rend(); ++it)
     backward_supernode(v, *it, width, Y, scratch[0].data(), ldx, threads > 1);
-#pragma omp parallel for num_threads(threads) schedule(static, 1)
-  for (int t = 0; t < threads; ++t) {
+  for_each_piece(threads, [&](int t) {
     const auto& mine = s.subtrees[static_cast<size_t>(t)];
     for (auto range = mine.rbegin(); range != mine.rend(); ++range)
       for (int k = range->last; k >= range->first; --k)
         backward_supernode(v, k, width, Y, scratch[static_cast<size_t>(t)].data(), ldx, false);
-  }
+  });
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "lapis/core/parallel_for.h"
+
 namespace lapis::solver::detail {
 
 struct TreeSplit {
@@ -22,5 +24,15 @@ struct TreeSplit {
 // the work. With one thread, or when a subtree is not a contiguous range of nodes (the tree is
 // not postordered), one thread gets the whole tree as the range (0, n − 1).
 TreeSplit split_tree(const std::vector<int>& parent, const std::vector<double>& work, int threads);
+
+// body(t) for every thread's share t in [0, shares) of a split, over core::parallel_for: the
+// share of a thread that is not running is taken by one that is, so a solve never waits for
+// a descheduled thread.
+template <class F>
+void for_each_piece(int shares, F body) {
+  core::parallel_for(0, shares, 1, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    for (std::ptrdiff_t t = lo; t < hi; ++t) body(static_cast<int>(t));
+  });
+}
 
 }  // namespace lapis::solver::detail
