@@ -28,6 +28,7 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "test_meshes.h"
 
@@ -259,10 +260,13 @@ inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std
 
 // ARAP against CGAL's ORIGINAL_ARAP (the same energy: clamped cotangent weights) on the bend.
 // Started as CGAL starts (naive Laplacian editing), every iteration is CGAL's: equal to
-// rounding after 1 and after `steps` iterations. From Lapis' default start, run until the
-// energy settles, both land within `tolerance` of the diagonal of each other (tolerance < 0:
-// not run).
-inline void check_arap_against_cgal(const TriMesh& m, int steps, double tolerance, bool known_gap = false) {
+// rounding after 1 and after `steps` iterations. From Lapis' default start (the handles'
+// rotations), run until the energy settles, both land within `tolerance` of the diagonal of
+// each other, or, the energy having more than one minimum, Lapis' lies lower than CGAL's: on
+// the camel and the Chinese dragon Lapis settles 1.9% and 4.3% of the diagonal away with a
+// 1.7% and 1.1% lower energy, and neither moves by 1e-6 of the diagonal over 27,000 more
+// iterations. tolerance < 0: the converged comparison is not run.
+inline void check_arap_against_cgal(const TriMesh& m, int steps, double tolerance) {
   const Selection s = selection(m, false);
   const Eigen::Matrix4d T = bend(m, s.region_handles[0], 45);
   const double diag = test::bbox_diagonal(m.V);
@@ -286,19 +290,12 @@ inline void check_arap_against_cgal(const TriMesh& m, int steps, double toleranc
   const Vertices X = d->deform(HandleTransforms{{T}, {}});
   cgal.deform(3000, 1e-9);
   const double e = max_distance(X, cgal.positions()) / diag;
+  const double lapis_energy = distortion(m, X).arap_energy, cgal_energy = distortion(m, cgal.positions()).arap_energy;
   MESSAGE("arap against CGAL, both converged: " << e << " of the diagonal after "
-                                               << static_cast<const ArapDeformer&>(*d).stats().iterations << " iterations");
-  if (known_gap) {
-    WARN_MESSAGE(e <= tolerance, "ARAP's default start converges to another result than CGAL's start here, as known");
-    return;
-  }
-  CHECK(e <= tolerance);
+                                               << static_cast<const ArapDeformer&>(*d).stats().iterations
+                                               << " iterations; energy " << lapis_energy << " against CGAL's " << cgal_energy);
+  if (e > tolerance) CHECK_MESSAGE(lapis_energy < cgal_energy, "another minimum than CGAL's, and not a lower one");
 }
-
-// Meshes on which ARAP run to convergence from its default start (the handles' rotations)
-// settles 2–4% of the diagonal from CGAL's run from naive Laplacian editing, though both
-// iterate alike from the same start: the camel (1.9%) and the Chinese dragon (4.3%).
-inline bool converges_elsewhere(const std::string& mesh) { return mesh == "camel" || mesh == "ChineseDragon-10kv"; }
 
 // Twist of a drag about the long axis through the handle's centroid.
 inline Eigen::Matrix4d twist(const TriMesh& m, const std::vector<int>& handle, double degrees) {
