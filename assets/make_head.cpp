@@ -27,18 +27,17 @@ double smooth_max(double a, double b, double k) {
 double radius(const Eigen::Vector3d& d) {
   // Cranium: an ellipsoid narrower than deep (ax, ay, az).
   const double ax = 0.80, ay = 1.0, az = 0.95;
-  double r = 1.0 / std::sqrt((d.x() / ax) * (d.x() / ax) + (d.y() / ay) * (d.y() / ay) +
-                             (d.z() / az) * (d.z() / az));
+  double r = 1.0 / std::sqrt((d.x() / ax) * (d.x() / ax) + (d.y() / ay) * (d.y() / ay) + (d.z() / az) * (d.z() / az));
   // Jaw and cheeks taper below the eyes, more at the sides than at the front.
   if (d.y() < 0) r *= 1.0 - 0.18 * (-d.y()) * (1.0 - 0.5 * std::max(0.0, d.z()));
-  r += bump(d, {0, 0.25, 1}, 0.35, 0.05);      // forehead
+  r += bump(d, {0, 0.25, 1}, 0.35, 0.05);       // forehead
   r += bump(d, {0.3, 0.12, 0.95}, 0.12, 0.04);  // brow ridges
   r += bump(d, {-0.3, 0.12, 0.95}, 0.12, 0.04);
   r += bump(d, {0, -0.12, 1}, 0.10, 0.20);      // nose
   r += bump(d, {0, -0.65, 0.76}, 0.16, 0.07);   // chin
   r += bump(d, {1, -0.05, -0.05}, 0.12, 0.16);  // ears
   r += bump(d, {-1, -0.05, -0.05}, 0.12, 0.16);
-  r += bump(d, {0, 0.2, -1}, 0.45, 0.06);       // occiput
+  r += bump(d, {0, 0.2, -1}, 0.45, 0.06);  // occiput
   // Neck: a cylinder of radius 0.42 around −y, capped at y = −1.9, blended in smoothly.
   const double c = -d.y(), s = std::sqrt(std::max(1e-12, 1.0 - c * c));
   if (c > 0) {
@@ -65,12 +64,11 @@ int main(int argc, char** argv) {
     // Hair grows above a plane through the forehead and the tops of the ears, lower at the
     // back of the head (nape), not on the ears or the face.
     const bool scalp = d.y() > 0.28 - 0.55 * std::max(0.0, -d.z()) + 0.25 * std::max(0.0, d.z()) &&
-                       bump(d, {1, -0.05, -0.05}, 0.12, 1) < 0.3 &&
-                       bump(d, {-1, -0.05, -0.05}, 0.12, 1) < 0.3;
+                       bump(d, {1, -0.05, -0.05}, 0.12, 1) < 0.3 && bump(d, {-1, -0.05, -0.05}, 0.12, 1) < 0.3;
     if (scalp) mask << i << "\n";
   }
   lapis::geometry::write_obj(out / "head.obj", mesh);
-  std::printf("wrote %s (%d vertices, %d faces) and head_scalp.txt\n",
-              (out / "head.obj").c_str(), mesh.num_vertices(), mesh.num_faces());
+  std::printf("wrote %s (%d vertices, %d faces) and head_scalp.txt\n", (out / "head.obj").c_str(), mesh.num_vertices(),
+              mesh.num_faces());
   return 0;
 }

@@ -12,8 +12,8 @@
 #include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
-#include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/methods.h"
+#include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/selection_io.h"
 
 namespace lapis::cli {
@@ -47,7 +47,8 @@ json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95
 
 int run(const std::vector<std::string>& argv) {
   const Args args(argv, {"--scale-features"});
-  args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out", "--report"});
+  args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
+                   "--report"});
   const std::string method = args.get("--method");
   const std::string weights = args.get("--weights", "cotan");
   bool known = false;
@@ -96,7 +97,7 @@ int run(const std::vector<std::string>& argv) {
               {"arap_energy", q.arap_energy}}}};
   if (implicit) r["degenerate_vertices"] = implicit->stats().degenerate_vertices;
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
-  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
+  geometry::AtomicFileGroup outputs;    // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
   emit_report(r, args);
   outputs.commit();
@@ -105,6 +106,7 @@ int run(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-extern const Command kDeformCommand = {"deform", "drag handles of a mesh: implicit Laplacian, naive Laplacian or ARAP", kUsage, run};
+extern const Command kDeformCommand = {"deform", "drag handles of a mesh: implicit Laplacian, naive Laplacian or ARAP",
+                                       kUsage, run};
 
 }  // namespace lapis::cli

@@ -38,16 +38,14 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 int run(const std::vector<std::string>& argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const Args args(argv);
-  args.allow_only({"--session", "--head", "--grid-unknowns", "--roots", "--out-hair", "--out-obj",
-                   "--out-field", "--report"});
+  args.allow_only(
+      {"--session", "--head", "--grid-unknowns", "--roots", "--out-hair", "--out-obj", "--out-field", "--report"});
   const std::filesystem::path session_path = args.get("--session");
   const std::string out_hair = args.get("--out-hair");
   Hairstyle session = load_session(session_path);
   if (args.has("--grid-unknowns"))
-    session.settings.grid.target_unknowns =
-        static_cast<double>(args.get_int("--grid-unknowns", 0, 8, 100'000'000));
-  if (args.has("--roots"))
-    session.settings.roots.count = static_cast<int>(args.get_int("--roots", 0, 0, 10'000'000));
+    session.settings.grid.target_unknowns = static_cast<double>(args.get_int("--grid-unknowns", 0, 8, 100'000'000));
+  if (args.has("--roots")) session.settings.roots.count = static_cast<int>(args.get_int("--roots", 0, 0, 10'000'000));
   const Head head = load_session_head(session, session_path, args.get("--head", ""));
 
   auto t = std::chrono::steady_clock::now();
@@ -74,12 +72,21 @@ int run(const std::vector<std::string>& argv) {
   j["grid"] = {{"dims", r.grid.dims}, {"spacing", r.grid.spacing}, {"unknowns", r.grid.num_nodes()}};
   j["solves"] = nlohmann::json::array();
   for (const auto& s : r.solves)
-    j["solves"].push_back({{"method", to_string(s.method)}, {"added", s.added}, {"removed", s.removed},
-                           {"changed", s.changed}, {"update_ms", s.update_ms}, {"solve_ms", s.solve_ms},
-                           {"iterations", s.iterations}, {"detail", s.detail}});
-  j["timings_ms"] = {{"replay", replay_ms},     {"grid", r.grid_ms},     {"solve", r.solve_ms},
-                     {"growth", r.growth_ms},   {"penetration", r.penetration_ms},
-                     {"write", write_ms},       {"total", ms_since(t0)}};
+    j["solves"].push_back({{"method", to_string(s.method)},
+                           {"added", s.added},
+                           {"removed", s.removed},
+                           {"changed", s.changed},
+                           {"update_ms", s.update_ms},
+                           {"solve_ms", s.solve_ms},
+                           {"iterations", s.iterations},
+                           {"detail", s.detail}});
+  j["timings_ms"] = {{"replay", replay_ms},
+                     {"grid", r.grid_ms},
+                     {"solve", r.solve_ms},
+                     {"growth", r.growth_ms},
+                     {"penetration", r.penetration_ms},
+                     {"write", write_ms},
+                     {"total", ms_since(t0)}};
   emit_report(j, args);
   outputs.commit();
   return 0;

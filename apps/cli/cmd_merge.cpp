@@ -51,8 +51,10 @@ int run(const std::vector<std::string>& argv) {
   for (const char* flag : {"--source-width", "--target-width", "--keep"})
     if (args.has(flag) && !transition) throw UsageError(std::string(flag) + " needs --mode transition");
   const std::string keep = args.get("--keep", "source");
-  if (keep == "target") o.transition.keep = mesh_merge::TransitionKeep::Target;
-  else if (keep != "source") throw UsageError("--keep must be source or target, got '" + keep + "'");
+  if (keep == "target")
+    o.transition.keep = mesh_merge::TransitionKeep::Target;
+  else if (keep != "source")
+    throw UsageError("--keep must be source or target, got '" + keep + "'");
   if (args.has("--handles")) {
     if (o.mode != mesh_merge::MergeMode::Dependent) throw UsageError("--handles needs --mode dependent");
     o.handles = mesh_merge::read_handles_file(args.get("--handles"));
@@ -89,8 +91,11 @@ int run(const std::vector<std::string>& argv) {
                        {"weight", o.transition.weight},
                        {"keep", keep},
                        {"band_vertices", r.transition_vertices.size()}};
-  j["timings_ms"] = {{"setup", r.timings.setup_ms}, {"solve", r.timings.solve_ms}, {"zip", r.timings.zip_ms},
-                     {"smooth", r.timings.smooth_ms}, {"total", r.timings.total_ms}};
+  j["timings_ms"] = {{"setup", r.timings.setup_ms},
+                     {"solve", r.timings.solve_ms},
+                     {"zip", r.timings.zip_ms},
+                     {"smooth", r.timings.smooth_ms},
+                     {"total", r.timings.total_ms}};
   j["seam"] = {{"valid", q.valid()},
                {"boundary_edges", q.seam_boundary_edges},
                {"non_manifold_edges", q.non_manifold_edges},
@@ -106,7 +111,7 @@ int run(const std::vector<std::string>& argv) {
                  {"max_distance", d.max_distance},
                  {"mean_distance", d.mean_distance}};
   require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
-  geometry::AtomicFileGroup outputs;  // the mesh and the report: both new or both old
+  geometry::AtomicFileGroup outputs;    // the mesh and the report: both new or both old
   geometry::write_mesh(out, r.mesh);
   emit_report(j, args);
   outputs.commit();

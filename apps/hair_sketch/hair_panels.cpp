@@ -69,8 +69,10 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v) {
     ImGui::PushID(static_cast<int>(i));
     bool visible = !hidden_.count(static_cast<int>(i));
     if (ImGui::Checkbox("##visible", &visible)) {
-      if (visible) hidden_.erase(static_cast<int>(i));
-      else hidden_.insert(static_cast<int>(i));
+      if (visible)
+        hidden_.erase(static_cast<int>(i));
+      else
+        hidden_.insert(static_cast<int>(i));
       curves_dirty_ = true;
     }
     ImGui::SameLine();
@@ -86,13 +88,16 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v) {
     StylePrimitive copy = prims[static_cast<size_t>(selected_)];
     bool commit = false;
     if (auto* s = std::get_if<StreamCurve>(&copy.shape)) {
-      commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderInt("tail segments", &s->tail_segments, 0, 10); });
+      commit |=
+          edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderInt("tail segments", &s->tail_segments, 0, 10); });
     } else if (auto* d = std::get_if<DividingCurve>(&copy.shape)) {
-      float a0 = static_cast<float>(d->alpha0 * 180 / std::numbers::pi), a1 = static_cast<float>(d->alpha1 * 180 / std::numbers::pi);
+      float a0 = static_cast<float>(d->alpha0 * 180 / std::numbers::pi),
+            a1 = static_cast<float>(d->alpha1 * 180 / std::numbers::pi);
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("tilt a0 (deg)", &a0, -90, 90); });
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("tilt a1 (deg)", &a1, -90, 90); });
       d->alpha0 = a0 * std::numbers::pi / 180, d->alpha1 = a1 * std::numbers::pi / 180;
-      float sigma = static_cast<float>(d->sigma), h = static_cast<float>(d->height), disc = static_cast<float>(d->discontinuity);
+      float sigma = static_cast<float>(d->sigma), h = static_cast<float>(d->height),
+            disc = static_cast<float>(d->discontinuity);
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("sigma", &sigma, 0.25f, 4.0f); });
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("h", &h, 0.1f, 2.0f); });
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("discontinuity", &disc, 0.0f, 1.0f); });
@@ -172,11 +177,13 @@ void HairSketchApp::draw_file_panel(viewer::Viewer& v) {
 }
 
 void HairSketchApp::draw_overlay(viewer::Viewer& v) {
-  v.overlay(std::string("tool: ") + tool_name(tool_) + (selected_ >= 0 ? "  (curve " + std::to_string(selected_) + ")" : ""));
+  v.overlay(std::string("tool: ") + tool_name(tool_) +
+            (selected_ >= 0 ? "  (curve " + std::to_string(selected_) + ")" : ""));
   if (tool_ == Tool::Ponytail) {
     static const char* steps[] = {"draw the spine from the head", "draw the cross section around the spine",
                                   "draw the first profile", "draw the second profile"};
-    v.overlay("ponytail " + std::to_string(ponytail_strokes_.size() + 1) + "/4: " + steps[std::min<size_t>(3, ponytail_strokes_.size())]);
+    v.overlay("ponytail " + std::to_string(ponytail_strokes_.size() + 1) +
+              "/4: " + steps[std::min<size_t>(3, ponytail_strokes_.size())]);
   }
   if (last_) {
     char buf[256];
@@ -184,8 +191,8 @@ void HairSketchApp::draw_overlay(viewer::Viewer& v) {
     std::snprintf(buf, sizeof buf, "%d strands, %d segments, %lld unknowns", u.strands.count(), u.strands.segments(),
                   static_cast<long long>(last_->grid.num_nodes()));
     v.overlay(buf);
-    std::snprintf(buf, sizeof buf, "last update: solve %.0f ms + growth %.0f ms = %.0f ms (%s)", u.solve_ms, u.growth_ms,
-                  u.total_ms, u.solves.empty() ? "-" : to_string(u.solves.front().method));
+    std::snprintf(buf, sizeof buf, "last update: solve %.0f ms + growth %.0f ms = %.0f ms (%s)", u.solve_ms,
+                  u.growth_ms, u.total_ms, u.solves.empty() ? "-" : to_string(u.solves.front().method));
     v.overlay(buf);
   }
   if (!latencies_ms_.empty()) {

@@ -69,7 +69,8 @@ void HairSketchApp::update_curve_items(viewer::Viewer& v) {
   const auto& prims = document_.style().primitives;
   for (size_t i = 0; i < prims.size(); ++i) {
     if (hidden_.count(static_cast<int>(i))) continue;
-    for (const auto& line : primitive_polylines(prims[i])) curves.add_strip(line, curve_color(prims[i], static_cast<int>(i) == selected_));
+    for (const auto& line : primitive_polylines(prims[i]))
+      curves.add_strip(line, curve_color(prims[i], static_cast<int>(i) == selected_));
   }
   curves.width = 3.0f;
   curves.visible = show_curves_;
@@ -81,8 +82,8 @@ void HairSketchApp::update_curve_items(viewer::Viewer& v) {
   if (tool_ == Tool::Hint && selected_ >= 0 && selected_ < static_cast<int>(prims.size())) {
     try {
       const StylePrimitive& p = prims[static_cast<size_t>(selected_)];
-      const SupportingSurface surf = make_supporting_surface(
-          *editable_curve(p), p.viewpoint, p.support, sketch_options(grid_, document_.style().settings));
+      const SupportingSurface surf = make_supporting_surface(*editable_curve(p), p.viewpoint, p.support,
+                                                             sketch_options(grid_, document_.style().settings));
       auto& m = meshes["support"];
       const int n = static_cast<int>(surf.points.size());
       m.mesh.V.resize(2 * n, 3);
@@ -119,8 +120,10 @@ void HairSketchApp::update_preview_item(viewer::Viewer& v) {
   };
   for (const auto& s : ponytail_strokes_) item.add_strip(screen_line(s), {0.95f, 0.4f, 0.85f});
   if (drawing_) {
-    if (preview_.size() >= 2) item.add_strip(preview_, {1.0f, 0.95f, 0.4f});
-    else if (stroke_.size() >= 2) item.add_strip(screen_line(stroke_), {1.0f, 1.0f, 1.0f});
+    if (preview_.size() >= 2)
+      item.add_strip(preview_, {1.0f, 0.95f, 0.4f});
+    else if (stroke_.size() >= 2)
+      item.add_strip(screen_line(stroke_), {1.0f, 1.0f, 1.0f});
   }
   ++item.version;
 }
@@ -140,7 +143,8 @@ void HairSketchApp::update_glyph_item(viewer::Viewer& v) {
       if (t.norm() < 1e-3) continue;
       const Eigen::Vector3d p = g.position(node);
       const float m = static_cast<float>(std::min(1.0, t.norm()));
-      item.add_strip(std::vector<Eigen::Vector3d>{p, p + 0.8 * g.spacing * t.normalized()}, {0.3f + 0.7f * m, 0.9f - 0.5f * m, 0.3f});
+      item.add_strip(std::vector<Eigen::Vector3d>{p, p + 0.8 * g.spacing * t.normalized()},
+                     {0.3f + 0.7f * m, 0.9f - 0.5f * m, 0.3f});
     }
   item.width = 1.5f;
   ++item.version;

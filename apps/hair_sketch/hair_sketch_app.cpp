@@ -18,12 +18,18 @@ namespace lapis::hair_app {
 
 const char* tool_name(Tool t) {
   switch (t) {
-    case Tool::StreamCurve: return "stream curve";
-    case Tool::DividingCurve: return "dividing curve";
-    case Tool::Ponytail: return "ponytail";
-    case Tool::Hint: return "hint edit";
-    case Tool::Tilt: return "tilt edit";
-    case Tool::Select: return "select";
+    case Tool::StreamCurve:
+      return "stream curve";
+    case Tool::DividingCurve:
+      return "dividing curve";
+    case Tool::Ponytail:
+      return "ponytail";
+    case Tool::Hint:
+      return "hint edit";
+    case Tool::Tilt:
+      return "tilt edit";
+    case Tool::Select:
+      return "select";
   }
   return "?";
 }
@@ -68,8 +74,10 @@ bool HairSketchApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
     const Eigen::Vector2d p(e.x, e.y);
     if (e.action == GLFW_PRESS) {
-      if (tool_ == Tool::Select) select_at(v, p);
-      else begin_stroke(v, p);
+      if (tool_ == Tool::Select)
+        select_at(v, p);
+      else
+        begin_stroke(v, p);
       return true;
     }
     if (e.action == GLFW_RELEASE && drawing_) {
@@ -147,12 +155,23 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
   RecordedStroke rec;
   rec.camera = v.camera_matrices();
   switch (tool_) {
-    case Tool::StreamCurve: rec.action = StrokeAction::StreamCurve; break;
-    case Tool::DividingCurve: rec.action = StrokeAction::DividingCurve; break;
-    case Tool::Ponytail: rec.action = StrokeAction::Ponytail; break;
-    case Tool::Hint: rec.action = StrokeAction::Hint, rec.target = selected_; break;
-    case Tool::Tilt: rec.action = StrokeAction::Tilt, rec.target = selected_; break;
-    case Tool::Select: return;
+    case Tool::StreamCurve:
+      rec.action = StrokeAction::StreamCurve;
+      break;
+    case Tool::DividingCurve:
+      rec.action = StrokeAction::DividingCurve;
+      break;
+    case Tool::Ponytail:
+      rec.action = StrokeAction::Ponytail;
+      break;
+    case Tool::Hint:
+      rec.action = StrokeAction::Hint, rec.target = selected_;
+      break;
+    case Tool::Tilt:
+      rec.action = StrokeAction::Tilt, rec.target = selected_;
+      break;
+    case Tool::Select:
+      return;
   }
   if (tool_ == Tool::Ponytail) {
     ponytail_strokes_.push_back(stroke_);
@@ -294,8 +313,7 @@ bool HairSketchApp::export_strands(viewer::Viewer& v) {
     return false;
   }
   try {
-    for (const auto* p : {&paths_.export_hair, &paths_.export_obj})
-      geometry::create_parent_directories(*p);
+    for (const auto* p : {&paths_.export_hair, &paths_.export_obj}) geometry::create_parent_directories(*p);
     geometry::AtomicFileGroup pair;  // both new or both old, never a new .hair beside an old .obj
     write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
     write_strands_obj(paths_.export_obj, last_->update.strands);
@@ -358,8 +376,7 @@ void HairSketchApp::request_regrowth() {
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
-  worker_.submit([slot, head, settings, primitives, revision, epoch,
-                  spare = std::move(spare_strands_)]() mutable {
+  worker_.submit([slot, head, settings, primitives, revision, epoch, spare = std::move(spare_strands_)]() mutable {
     if (!slot->live || slot->epoch != epoch) {
       slot->live.reset();  // free the old solver before building the new one
       slot->live = std::make_unique<LiveHairstyle>(*head, settings);
@@ -397,8 +414,7 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
 void HairSketchApp::on_frame(viewer::Viewer& v) {
   // The previous frame's time adapts how much of the hair is drawn; not while the worker
   // regrows, whose share of the cores slows every frame whatever is drawn.
-  if (last_ && v.frame() > 0 && !busy() &&
-      strand_budget_.observe(v.last_frame_ms(), last_->update.strands.segments()))
+  if (last_ && v.frame() > 0 && !busy() && strand_budget_.observe(v.last_frame_ms(), last_->update.strands.segments()))
     update_strand_item(v, last_->update.strands);
   receive_regrowth(v);
   request_regrowth();  // no-op unless the document or settings moved on

@@ -14,8 +14,8 @@
 #include "lapis/hair_sketch/document.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/live_hairstyle.h"
-#include "lapis/viewer/latest_worker.h"
 #include "lapis/viewer/adaptive_budget.h"
+#include "lapis/viewer/latest_worker.h"
 #include "lapis/viewer/viewer.h"
 
 namespace lapis::hair_app {
@@ -39,7 +39,7 @@ struct AppPaths {
   std::filesystem::path session;   // Ctrl+S / Ctrl+O
   std::filesystem::path autosave;  // every minute and on exit
   std::filesystem::path export_hair, export_obj;
-  bool export_on_exit = false;     // batch runs: write the exports when the app closes
+  bool export_on_exit = false;  // batch runs: write the exports when the app closes
 };
 
 class HairSketchApp final : public viewer::ViewerApp {
@@ -107,7 +107,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   int exit_status_ = 0;  // 1 when the export on exit failed
   std::set<int> hidden_;
   bool drawing_ = false;
-  Stroke stroke_;                       // the stroke being drawn
+  Stroke stroke_;                         // the stroke being drawn
   std::vector<Stroke> ponytail_strokes_;  // spine, cross section, profile a, profile b
   std::vector<Eigen::Vector3d> preview_;  // 3D preview of the stroke's curve
 
@@ -135,7 +135,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   std::string engine_error_;
   double last_edit_time_ = 0;
   double last_autosave_ = 0;
-  std::vector<double> latencies_ms_;  // edit → strands on screen, for --benchmark
+  std::vector<double> latencies_ms_;       // edit → strands on screen, for --benchmark
   viewer::LatestWorker<Regrowth> worker_;  // last: joined first, before what jobs use
 };
 

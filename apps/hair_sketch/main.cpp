@@ -33,8 +33,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     const cli::Args args(rest);
-    args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots",
-                     "--draw-segments"});
+    args.allow_only(
+        {"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots", "--draw-segments"});
     hair_app::AppPaths paths;
     hair_sketch::Hairstyle style;
     hair_sketch::Head head;
@@ -52,8 +52,7 @@ int main(int argc, char** argv) {
       style.settings.scalp_mask = asset_path("head_scalp.txt").string();
       head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);
     }
-    style.settings.roots.count =
-        static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
+    style.settings.roots.count = static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
     if (args.has("--save-session")) paths.session = args.get("--save-session");
     paths.autosave = paths.session.string() + ".autosave.json";
     paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");

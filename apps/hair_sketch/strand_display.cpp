@@ -31,7 +31,8 @@ Strands display_strands(const Strands& strands, const StrandDisplayOptions& opti
   // fractional stride so the budget is used fully.
   const double stride = std::max(1.0, static_cast<double>(decimated_segments) / options.max_segments);
   Strands out;
-  out.points.reserve(static_cast<size_t>(std::min<long long>(decimated_segments, options.max_segments) + static_cast<long long>(count / stride) + 1));
+  out.points.reserve(static_cast<size_t>(std::min<long long>(decimated_segments, options.max_segments) +
+                                         static_cast<long long>(count / stride) + 1));
   for (double next = 0; next < count; next += stride) {
     const int s = static_cast<int>(next);
     const int a = strands.offsets[static_cast<size_t>(s)];

@@ -12,14 +12,13 @@
 namespace lapis::hair_app {
 
 struct StrandDisplayOptions {
-  int max_segments = 200000;        // total budget (met on average over the strands); 0: no limit
-  int max_points_per_strand = 32;   // decimation of each strand (its ends always kept)
+  int max_segments = 200000;       // total budget (met on average over the strands); 0: no limit
+  int max_points_per_strand = 32;  // decimation of each strand (its ends always kept)
 };
 
 // The strands to draw. `kept` (optional) receives, per returned strand, the index of the
 // strand it comes from, so callers can keep per-strand attributes (colour) stable.
-hair_sketch::Strands display_strands(const hair_sketch::Strands& strands,
-                                     const StrandDisplayOptions& options = {},
+hair_sketch::Strands display_strands(const hair_sketch::Strands& strands, const StrandDisplayOptions& options = {},
                                      std::vector<int>* kept = nullptr);
 
 }  // namespace lapis::hair_app

@@ -16,9 +16,12 @@ namespace lapis::deform_app {
 
 const char* tool_name(Tool t) {
   switch (t) {
-    case Tool::Move: return "move (gizmo)";
-    case Tool::Brush: return "brush";
-    case Tool::Lasso: return "lasso";
+    case Tool::Move:
+      return "move (gizmo)";
+    case Tool::Brush:
+      return "brush";
+    case Tool::Lasso:
+      return "lasso";
   }
   return "?";
 }
@@ -73,7 +76,8 @@ void DeformApp::commit(std::string label) { history_.push(state_, std::move(labe
 void DeformApp::set_labels(std::shared_ptr<const VertexLabels> labels, const std::string& label) {
   state_.labels = std::move(labels);
   const int handles = state_.labels->handle_count();
-  if (static_cast<int>(state_.transforms.size()) < handles) state_.transforms.resize(static_cast<size_t>(handles), Eigen::Matrix4d::Identity());
+  if (static_cast<int>(state_.transforms.size()) < handles)
+    state_.transforms.resize(static_cast<size_t>(handles), Eigen::Matrix4d::Identity());
   commit(label);
   labels_changed();
 }
@@ -96,7 +100,8 @@ void DeformApp::undo(viewer::Viewer& v) { step_history(v, false); }
 void DeformApp::redo(viewer::Viewer& v) { step_history(v, true); }
 
 void DeformApp::step_history(viewer::Viewer& v, bool forward) {
-  if (forward ? !history_.can_redo() : !history_.can_undo()) return v.flash(forward ? "nothing to redo" : "nothing to undo");
+  if (forward ? !history_.can_redo() : !history_.can_undo())
+    return v.flash(forward ? "nothing to redo" : "nothing to undo");
   v.flash((forward ? "redo " : "undo ") + (forward ? history_.redo_label() : history_.undo_label()));
   const auto before = state_.labels;
   state_ = forward ? history_.redo() : history_.undo();
@@ -138,7 +143,8 @@ void DeformApp::request_solve() {
   r.settings = settings_;
   r.selection = selection_->selection;
   r.selection_revision = selection_revision_;
-  for (int label : selection_->handle_label) r.transforms.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
+  for (int label : selection_->handle_label)
+    r.transforms.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
   r.preview = dragging_ && preview_while_dragging_;
   if (color_mode_ == ColorMode::Distortion) r.field = field_;
 
@@ -156,8 +162,8 @@ void DeformApp::request_solve() {
   last_key_ = key;
 
   // The progress indicator: shown while a request that needs a new setup is running.
-  const bool needs_setup = !last_ || last_->epoch != epoch_ || !(last_->settings == settings_) ||
-                           last_->revision != selection_revision_;
+  const bool needs_setup =
+      !last_ || last_->epoch != epoch_ || !(last_->settings == settings_) || last_->revision != selection_revision_;
   if (needs_setup && setup_started_ < 0) setup_started_ = now_;
   const std::uint64_t id = ++submitted_, epoch = epoch_, revision = selection_revision_;
   auto slot = engine_;
@@ -223,9 +229,11 @@ void DeformApp::on_exit(viewer::Viewer& v) {
       request_solve();
     }
     pending_export_ = true;
-    if (export_ready()) export_result(v);
-    else std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
-                      !selection_error_.empty() ? selection_error_.c_str() : engine_error_.c_str());
+    if (export_ready())
+      export_result(v);
+    else
+      std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
+                   !selection_error_.empty() ? selection_error_.c_str() : engine_error_.c_str());
     pending_export_ = false;
   }
 }
@@ -284,8 +292,7 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
 void DeformApp::save_selection(viewer::Viewer& v) {
   if (!selection_) return v.flash("save selection: " + selection_error_);
   try {
-    for (const auto* p : {&paths_.roi, &paths_.handles})
-      geometry::create_parent_directories(*p);
+    for (const auto* p : {&paths_.roi, &paths_.handles}) geometry::create_parent_directories(*p);
     HandleTransforms now;
     for (int label : selection_->handle_label) now.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
     write_roi(paths_.roi, selection_->selection.roi);

@@ -35,11 +35,11 @@ enum class ColorMode { Selection, Distortion };
 Eigen::Vector3f handle_color(int label);
 
 struct DeformPaths {
-  fs::path mesh;                     // the mesh opened (the CLI's --mesh for the export)
-  fs::path roi, handles;             // selection files: Ctrl+S saves, Ctrl+O opens
-  fs::path export_mesh;              // Ctrl+E; beside it <stem>.roi.txt, .handles.json, .deform.json
-  bool export_on_exit = false;       // batch runs: export when the app closes
-  fs::path bundled_dir;              // meshes the file panel offers (assets/external)
+  fs::path mesh;                // the mesh opened (the CLI's --mesh for the export)
+  fs::path roi, handles;        // selection files: Ctrl+S saves, Ctrl+O opens
+  fs::path export_mesh;         // Ctrl+E; beside it <stem>.roi.txt, .handles.json, .deform.json
+  bool export_on_exit = false;  // batch runs: export when the app closes
+  fs::path bundled_dir;         // meshes the file panel offers (assets/external)
 };
 
 // The undoable state: painted labels (shared between snapshots that did not repaint) and
@@ -89,7 +89,7 @@ class DeformApp final : public viewer::ViewerApp {
   // Edits (deform_app.cpp).
   void commit(std::string label);  // pushes state_ onto the undo history
   void set_labels(std::shared_ptr<const VertexLabels> labels, const std::string& label);
-  void labels_changed();           // rebuilds the selection from the labels
+  void labels_changed();  // rebuilds the selection from the labels
   void undo(viewer::Viewer& v);
   void redo(viewer::Viewer& v);
   void step_history(viewer::Viewer& v, bool forward);
@@ -141,7 +141,7 @@ class DeformApp final : public viewer::ViewerApp {
   Eigen::Vector2d last_paint_ = Eigen::Vector2d::Zero();
   Tool tool_ = Tool::Move;
   int target_ = VertexLabels::kRoi;  // kRoi, kFixed, kNone (erase) or 0 = the active handle
-  bool erase_ = false;                // Shift held at press: this stroke erases
+  bool erase_ = false;               // Shift held at press: this stroke erases
   float brush_px_ = 24;
   viewer::Gizmo gizmo_;
   Eigen::Matrix4d drag_start_ = Eigen::Matrix4d::Identity();
@@ -164,13 +164,13 @@ class DeformApp final : public viewer::ViewerApp {
     LiveDeformer live;
   };
   std::shared_ptr<EngineSlot> engine_;
-  std::uint64_t epoch_ = 0;        // bumped when a new mesh is opened
-  std::uint64_t submitted_ = 0;    // id of the newest request
-  std::uint64_t received_ = 0;     // id of the newest result taken (or failed)
-  std::string last_key_;           // what the newest request asked for, to skip repeats
+  std::uint64_t epoch_ = 0;      // bumped when a new mesh is opened
+  std::uint64_t submitted_ = 0;  // id of the newest request
+  std::uint64_t received_ = 0;   // id of the newest result taken (or failed)
+  std::string last_key_;         // what the newest request asked for, to skip repeats
   std::optional<Solved> last_;
   std::string engine_error_;
-  double setup_started_ = -1;      // time a request needing setup was submitted
+  double setup_started_ = -1;  // time a request needing setup was submitted
   bool pending_export_ = false;
   std::vector<double> solve_ms_, setup_ms_;  // for --benchmark
   long drag_frames_ = 0;

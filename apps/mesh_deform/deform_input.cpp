@@ -32,23 +32,50 @@ bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
   if (ctrl) {
     switch (e.key) {
-      case GLFW_KEY_Z: shift ? redo(v) : undo(v); return true;
-      case GLFW_KEY_Y: redo(v); return true;
-      case GLFW_KEY_S: save_selection(v); return true;
-      case GLFW_KEY_O: load_selection(v); return true;
-      case GLFW_KEY_E: export_result(v); return true;
-      default: return false;  // Ctrl+P, Ctrl+Q: the viewer's
+      case GLFW_KEY_Z:
+        shift ? redo(v) : undo(v);
+        return true;
+      case GLFW_KEY_Y:
+        redo(v);
+        return true;
+      case GLFW_KEY_S:
+        save_selection(v);
+        return true;
+      case GLFW_KEY_O:
+        load_selection(v);
+        return true;
+      case GLFW_KEY_E:
+        export_result(v);
+        return true;
+      default:
+        return false;  // Ctrl+P, Ctrl+Q: the viewer's
     }
   }
   switch (e.key) {
-    case GLFW_KEY_M: tool_ = Tool::Move; return true;
-    case GLFW_KEY_B: tool_ = Tool::Brush; return true;
-    case GLFW_KEY_L: tool_ = Tool::Lasso; return true;
-    case GLFW_KEY_1: target_ = VertexLabels::kRoi; return true;
-    case GLFW_KEY_2: target_ = VertexLabels::kFixed; return true;
-    case GLFW_KEY_3: target_ = 0; return true;
-    case GLFW_KEY_4: target_ = VertexLabels::kNone; return true;
-    case GLFW_KEY_N: new_handle(); return true;
+    case GLFW_KEY_M:
+      tool_ = Tool::Move;
+      return true;
+    case GLFW_KEY_B:
+      tool_ = Tool::Brush;
+      return true;
+    case GLFW_KEY_L:
+      tool_ = Tool::Lasso;
+      return true;
+    case GLFW_KEY_1:
+      target_ = VertexLabels::kRoi;
+      return true;
+    case GLFW_KEY_2:
+      target_ = VertexLabels::kFixed;
+      return true;
+    case GLFW_KEY_3:
+      target_ = 0;
+      return true;
+    case GLFW_KEY_4:
+      target_ = VertexLabels::kNone;
+      return true;
+    case GLFW_KEY_N:
+      new_handle();
+      return true;
     case GLFW_KEY_TAB: {
       // Next painted handle.
       const int n = state_.labels->handle_count();
@@ -59,17 +86,32 @@ bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
         }
       return true;
     }
-    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: grow_or_shrink(v, 1); return true;
-    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: grow_or_shrink(v, -1); return true;
-    case GLFW_KEY_LEFT_BRACKET: brush_px_ = std::max(3.0f, brush_px_ / 1.25f); return true;
-    case GLFW_KEY_RIGHT_BRACKET: brush_px_ = std::min(300.0f, brush_px_ * 1.25f); return true;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+      grow_or_shrink(v, 1);
+      return true;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+      grow_or_shrink(v, -1);
+      return true;
+    case GLFW_KEY_LEFT_BRACKET:
+      brush_px_ = std::max(3.0f, brush_px_ / 1.25f);
+      return true;
+    case GLFW_KEY_RIGHT_BRACKET:
+      brush_px_ = std::min(300.0f, brush_px_ * 1.25f);
+      return true;
     case GLFW_KEY_C:
       color_mode_ = color_mode_ == ColorMode::Selection ? ColorMode::Distortion : ColorMode::Selection;
       surface_dirty_ = true;
       return true;
-    case GLFW_KEY_R: reset_pose(v); return true;
-    case GLFW_KEY_DELETE: clear_target(v); return true;
-    default: return false;
+    case GLFW_KEY_R:
+      reset_pose(v);
+      return true;
+    case GLFW_KEY_DELETE:
+      clear_target(v);
+      return true;
+    default:
+      return false;
   }
 }
 
@@ -158,7 +200,8 @@ void DeformApp::grow_or_shrink(viewer::Viewer& v, int rings) {
   if (state_.labels->acting_as(value).empty()) return v.flash("grow/shrink: nothing acts as the current target yet");
   auto labels = std::make_shared<VertexLabels>(*state_.labels);
   grow_labels(*labels, *conn_, value, rings);
-  if (labels->label == state_.labels->label) return v.flash(rings > 0 ? "grow: nothing to grow into" : "shrink: nothing left to shrink");
+  if (labels->label == state_.labels->label)
+    return v.flash(rings > 0 ? "grow: nothing to grow into" : "shrink: nothing left to shrink");
   set_labels(std::move(labels), rings > 0 ? "grow" : "shrink");
 }
 

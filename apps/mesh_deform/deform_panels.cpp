@@ -40,8 +40,10 @@ HandlePose decompose(const Eigen::Matrix4d& T, const Eigen::Vector3d& c) {
 
 Eigen::Matrix4d compose(const HandlePose& p, const Eigen::Vector3d& c) {
   const Eigen::Vector3d a = p.euler_deg * std::numbers::pi / 180;
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(a.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a.y(), Eigen::Vector3d::UnitY()) *
-                             Eigen::AngleAxisd(a.x(), Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(a.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a.y(), Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(a.x(), Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T.topLeftCorner<3, 3>() = p.scale * R;
   T.topRightCorner<3, 1>() = p.translation + c - p.scale * R * c;
@@ -106,9 +108,11 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("reset pose (R)")) reset_pose(v);
-  if (!selection_error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
+  if (!selection_error_.empty())
+    ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
   else if (selection_)
-    ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(), selection_->selection.region_handles.size());
+    ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(),
+                selection_->selection.region_handles.size());
   ImGui::End();
 }
 
@@ -125,7 +129,8 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
   }
   if (s.method != Method::Arap) {
     int w = s.weights == LaplacianWeights::Cotangent ? 0 : 1;
-    if (ImGui::Combo("weights", &w, "cotangent\0uniform\0")) s.weights = w == 0 ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
+    if (ImGui::Combo("weights", &w, "cotangent\0uniform\0"))
+      s.weights = w == 0 ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
   }
   if (s.method == Method::Implicit) {
     ImGui::Checkbox("feature scaling (Eq. 2.11)", &s.scale_features);
@@ -139,7 +144,8 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
   if (!(s == settings_)) settings_ = s;  // the next request sets up again
   ImGui::Separator();
   int mode = color_mode_ == ColorMode::Selection ? 0 : 1 + static_cast<int>(field_);
-  if (ImGui::Combo("colour (C)", &mode, "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0")) {
+  if (ImGui::Combo("colour (C)", &mode,
+                   "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0")) {
     color_mode_ = mode == 0 ? ColorMode::Selection : ColorMode::Distortion;
     if (mode > 0) field_ = static_cast<DistortionField>(mode - 1);
     surface_dirty_ = true;
@@ -206,8 +212,9 @@ void DeformApp::draw_legend(viewer::Viewer& v) {
   if (color_mode_ != ColorMode::Distortion) return;
   ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 330), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.6f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   ImGui::Begin("##legend", nullptr, flags);
   ImGui::Text("%s distortion", to_string(field_));
   const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -217,8 +224,8 @@ void DeformApp::draw_legend(viewer::Viewer& v) {
   for (int k = 0; k < steps; ++k) {
     const Eigen::Vector3f a = viewer::colormap(double(k) / steps), b = viewer::colormap(double(k + 1) / steps);
     const ImU32 ca = ImGui::GetColorU32(to_imvec(a)), cb = ImGui::GetColorU32(to_imvec(b));
-    draw->AddRectFilledMultiColor(ImVec2(origin.x + width * k / steps, origin.y), ImVec2(origin.x + width * (k + 1) / steps, origin.y + height),
-                                  ca, cb, cb, ca);
+    draw->AddRectFilledMultiColor(ImVec2(origin.x + width * k / steps, origin.y),
+                                  ImVec2(origin.x + width * (k + 1) / steps, origin.y + height), ca, cb, cb, ca);
   }
   ImGui::Dummy(ImVec2(width, height));
   const char* unit = field_ == DistortionField::Angle ? " rad" : "";
@@ -244,12 +251,14 @@ void DeformApp::draw_overlay(viewer::Viewer& v) {
   }
   if (setup_started_ >= 0 && now_ - setup_started_ > 0.2) {
     // The setup runs on the worker: say so, with an indeterminate bar that keeps moving.
-    std::snprintf(buf, sizeof buf, "setting up %s ... %.1f s", method_info(settings_.method).name, now_ - setup_started_);
+    std::snprintf(buf, sizeof buf, "setting up %s ... %.1f s", method_info(settings_.method).name,
+                  now_ - setup_started_);
     v.overlay(buf);
     ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) * 0.5f - 150, 12), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.7f);
-    ImGui::Begin("##progress", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
-                                            ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::Begin("##progress", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing);
     ImGui::Text("%s", buf);
     ImGui::ProgressBar(static_cast<float>(std::fmod(now_ - setup_started_, 1.0)), ImVec2(300, 8), "");
     ImGui::End();

@@ -21,7 +21,8 @@ void DeformApp::update_surface(viewer::Viewer& v) {
   item.mesh = shown_;
   const int n = rest_.num_vertices();
   item.colors.resize(n, 3);
-  const bool distortion = color_mode_ == ColorMode::Distortion && last_ && last_->frame.distortion.size() == n && !stroke_;
+  const bool distortion =
+      color_mode_ == ColorMode::Distortion && last_ && last_->frame.distortion.size() == n && !stroke_;
   if (distortion) {
     item.colors = viewer::colorize(last_->frame.distortion, 0.0, legend_hi_);
   } else {
@@ -58,7 +59,8 @@ void DeformApp::update_markers(viewer::Viewer& v) {
   if (show_degenerate_ && last_) {
     const auto& d = last_->frame.degenerate_vertices;
     points.points.resize(static_cast<Eigen::Index>(d.size()), 3);
-    for (size_t k = 0; k < d.size(); ++k) points.points.row(static_cast<Eigen::Index>(k)) = shown_.V.row(d[k]).cast<float>();
+    for (size_t k = 0; k < d.size(); ++k)
+      points.points.row(static_cast<Eigen::Index>(k)) = shown_.V.row(d[k]).cast<float>();
   }
   points.base_color = {1.0f, 0.2f, 0.2f};
   points.size = 6.0f;

@@ -45,8 +45,8 @@ int main(int argc, char** argv) {
     std::string positional;
     if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
     const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
-    args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations",
-                     "--full-while-dragging", "--export", "--export-on-exit"});
+    args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features",
+                     "--iterations", "--full-while-dragging", "--export", "--export-on-exit"});
     // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
     // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
     deform_app::DeformPaths paths;
@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
     }
     paths.mesh = args.get("--mesh", mesh_given ? positional : (paths.bundled_dir / "armadillo.off").string());
     geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
-    if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0) mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
+    if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0)
+      mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
     paths.roi = args.get("--roi", "out/deform_selection.roi.txt");
     paths.handles = args.get("--handles", "out/deform_selection.handles.json");
     paths.export_mesh = args.get("--export", "out/deformed.obj");
@@ -69,8 +70,10 @@ int main(int argc, char** argv) {
     mesh_deform::MethodSettings settings;
     settings.method = mesh_deform::method_from_name(args.get("--method", "implicit"));
     const std::string weights = args.get("--weights", "cotan");
-    if (weights != "cotan" && weights != "uniform") throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
-    settings.weights = weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
+    if (weights != "cotan" && weights != "uniform")
+      throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
+    settings.weights =
+        weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
     settings.scale_features = args.has("--scale-features");
     settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000));
 

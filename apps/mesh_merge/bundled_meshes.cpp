@@ -59,7 +59,8 @@ MeshPair load_preset_meshes(int preset, const fs::path& asset_dir) {
       // round neck rim like the man's; at z = -8 the cut runs under the chin, the rim is half as
       // deep again as wide and the merged head turns aside), the bust 40 units tall,
       // the man (1 unit tall) below his neck at z = 0.36.
-      const auto devil = mesh_merge::cut_by_plane(geometry::read_mesh(external / "mannequin-devil.off"), {0, 0, -14.0}, {0, 0, 1});
+      const auto devil =
+          mesh_merge::cut_by_plane(geometry::read_mesh(external / "mannequin-devil.off"), {0, 0, -14.0}, {0, 0, 1});
       const auto man = mesh_merge::cut_by_plane(geometry::read_mesh(external / "man.off"), {0, 0, 0.36}, {0, 0, 1});
       // Both meshes are z-up and the orbit camera keeps y up: turn them upright, (x, y, z) →
       // (x, z, −y), so the man stands in the first view (a merge does not depend on it).

@@ -1,6 +1,6 @@
 // The meshes lapis-merge offers from its menu: every mesh of merge/ and external/ of the assets
-// (lapis::asset_path; external/ holds the real meshes scripts/setup extracts), and presets of a source and a target, some cut off
-// whole meshes by a plane (mesh_merge::cut_by_plane), ready to pair.
+// (lapis::asset_path; external/ holds the real meshes scripts/setup extracts), and presets of a source and a target,
+// some cut off whole meshes by a plane (mesh_merge::cut_by_plane), ready to pair.
 #pragma once
 
 #include <filesystem>
@@ -13,7 +13,7 @@
 namespace lapis::merge_app {
 
 struct BundledMesh {
-  std::string label;             // "merge/dome.obj"
+  std::string label;  // "merge/dome.obj"
   std::filesystem::path path;
 };
 

@@ -37,12 +37,16 @@ struct Events {
     list.push_back({{"type", "move"}, {"frame", frame}, {"time", time}, {"x", p.x()}, {"y", p.y()}});
   }
   void button(int b, int action, const Eigen::Vector2d& p) {
-    list.push_back({{"type", "button"}, {"frame", frame}, {"time", time}, {"button", b}, {"action", action},
-                    {"mods", 0}, {"x", p.x()}, {"y", p.y()}});
+    list.push_back({{"type", "button"},
+                    {"frame", frame},
+                    {"time", time},
+                    {"button", b},
+                    {"action", action},
+                    {"mods", 0},
+                    {"x", p.x()},
+                    {"y", p.y()}});
   }
-  void click(const Eigen::Vector2d& p) {
-    move(p), next(), button(0, 1, p), button(0, 0, p), next(3);
-  }
+  void click(const Eigen::Vector2d& p) { move(p), next(), button(0, 1, p), button(0, 0, p), next(3); }
   void key(int k, int codepoint) {
     list.push_back({{"type", "key"}, {"frame", frame}, {"time", time}, {"key", k}, {"action", 1}, {"mods", 0}});
     list.push_back({{"type", "char"}, {"frame", frame}, {"time", time}, {"codepoint", codepoint}});
@@ -101,8 +105,8 @@ int main(int argc, char** argv) {
     // Tool 1 pairs the loops clicked on each mesh, then the app switches to tool 2, keys.
     e.click(sp), e.click(tp), e.click(sp), e.click(tp);
     e.key(77, 'm');  // M: merge
-    const nlohmann::json out{{"format", "lapis-events"}, {"version", 1}, {"width", kWidth}, {"height", kHeight},
-                             {"events", e.list}};
+    const nlohmann::json out{
+        {"format", "lapis-events"}, {"version", 1}, {"width", kWidth}, {"height", kHeight}, {"events", e.list}};
     const auto path = std::filesystem::path(argv[1]) / "assets/events/merge_demo.json";
     lapis::geometry::write_file_atomically(path, [&](std::ostream& o) { o << out.dump(1) << "\n"; });
     std::printf("%s: key pixels source (%.0f, %.0f), target (%.0f, %.0f)\n", path.c_str(), sp.x(), sp.y(), tp.x(),

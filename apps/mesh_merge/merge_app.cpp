@@ -14,7 +14,7 @@ namespace lapis::merge_app {
 
 namespace {
 
-constexpr double kPickPixels = 14.0;      // how near a click must be to a loop or vertex
+constexpr double kPickPixels = 14.0;  // how near a click must be to a loop or vertex
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -43,11 +43,16 @@ double first_band_width(const mesh_merge::MergeSetup& s) {
 
 const char* tool_name(Tool t) {
   switch (t) {
-    case Tool::PairLoops: return "pair loops";
-    case Tool::Keys: return "key correspondences";
-    case Tool::Handles: return "fixed handles";
-    case Tool::Move: return "move source";
-    case Tool::Paint: return "paint & cut";
+    case Tool::PairLoops:
+      return "pair loops";
+    case Tool::Keys:
+      return "key correspondences";
+    case Tool::Handles:
+      return "fixed handles";
+    case Tool::Move:
+      return "move source";
+    case Tool::Paint:
+      return "paint & cut";
   }
   return "?";
 }
@@ -75,7 +80,8 @@ void MergeApp::frame(viewer::Viewer& v) {
 }
 
 bool MergeApp::busy() const {
-  return worker_.busy() || export_pending_ || (requested_revision_ == revision() && (!last_ || last_->revision != requested_revision_));
+  return worker_.busy() || export_pending_ ||
+         (requested_revision_ == revision() && (!last_ || last_->revision != requested_revision_));
 }
 
 // ---------------------------------------------------------------- edits and history
@@ -107,11 +113,13 @@ void MergeApp::after_history_step() {
   scene_dirty_ = true;
 }
 
-void MergeApp::clear_picks() { pending_source_loop_ = pending_target_loop_ = pending_key_source_ = pending_key_target_ = -1; }
+void MergeApp::clear_picks() {
+  pending_source_loop_ = pending_target_loop_ = pending_key_source_ = pending_key_target_ = -1;
+}
 
 void MergeApp::refresh_pickables() {
-  auto rebuild = [](PickableMesh& p, const std::shared_ptr<const geometry::TriMesh>& rest, const Eigen::Matrix4d& placement,
-                    const MergeSetup& s, bool is_source) {
+  auto rebuild = [](PickableMesh& p, const std::shared_ptr<const geometry::TriMesh>& rest,
+                    const Eigen::Matrix4d& placement, const MergeSetup& s, bool is_source) {
     if (p.rest == rest && p.placement == placement && p.conn) return;
     p.rest = rest;
     p.placement = placement;
@@ -123,9 +131,9 @@ void MergeApp::refresh_pickables() {
   rebuild(target_, setup().target, Eigen::Matrix4d::Identity(), setup(), false);
 }
 
-void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry::TriMesh> source, std::string source_name,
-                              std::shared_ptr<const geometry::TriMesh> target, std::string target_name, std::string edit,
-                              bool keep_placement) {
+void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry::TriMesh> source,
+                              std::string source_name, std::shared_ptr<const geometry::TriMesh> target,
+                              std::string target_name, std::string edit, bool keep_placement) {
   MergeSetup next = setup();
   if (source != next.source) {
     next.options.handles.clear();  // vertex indices of the old source
@@ -134,7 +142,8 @@ void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry:
   next.pairs.clear();  // loop indices belong to the old meshes
   next.source = std::move(source);
   next.target = std::move(target);
-  history_.push(Snapshot{std::move(next), std::move(source_name), std::move(target_name), ++last_revision_}, std::move(edit));
+  history_.push(Snapshot{std::move(next), std::move(source_name), std::move(target_name), ++last_revision_},
+                std::move(edit));
   refresh_pickables();
   clear_picks();
   painted_.clear();
@@ -146,8 +155,10 @@ void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, b
   try {
     auto mesh = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(path));
     const std::string name = path.filename().string();
-    if (as_source) replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name);
-    else replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name);
+    if (as_source)
+      replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name);
+    else
+      replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name);
   } catch (const Error& e) {
     v.flash(std::string("open failed: ") + e.what());
   }
@@ -176,9 +187,12 @@ bool MergeApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (e.type == EventType::Key) return handle_key(v, e);
   if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
     if (e.action == GLFW_PRESS) {
-      if (tool_ == Tool::Move) press_move(v, e.x, e.y);
-      else if (tool_ == Tool::Paint) press_paint(v, e.x, e.y, e.mods & GLFW_MOD_SHIFT);
-      else click(v, e.x, e.y);
+      if (tool_ == Tool::Move)
+        press_move(v, e.x, e.y);
+      else if (tool_ == Tool::Paint)
+        press_paint(v, e.x, e.y, e.mods & GLFW_MOD_SHIFT);
+      else
+        click(v, e.x, e.y);
       return true;
     }
     if (e.action == GLFW_RELEASE && (drag_start_ || painting_)) {
@@ -203,12 +217,24 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (ctrl && e.key == GLFW_KEY_E) return export_pending_ = true, true;
   if (ctrl) return false;
   switch (e.key) {
-    case GLFW_KEY_1: tool_ = Tool::PairLoops; break;
-    case GLFW_KEY_2: tool_ = Tool::Keys; break;
-    case GLFW_KEY_3: tool_ = Tool::Handles; break;
-    case GLFW_KEY_4: tool_ = Tool::Move; break;
-    case GLFW_KEY_5: tool_ = Tool::Paint; break;
-    case GLFW_KEY_C: cut_painted(v); break;
+    case GLFW_KEY_1:
+      tool_ = Tool::PairLoops;
+      break;
+    case GLFW_KEY_2:
+      tool_ = Tool::Keys;
+      break;
+    case GLFW_KEY_3:
+      tool_ = Tool::Handles;
+      break;
+    case GLFW_KEY_4:
+      tool_ = Tool::Move;
+      break;
+    case GLFW_KEY_5:
+      tool_ = Tool::Paint;
+      break;
+    case GLFW_KEY_C:
+      cut_painted(v);
+      break;
     case GLFW_KEY_D: {  // the mode switch of the panel, from the keyboard (and replays)
       MergeSetup next = setup();
       const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;
@@ -229,11 +255,20 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
       commit(v, std::move(next), "mode");
       break;
     }
-    case GLFW_KEY_M: requested_revision_ = 0, request_merge(); break;  // explicit: even when incomplete
-    case GLFW_KEY_TAB: show_result_ = !show_result_, scene_dirty_ = true; break;
-    case GLFW_KEY_F: frame(v); break;  // before the viewer's own F, which ignores the panels
-    case GLFW_KEY_ESCAPE: clear_picks(); break;
-    default: return false;
+    case GLFW_KEY_M:
+      requested_revision_ = 0, request_merge();
+      break;  // explicit: even when incomplete
+    case GLFW_KEY_TAB:
+      show_result_ = !show_result_, scene_dirty_ = true;
+      break;
+    case GLFW_KEY_F:
+      frame(v);
+      break;  // before the viewer's own F, which ignores the panels
+    case GLFW_KEY_ESCAPE:
+      clear_picks();
+      break;
+    default:
+      return false;
   }
   scene_dirty_ = true;
   return true;
@@ -255,11 +290,18 @@ int MergeApp::pair_of_target_loop(int loop) const {
 
 void MergeApp::click(viewer::Viewer& v, double x, double y) {
   switch (tool_) {
-    case Tool::PairLoops: click_pair_loops(v, x, y); break;
-    case Tool::Keys: click_keys(v, x, y); break;
-    case Tool::Handles: click_handles(v, x, y); break;
+    case Tool::PairLoops:
+      click_pair_loops(v, x, y);
+      break;
+    case Tool::Keys:
+      click_keys(v, x, y);
+      break;
+    case Tool::Handles:
+      click_handles(v, x, y);
+      break;
     case Tool::Move:
-    case Tool::Paint: break;  // drags, see on_event()
+    case Tool::Paint:
+      break;  // drags, see on_event()
   }
   scene_dirty_ = true;
 }
@@ -272,8 +314,10 @@ void MergeApp::click_pair_loops(viewer::Viewer& v, double x, double y) {
     pending_source_loop_ = pending_target_loop_ = -1;
     return v.flash("no boundary loop there: click near a loop (drawn as a line)");
   }
-  if (s && (!t || s.pixels <= t.pixels)) pending_source_loop_ = s.loop;
-  else pending_target_loop_ = t.loop;
+  if (s && (!t || s.pixels <= t.pixels))
+    pending_source_loop_ = s.loop;
+  else
+    pending_target_loop_ = t.loop;
   if (pending_source_loop_ < 0 || pending_target_loop_ < 0) return;
   MergeSetup next = setup();
   mesh_merge::pair_loops(next, pending_source_loop_, pending_target_loop_);
@@ -287,11 +331,15 @@ void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
   for (const auto& p : setup().pairs) source_loops.push_back(p.source_loop), target_loops.push_back(p.target_loop);
   if (source_loops.empty()) return v.flash("pair a source loop with a target loop first (tool 1)");
   const auto cam = v.camera_matrices();
-  const viewer::LoopPick s = viewer::pick_loop_vertex(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders(), source_loops);
-  const viewer::LoopPick t = viewer::pick_loop_vertex(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders(), target_loops);
+  const viewer::LoopPick s =
+      viewer::pick_loop_vertex(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders(), source_loops);
+  const viewer::LoopPick t =
+      viewer::pick_loop_vertex(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders(), target_loops);
   if (!s && !t) return v.flash("no vertex of a paired loop there");
-  if (s && (!t || s.pixels <= t.pixels)) pending_key_source_ = s.vertex;
-  else pending_key_target_ = t.vertex;
+  if (s && (!t || s.pixels <= t.pixels))
+    pending_key_source_ = s.vertex;
+  else
+    pending_key_target_ = t.vertex;
   if (pending_key_source_ < 0 || pending_key_target_ < 0) return;
   // Both ends picked: they must lie on the two loops of one pair.
   int pair = -1;
@@ -307,7 +355,8 @@ void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
   if (pair < 0) return v.flash("the two key vertices lie on loops of different pairs");
   MergeSetup next = setup();
   try {
-    mesh_merge::add_key(next, pair, {ks, kt}, source_.loops()[static_cast<size_t>(next.pairs[static_cast<size_t>(pair)].source_loop)]);
+    mesh_merge::add_key(next, pair, {ks, kt},
+                        source_.loops()[static_cast<size_t>(next.pairs[static_cast<size_t>(pair)].source_loop)]);
   } catch (const Error& e) {
     return v.flash(e.what());
   }
@@ -321,7 +370,8 @@ void MergeApp::click_handles(viewer::Viewer& v, double x, double y) {
   if (source_.conn->is_boundary_vertex(vertex)) return v.flash("a fixed handle cannot lie on the merging boundary");
   MergeSetup next = setup();
   mesh_merge::toggle_handle(next, vertex);
-  if (next.options.mode != mesh_merge::MergeMode::Dependent) v.flash("fixed handles act in configuration-dependent mode");
+  if (next.options.mode != mesh_merge::MergeMode::Dependent)
+    v.flash("fixed handles act in configuration-dependent mode");
   commit(v, std::move(next), "fixed handle");
 }
 
@@ -344,7 +394,8 @@ void MergeApp::request_merge() {
     out.revision = revision;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      if (!slot->merger || slot->source != s.source || slot->placement != s.placement || !same_options(slot->options, s.options)) {
+      if (!slot->merger || slot->source != s.source || slot->placement != s.placement ||
+          !same_options(slot->options, s.options)) {
         slot->merger.reset();  // free the old factorization before building the next
         slot->merger = std::make_unique<mesh_merge::Merger>(mesh_merge::placed_source(s), s.options);
         slot->source = s.source;
@@ -373,8 +424,10 @@ void MergeApp::receive_merge(viewer::Viewer& v) {
   if (!r) return;
   job_ms_.push_back(r->job_ms);
   frame_at_merge_ms_.push_back(v.last_frame_ms());
-  if (!r->error.empty()) v.flash("merge failed: " + r->error);
-  else shown_ = *r, scene_dirty_ = true;
+  if (!r->error.empty())
+    v.flash("merge failed: " + r->error);
+  else
+    shown_ = *r, scene_dirty_ = true;
   last_ = std::move(r);
 }
 
@@ -382,8 +435,10 @@ void MergeApp::on_frame(viewer::Viewer& v) {
   receive_merge(v);
   if (revision() != requested_revision_ && auto_merge_allowed()) request_merge();
   if (export_pending_ && !worker_.busy()) {
-    if (last_ && last_->revision == revision()) export_all(v);
-    else if (requested_revision_ != revision()) request_merge();  // export what is on screen, up to date
+    if (last_ && last_->revision == revision())
+      export_all(v);
+    else if (requested_revision_ != revision())
+      request_merge();  // export what is on screen, up to date
   }
   if (scene_dirty_) update_scene(v);
   update_gizmo(v);
@@ -413,9 +468,15 @@ void MergeApp::benchmark_fields(nlohmann::json& j) const {
   j["frame_ms_when_merge_arrived"] = frame_at_merge_ms_;
   if (shown_) {
     const auto& t = shown_->result.timings;
-    j["last_merge"] = {{"precompute_ms", shown_->precompute_ms}, {"precompute_reused", shown_->reused}, {"setup_ms", t.setup_ms}, {"solve_ms", t.solve_ms},
-                       {"zip_ms", t.zip_ms}, {"smooth_ms", t.smooth_ms}, {"merge_ms", t.total_ms},
-                       {"job_ms", shown_->job_ms}, {"seam_valid", shown_->quality.valid()},
+    j["last_merge"] = {{"precompute_ms", shown_->precompute_ms},
+                       {"precompute_reused", shown_->reused},
+                       {"setup_ms", t.setup_ms},
+                       {"solve_ms", t.solve_ms},
+                       {"zip_ms", t.zip_ms},
+                       {"smooth_ms", t.smooth_ms},
+                       {"merge_ms", t.total_ms},
+                       {"job_ms", shown_->job_ms},
+                       {"seam_valid", shown_->quality.valid()},
                        {"merged_vertices", shown_->result.mesh.num_vertices()}};
   }
 }

@@ -50,7 +50,7 @@ struct Snapshot {
 struct PickableMesh {
   std::shared_ptr<const geometry::TriMesh> rest;  // what it was built from
   Eigen::Matrix4d placement = Eigen::Matrix4d::Identity();
-  geometry::TriMesh mesh;                         // placed
+  geometry::TriMesh mesh;  // placed
   std::unique_ptr<geometry::Connectivity> conn;
   std::unique_ptr<geometry::Bvh> bvh;
   const std::vector<std::vector<int>>& loops() const { return conn->boundary_loops(); }
@@ -59,19 +59,19 @@ struct PickableMesh {
 // What the worker hands back for one setup revision.
 struct MergeOutcome {
   std::uint64_t revision = 0;
-  std::string error;                 // a lapis::Error's message; the rest is empty then
+  std::string error;  // a lapis::Error's message; the rest is empty then
   mesh_merge::MergeResult result;
   mesh_merge::SeamQuality quality;
   mesh_merge::DetailPreservation detail;
-  double precompute_ms = 0;          // of the Merger used (built for this job or reused)
-  bool reused = false;               // the Merger was kept from an earlier job
-  double job_ms = 0;                 // precompute + merge + metrics, what the user waits
+  double precompute_ms = 0;  // of the Merger used (built for this job or reused)
+  bool reused = false;       // the Merger was kept from an earlier job
+  double job_ms = 0;         // precompute + merge + metrics, what the user waits
 };
 
 struct AppPaths {
   std::filesystem::path export_prefix = "out/merge";  // <prefix>.obj, <prefix>_pairs.json, ...
-  bool export_on_exit = false;                         // batch runs
-  std::filesystem::path asset_dir;                     // holds merge/ and external/ (bundled meshes)
+  bool export_on_exit = false;                        // batch runs
+  std::filesystem::path asset_dir;                    // holds merge/ and external/ (bundled meshes)
 };
 
 class MergeApp final : public viewer::ViewerApp {
@@ -147,8 +147,8 @@ class MergeApp final : public viewer::ViewerApp {
   PickableMesh source_, target_;
 
   Tool tool_ = Tool::PairLoops;
-  int pending_source_loop_ = -1, pending_target_loop_ = -1;    // half-made loop pair
-  int pending_key_source_ = -1, pending_key_target_ = -1;      // half-made key (vertex)
+  int pending_source_loop_ = -1, pending_target_loop_ = -1;  // half-made loop pair
+  int pending_key_source_ = -1, pending_key_target_ = -1;    // half-made key (vertex)
   // Move tool: the gizmo on the source; the placement being dragged (committed on release).
   viewer::Gizmo gizmo_;
   std::optional<Eigen::Matrix4d> drag_start_;
@@ -159,7 +159,7 @@ class MergeApp final : public viewer::ViewerApp {
   float brush_px_ = 24;
 
   float merge_panel_bottom_ = 0;  // where the result panel goes
-  bool show_result_ = true;    // result (with translucent inputs) or the inputs alone
+  bool show_result_ = true;       // result (with translucent inputs) or the inputs alone
   bool auto_merge_ = true;
   bool scene_dirty_ = true;
   bool export_pending_ = false;
@@ -173,11 +173,11 @@ class MergeApp final : public viewer::ViewerApp {
     mesh_merge::MergeOptions options;
   };
   std::shared_ptr<EngineSlot> engine_ = std::make_shared<EngineSlot>();
-  std::uint64_t requested_revision_ = 0;  // 0: none
-  std::optional<MergeOutcome> last_;      // newest finished job (may be an error)
-  std::optional<MergeOutcome> shown_;     // newest successful one, on screen
+  std::uint64_t requested_revision_ = 0;            // 0: none
+  std::optional<MergeOutcome> last_;                // newest finished job (may be an error)
+  std::optional<MergeOutcome> shown_;               // newest successful one, on screen
   std::vector<double> job_ms_, frame_at_merge_ms_;  // for --benchmark
-  viewer::LatestWorker<MergeOutcome> worker_;  // last: joined first, before what jobs use
+  viewer::LatestWorker<MergeOutcome> worker_;       // last: joined first, before what jobs use
 };
 
 }  // namespace lapis::merge_app

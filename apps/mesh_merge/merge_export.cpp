@@ -26,8 +26,8 @@ void MergeApp::export_all(viewer::Viewer& v) {
   if (!last_ || last_->revision != revision()) return v.flash("export: no merge of the current setup");
   if (!last_->error.empty()) return v.flash("export: nothing to export, the merge failed: " + last_->error);
   const std::string p = paths_.export_prefix.string();
-  const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj", pairs = p + "_pairs.json",
-                    handles = p + "_handles.json", command = p + "_command.txt";
+  const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj",
+                    pairs = p + "_pairs.json", handles = p + "_handles.json", command = p + "_command.txt";
   try {
     geometry::create_parent_directories(paths_.export_prefix);
     const MergeSetup& s = setup();
@@ -36,15 +36,16 @@ void MergeApp::export_all(viewer::Viewer& v) {
     geometry::write_mesh(source, mesh_merge::placed_source(s));
     geometry::write_mesh(target, *s.target);
     mesh_merge::write_pairs_file(pairs, mesh_merge::loop_pairs(s));
-    std::string cmd = "lapis merge --source " + source + " --target " + target + " --pairs " + pairs + " --out " + merged +
-                      " --smooth " + std::to_string(s.options.smooth_iterations);
+    std::string cmd = "lapis merge --source " + source + " --target " + target + " --pairs " + pairs + " --out " +
+                      merged + " --smooth " + std::to_string(s.options.smooth_iterations);
     if (s.options.mode == mesh_merge::MergeMode::Dependent) {
       mesh_merge::write_handles_file(handles, s.options.handles);
       cmd += " --mode dependent --handles " + handles + " --roi-width " + shortest(s.options.roi_width);
     } else if (s.options.mode == mesh_merge::MergeMode::Transition) {
       const auto& t = s.options.transition;
-      cmd += " --mode transition --source-width " + shortest(t.source_width) + " --target-width " + shortest(t.target_width) +
-             " --keep " + (t.keep == mesh_merge::TransitionKeep::Source ? "source" : "target");
+      cmd += " --mode transition --source-width " + shortest(t.source_width) + " --target-width " +
+             shortest(t.target_width) + " --keep " +
+             (t.keep == mesh_merge::TransitionKeep::Source ? "source" : "target");
     }
     geometry::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
     files.commit();

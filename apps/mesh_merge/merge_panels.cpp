@@ -17,7 +17,8 @@ const char* kTransitionTooltip =
     "Overlapped transition regions (thesis 3.3.3): a band of each mesh next to the seam (edge-path distance below its "
     "width, in the target's units) overlaps the other's; both deform, their details are tied by E_T (w_T = 0.1) and "
     "interpolated across the band instead of smoothing the seam. Configuration-independent.";
-const char* kOptimalTooltip = "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
+const char* kOptimalTooltip =
+    "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
 
 }  // namespace
 
@@ -45,7 +46,8 @@ void MergeApp::draw_menu(viewer::Viewer& v) {
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Export merged mesh + pairs", "Ctrl+E")) export_pending_ = true;
-    if (ImGui::MenuItem("Screenshot", "Ctrl+P")) v.request_screenshot(paths_.export_prefix.string() + "_screenshot.png");
+    if (ImGui::MenuItem("Screenshot", "Ctrl+P"))
+      v.request_screenshot(paths_.export_prefix.string() + "_screenshot.png");
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) v.close();
     ImGui::EndMenu();
   }
@@ -63,8 +65,10 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::Begin("Merge", nullptr, ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_AlwaysAutoResize);
   draw_menu(v);
   ImGui::PushItemWidth(150);
-  ImGui::TextWrapped("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(), source_.loops().size());
-  ImGui::TextWrapped("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(), target_.loops().size());
+  ImGui::TextWrapped("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(),
+                     source_.loops().size());
+  ImGui::TextWrapped("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(),
+                     target_.loops().size());
   ImGui::Separator();
   const Tool tools[] = {Tool::PairLoops, Tool::Keys, Tool::Handles, Tool::Move, Tool::Paint};
   for (int i = 0; i < 5; ++i) {
@@ -85,7 +89,8 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
     ImGui::Text("pair %zu: loops %d <-> %d, %zu key%s", p + 1, pair.source_loop, pair.target_loop, pair.keys.size(),
                 pair.keys.size() == 1 ? "" : "s");
     ImGui::SameLine();
-    if (ImGui::SmallButton("x")) next.pairs.erase(next.pairs.begin() + static_cast<long>(p)), edit = "remove pair";
+    if (ImGui::SmallButton("x"))
+      next.pairs.erase(next.pairs.begin() + static_cast<long>(p)), edit = "remove pair";
     else if (!pair.keys.empty()) {
       ImGui::SameLine();
       if (ImGui::SmallButton("-key")) next.pairs[p].keys.pop_back(), edit = "remove key";
@@ -104,7 +109,8 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   if (ImGui::RadioButton("transition regions (thesis 3.3.3)", mode == MergeMode::Transition)) {
     mode = MergeMode::Transition, edit = "mode";
     auto& t = next.options.transition;
-    if (!(t.source_width > 0) || !(t.target_width > 0)) t.source_width = t.target_width = first_band_width(next);  // merge_app.h
+    if (!(t.source_width > 0) || !(t.target_width > 0))
+      t.source_width = t.target_width = first_band_width(next);  // merge_app.h
   }
   tooltip(kTransitionTooltip);
   ImGui::BeginDisabled();
@@ -130,7 +136,9 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
 
   if (next.options.mode == mesh_merge::MergeMode::Dependent) {
     float width = static_cast<float>(next.options.roi_width);
-    ImGui::SliderFloat("ROI width (0: auto)", &width, 0.0f, static_cast<float>(std::max(1e-3, source_.mesh.V.colwise().maxCoeff().maxCoeff() - source_.mesh.V.colwise().minCoeff().minCoeff())));
+    ImGui::SliderFloat("ROI width (0: auto)", &width, 0.0f,
+                       static_cast<float>(std::max(1e-3, source_.mesh.V.colwise().maxCoeff().maxCoeff() -
+                                                             source_.mesh.V.colwise().minCoeff().minCoeff())));
     if (ImGui::IsItemDeactivatedAfterEdit()) next.options.roi_width = width, edit = "ROI width";
     ImGui::Text("%zu fixed handles (tool 3: click the source)", next.options.handles.size());
     ImGui::SameLine();
@@ -144,8 +152,9 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::EndDisabled();
   if (ImGui::Button("place source at the first pair") && !next.pairs.empty()) {
     // The placed source has the rest source's connectivity, so its loops index the rest mesh too.
-    next.placement = mesh_merge::suggest_placement(*next.source, source_.loops()[static_cast<size_t>(next.pairs[0].source_loop)],
-                                                   *next.target, target_.loops()[static_cast<size_t>(next.pairs[0].target_loop)]);
+    next.placement =
+        mesh_merge::suggest_placement(*next.source, source_.loops()[static_cast<size_t>(next.pairs[0].source_loop)],
+                                      *next.target, target_.loops()[static_cast<size_t>(next.pairs[0].target_loop)]);
     edit = "place source";
   }
   if (!edit.empty()) commit(v, std::move(next), edit);
@@ -190,7 +199,8 @@ void MergeApp::draw_paint_controls(viewer::Viewer& v) {
 
 void MergeApp::draw_result_panel(viewer::Viewer& v) {
   // Under the merge panel, whose height changes with the tool and the mode.
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, merge_panel_bottom_ + 6), ImGuiCond_Always);
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, merge_panel_bottom_ + 6),
+                          ImGuiCond_Always);
   ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth - 8, 0), ImVec2(kPanelWidth - 8, 1e6f));
   ImGui::Begin("Result", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   if (!shown_) {
@@ -202,7 +212,8 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
   const auto& q = shown_->quality;
   const auto& t = r.timings;
   if (shown_->revision != revision()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "setup changed since this merge");
-  ImGui::TextWrapped("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(), r.strip_faces.size());
+  ImGui::TextWrapped("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(),
+                     r.strip_faces.size());
   ImGui::TextColored(q.valid() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.4f, 0.3f, 1), "seam %s",
                      q.valid() ? "watertight and manifold" : "NOT valid");
   ImGui::Text("seam boundary edges %d, degenerate faces %d", q.seam_boundary_edges, q.degenerate_faces);
@@ -227,19 +238,26 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
 void MergeApp::draw_overlay(viewer::Viewer& v) {
   v.overlay(std::string("tool: ") + tool_name(tool_));
   if (tool_ == Tool::PairLoops) {
-    if (pending_source_loop_ >= 0) v.overlay("source loop picked: now click a target loop");
-    else if (pending_target_loop_ >= 0) v.overlay("target loop picked: now click a source loop");
-    else v.overlay("click a boundary loop of each mesh to pair them");
+    if (pending_source_loop_ >= 0)
+      v.overlay("source loop picked: now click a target loop");
+    else if (pending_target_loop_ >= 0)
+      v.overlay("target loop picked: now click a source loop");
+    else
+      v.overlay("click a boundary loop of each mesh to pair them");
   } else if (tool_ == Tool::Move) {
     v.overlay("drag an arrow (move), a ring (rotate) or the centre square (scale) to place the source");
   } else if (tool_ == Tool::Paint) {
     v.overlay("left-drag paints on either mesh, Shift+drag erases; C cuts along the painted border");
   } else if (tool_ == Tool::Keys) {
-    if (pending_key_source_ >= 0) v.overlay("source vertex picked: now click a vertex of its paired target loop");
-    else if (pending_key_target_ >= 0) v.overlay("target vertex picked: now click a vertex of its paired source loop");
-    else v.overlay("click a vertex on each loop of a pair: a key correspondence");
+    if (pending_key_source_ >= 0)
+      v.overlay("source vertex picked: now click a vertex of its paired target loop");
+    else if (pending_key_target_ >= 0)
+      v.overlay("target vertex picked: now click a vertex of its paired source loop");
+    else
+      v.overlay("click a vertex on each loop of a pair: a key correspondence");
   }
-  if (show_result_ && shown_ && !v.scene().meshes["source"].visible) v.overlay("Tab: show the inputs to pick on the source");
+  if (show_result_ && shown_ && !v.scene().meshes["source"].visible)
+    v.overlay("Tab: show the inputs to pick on the source");
   if (worker_.busy()) v.overlay("merging...");
   if (shown_) {
     char buf[128];

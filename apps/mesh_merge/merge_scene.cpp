@@ -15,8 +15,8 @@ const Eigen::Vector3f kSeamColor{1.0f, 0.85f, 0.1f}, kHandleColor{0.95f, 0.2f, 0
 const Eigen::Vector3f kPaintColor{0.85f, 0.25f, 0.35f};
 
 Eigen::Vector3f pair_color(int pair) {
-  static const Eigen::Vector3f palette[] = {{0.2f, 0.8f, 1.0f}, {0.3f, 1.0f, 0.45f}, {1.0f, 0.45f, 0.85f},
-                                            {0.65f, 0.55f, 1.0f}, {1.0f, 0.6f, 0.2f}};
+  static const Eigen::Vector3f palette[] = {
+      {0.2f, 0.8f, 1.0f}, {0.3f, 1.0f, 0.45f}, {1.0f, 0.45f, 0.85f}, {0.65f, 0.55f, 1.0f}, {1.0f, 0.6f, 0.2f}};
   return palette[pair % 5];
 }
 
@@ -88,8 +88,9 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   if (result) {
     const geometry::TriMesh& m = shown_->result.mesh;
     for (int f : shown_->result.strip_faces)
-      seam.add_strip(std::vector<Eigen::Vector3d>{m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)), m.V.row(m.F(f, 0))},
-                     kSeamColor);
+      seam.add_strip(
+          std::vector<Eigen::Vector3d>{m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)), m.V.row(m.F(f, 2)), m.V.row(m.F(f, 0))},
+          kSeamColor);
   }
   seam.width = 1.5f;
 
@@ -106,7 +107,9 @@ void MergeApp::update_scene(viewer::Viewer& v) {
       const int loop = static_cast<int>(l);
       const int pair = side == 0 ? pair_of_source_loop(loop) : pair_of_target_loop(loop);
       const bool pending = loop == (side == 0 ? pending_source_loop_ : pending_target_loop_);
-      item.add_strip(loop_points(pm.mesh, pm.loops()[l]), pending ? kPendingColor : pair >= 0 ? pair_color(pair) : kLoopColor);
+      item.add_strip(loop_points(pm.mesh, pm.loops()[l]), pending     ? kPendingColor
+                                                          : pair >= 0 ? pair_color(pair)
+                                                                      : kLoopColor);
     }
   }
 

@@ -61,8 +61,10 @@ void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
   const std::vector<int> under = viewer::brush_vertices(m.mesh, *m.conn, *m.bvh, cam, {x, y}, brush);
   if (under.empty()) return;
   std::vector<int> next;
-  if (erasing_) std::set_difference(painted_.begin(), painted_.end(), under.begin(), under.end(), std::back_inserter(next));
-  else std::set_union(painted_.begin(), painted_.end(), under.begin(), under.end(), std::back_inserter(next));
+  if (erasing_)
+    std::set_difference(painted_.begin(), painted_.end(), under.begin(), under.end(), std::back_inserter(next));
+  else
+    std::set_union(painted_.begin(), painted_.end(), under.begin(), under.end(), std::back_inserter(next));
   painted_ = std::move(next);
   scene_dirty_ = true;
 }

@@ -35,8 +35,9 @@ int main(int argc, char** argv) {
     options.title = "lapis-view";
     const auto rest = lapis::viewer::parse_viewer_flags(argc, argv, options);
     if (rest.size() != 1 || rest[0] == "--help") {
-      std::printf("usage: lapis-view MESH [--headless] [--screenshot OUT.png] [--replay EVENTS] "
-                  "[--record EVENTS] [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n");
+      std::printf(
+          "usage: lapis-view MESH [--headless] [--screenshot OUT.png] [--replay EVENTS] "
+          "[--record EVENTS] [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n");
       return rest.size() == 1 ? 0 : 2;
     }
     MeshView app(lapis::geometry::read_mesh(rest[0]));

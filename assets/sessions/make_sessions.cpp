@@ -167,8 +167,7 @@ void ponytails(Drawer& d) {
       spine.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
     }
     const Eigen::Vector3d out = spine.back() + 0.25 * Eigen::Vector3d(side * 0.8, 0, -0.6);
-    for (int i = 0; i <= 12; ++i)
-      spine.push_back(out + Eigen::Vector3d(side * 0.05 * i, -0.12 * i, -0.02 * i));
+    for (int i = 0; i <= 12; ++i) spine.push_back(out + Eigen::Vector3d(side * 0.05 * i, -0.12 * i, -0.02 * i));
     const Eigen::Vector3d c1 = spine[6];
     const double r = 0.25;  // drawn; read as a 0.155 cross-section radius
     std::vector<Eigen::Vector3d> loop, pa, pb;

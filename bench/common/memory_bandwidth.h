@@ -21,8 +21,7 @@ struct MemoryBandwidth {
   double all_threads_gbs = 0;
   int threads = 1;
   nlohmann::json to_json() const {
-    return {{"read_gbs_one_thread", one_thread_gbs}, {"read_gbs_all_threads", all_threads_gbs},
-            {"threads", threads}};
+    return {{"read_gbs_one_thread", one_thread_gbs}, {"read_gbs_all_threads", all_threads_gbs}, {"threads", threads}};
   }
 };
 

@@ -100,9 +100,13 @@ int main() {
     const double speedup = t[max_threads].wall_ms > 0 ? t[1].wall_ms / t[max_threads].wall_ms : 0;
     table.row({step, what, bench::fmt(t[1].wall_ms), bench::fmt(t[1].cpu_share, 2), bench::fmt(t[max_threads].wall_ms),
                bench::fmt(t[max_threads].cpu_share, 2), bench::fmt(speedup, 2)});
-    results["steps"].push_back({{"step", step}, {"size", what}, {"ms_1_thread", t[1].wall_ms},
-                                {"cpu_share_1_thread", t[1].cpu_share}, {"ms_2_threads", t[max_threads].wall_ms},
-                                {"cpu_share_2_threads", t[max_threads].cpu_share}, {"speedup", speedup}});
+    results["steps"].push_back({{"step", step},
+                                {"size", what},
+                                {"ms_1_thread", t[1].wall_ms},
+                                {"cpu_share_1_thread", t[1].cpu_share},
+                                {"ms_2_threads", t[max_threads].wall_ms},
+                                {"cpu_share_2_threads", t[max_threads].cpu_share},
+                                {"speedup", speedup}});
     std::printf("  %-28s %10.1f ms / %10.1f ms\n", step.c_str(), t[1].wall_ms, t[max_threads].wall_ms);
     std::fflush(stdout);
   };

@@ -10,9 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -42,8 +42,8 @@ StreamCurve curve_at(const Head& head, const Grid& g, double phi, int segments, 
   for (int i = 0; i <= n; ++i) {
     const double a = 0.3 + (arc / R) * i / n;  // polar angle from the top
     const double p = phi + bend * i / n;
-    c.points.push_back(head.center + R * Eigen::Vector3d(std::sin(a) * std::cos(p), std::cos(a),
-                                                         std::sin(a) * std::sin(p)));
+    c.points.push_back(head.center +
+                       R * Eigen::Vector3d(std::sin(a) * std::cos(p), std::cos(a), std::sin(a) * std::sin(p)));
   }
   if (len > arc) c.points.push_back(c.points.back() - Eigen::Vector3d(0, len - arc, 0));
   return c;
@@ -70,9 +70,12 @@ int main(int argc, char** argv) {
   int thesis_max = 60000;  // the thesis path at 250K costs minutes per run (30 s factorization)
   int repetitions = 3;     // of each edit per method, interleaved; the median is reported
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--sizes")) sizes = parse_list(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--thesis-max")) thesis_max = std::stoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--repetitions")) repetitions = std::max(1, std::stoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--sizes"))
+      sizes = parse_list(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--thesis-max"))
+      thesis_max = std::stoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--repetitions"))
+      repetitions = std::max(1, std::stoi(argv[i + 1]));
   }
   const Head head = load_bundled_head(LAPIS_SOURCE_DIR);
   const std::vector<int> strand_counts{10000, 20000, 100000};
@@ -87,10 +90,10 @@ int main(int argc, char** argv) {
   out["repetitions"] = repetitions;
   const bench::MemoryBandwidth bandwidth = bench::measure_memory_bandwidth();
   out["memory_bandwidth"] = bandwidth.to_json();
-  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
-              bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
-  bench::Table table({"unknowns", "method", "edit", "nodes +/-", "diff ms", "update ms",
-                      "solve ms", "iters", "grow20K ms", "total20K ms", "detail"});
+  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n", bandwidth.one_thread_gbs,
+              bandwidth.all_threads_gbs, bandwidth.threads);
+  bench::Table table({"unknowns", "method", "edit", "nodes +/-", "diff ms", "update ms", "solve ms", "iters",
+                      "grow20K ms", "total20K ms", "detail"});
   bench::Table growth({"unknowns", "strands", "segments", "grow ms", "fresh alloc ms"});
   std::vector<std::string> ratio_lines;
   for (int n : sizes) {
@@ -99,8 +102,7 @@ int main(int argc, char** argv) {
     const Grid g = make_grid(head.box, go);
     // The style the stroke lands in: six stream curves around the head.
     std::vector<std::vector<Constraint>> base;
-    for (int k = 0; k < 6; ++k)
-      base.push_back(curve_at(head, g, 2 * M_PI * k / 6 + 0.3, 60, 0.2).constraints(g));
+    for (int k = 0; k < 6; ++k) base.push_back(curve_at(head, g, 2 * M_PI * k / 6 + 0.3, 60, 0.2).constraints(g));
     const ConstraintSet base_set = ConstraintSet::merge(base);
     const StreamCurve stroke = curve_at(head, g, -M_PI / 2 - 0.25, 30, 0.0);
     const StreamCurve edited = curve_at(head, g, -M_PI / 2 - 0.25, 30, 0.35);
@@ -121,10 +123,8 @@ int main(int argc, char** argv) {
     std::vector<std::vector<std::string>> skipped;  // table rows, after the methods' rows
     for (FieldMethod m : {FieldMethod::Multigrid, FieldMethod::Thesis, FieldMethod::Refactorize}) {
       if (m != FieldMethod::Multigrid && n > thesis_max) {
-        skipped.push_back({std::to_string(g.num_nodes()), to_string(m), "-", "", "", "", "", "",
-                           "", "",
-                           "skipped: factor ~" +
-                               bench::fmt(estimate_cholesky_bytes(g.num_nodes()) / (1 << 30), 1) +
+        skipped.push_back({std::to_string(g.num_nodes()), to_string(m), "-", "", "", "", "", "", "", "",
+                           "skipped: factor ~" + bench::fmt(estimate_cholesky_bytes(g.num_nodes()) / (1 << 30), 1) +
                                " GiB (--thesis-max)"});
         continue;
       }
@@ -170,17 +170,24 @@ int main(int argc, char** argv) {
         const Stage& st = runs[runs.size() / 2];  // the median repetition
         const FieldSolveReport& r = st.field;
         table.row({std::to_string(g.num_nodes()), to_string(mr.method), name,
-                   std::to_string(r.added) + "/" + std::to_string(r.removed),
-                   bench::fmt(st.diff_ms), bench::fmt(r.update_ms), bench::fmt(r.solve_ms),
-                   std::to_string(r.iterations), bench::fmt(st.grow_ms), bench::fmt(st.total_ms),
-                   r.detail});
-        out["runs"].push_back({{"unknowns", g.num_nodes()}, {"method", to_string(mr.method)},
-                               {"edit", name}, {"added", r.added}, {"removed", r.removed},
-                               {"diff_ms", st.diff_ms}, {"update_ms", r.update_ms},
-                               {"solve_ms", r.solve_ms}, {"iterations", r.iterations},
-                               {"error_estimate", r.error_estimate}, {"grow_20k_ms", st.grow_ms},
-                               {"total_20k_ms", st.total_ms}, {"total_20k_ms_repetitions", totals},
-                               {"setup_ms", mr.setup_ms}, {"detail", r.detail}});
+                   std::to_string(r.added) + "/" + std::to_string(r.removed), bench::fmt(st.diff_ms),
+                   bench::fmt(r.update_ms), bench::fmt(r.solve_ms), std::to_string(r.iterations),
+                   bench::fmt(st.grow_ms), bench::fmt(st.total_ms), r.detail});
+        out["runs"].push_back({{"unknowns", g.num_nodes()},
+                               {"method", to_string(mr.method)},
+                               {"edit", name},
+                               {"added", r.added},
+                               {"removed", r.removed},
+                               {"diff_ms", st.diff_ms},
+                               {"update_ms", r.update_ms},
+                               {"solve_ms", r.solve_ms},
+                               {"iterations", r.iterations},
+                               {"error_estimate", r.error_estimate},
+                               {"grow_20k_ms", st.grow_ms},
+                               {"total_20k_ms", st.total_ms},
+                               {"total_20k_ms_repetitions", totals},
+                               {"setup_ms", mr.setup_ms},
+                               {"detail", r.detail}});
       }
     for (auto& row : skipped) table.row(row);
     // Thesis and refactorization against the multigrid path, repetition by repetition.
@@ -190,14 +197,16 @@ int main(int argc, char** argv) {
         std::vector<double> ratio;
         for (int rep = 0; rep < repetitions; ++rep)
           ratio.push_back(mr.runs[e][rep].total_ms / methods[0].runs[e][rep].total_ms);
-        out["ratios"].push_back({{"unknowns", g.num_nodes()}, {"method", to_string(mr.method)},
+        out["ratios"].push_back({{"unknowns", g.num_nodes()},
+                                 {"method", to_string(mr.method)},
                                  {"edit", e == 0 ? "stroke" : "edit"},
-                                 {"over_multigrid", ratio}, {"median", bench::median(ratio)}});
+                                 {"over_multigrid", ratio},
+                                 {"median", bench::median(ratio)}});
         std::ostringstream line;
         line.setf(std::ios::fixed);
         line.precision(1);
-        line << to_string(mr.method) << " / multigrid at " << g.num_nodes() << ", "
-             << (e == 0 ? "stroke" : "edit") << ": median " << bench::median(ratio) << "x (";
+        line << to_string(mr.method) << " / multigrid at " << g.num_nodes() << ", " << (e == 0 ? "stroke" : "edit")
+             << ": median " << bench::median(ratio) << "x (";
         for (double q : ratio) line << ' ' << q;
         line << " )";
         ratio_lines.push_back(line.str());
@@ -217,11 +226,12 @@ int main(int argc, char** argv) {
           t.push_back(bench::time_ms([&] { reuse.grow(f, roots[k], s); }));
           fresh.push_back(bench::time_ms([&] { const Strands once = grow_strands(f, roots[k]); }));
         }
-        growth.row({std::to_string(g.num_nodes()), std::to_string(roots[k].size()),
-                    std::to_string(s.segments()), bench::fmt(bench::median(t)),
-                    bench::fmt(bench::median(fresh))});
-        out["growth"].push_back({{"unknowns", g.num_nodes()}, {"strands", roots[k].size()},
-                                 {"segments", s.segments()}, {"ms", bench::median(t)},
+        growth.row({std::to_string(g.num_nodes()), std::to_string(roots[k].size()), std::to_string(s.segments()),
+                    bench::fmt(bench::median(t)), bench::fmt(bench::median(fresh))});
+        out["growth"].push_back({{"unknowns", g.num_nodes()},
+                                 {"strands", roots[k].size()},
+                                 {"segments", s.segments()},
+                                 {"ms", bench::median(t)},
                                  {"fresh_allocation_ms", bench::median(fresh)}});
       }
     }

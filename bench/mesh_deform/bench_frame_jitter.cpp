@@ -101,9 +101,12 @@ int main(int argc, char** argv) {
   std::vector<int> busy_counts = {0, 1};
   std::vector<std::string> meshes = {"elephant", "dino", "camel", "armadillo"};
   for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--frames") == 0) frames = std::atoi(argv[++i]);
-    else if (std::strcmp(argv[i], "--busy") == 0) busy_counts = {std::atoi(argv[++i])};
-    else if (std::strcmp(argv[i], "--mesh") == 0) meshes = {argv[++i]};
+    if (std::strcmp(argv[i], "--frames") == 0)
+      frames = std::atoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--busy") == 0)
+      busy_counts = {std::atoi(argv[++i])};
+    else if (std::strcmp(argv[i], "--mesh") == 0)
+      meshes = {argv[++i]};
   }
   const int team = omp_get_max_threads();
   json results = json::array();
@@ -119,9 +122,14 @@ int main(int argc, char** argv) {
             BusyProcesses load(busy);
             ms = drag_frames(*make(method, m), m, frames);
           }
-          const json r = {{"mesh", name},           {"vertices", m.num_vertices()},   {"method", method},
-                          {"threads", threads},     {"busy_processes", busy},         {"median_ms", bench::median(ms)},
-                          {"p95_ms", percentile(ms, 0.95)}, {"worst_ms", percentile(ms, 1.0)}};
+          const json r = {{"mesh", name},
+                          {"vertices", m.num_vertices()},
+                          {"method", method},
+                          {"threads", threads},
+                          {"busy_processes", busy},
+                          {"median_ms", bench::median(ms)},
+                          {"p95_ms", percentile(ms, 0.95)},
+                          {"worst_ms", percentile(ms, 1.0)}};
           results.push_back(r);
           table.row({name, std::to_string(m.num_vertices()), method, std::to_string(threads), std::to_string(busy),
                      bench::fmt(r["median_ms"].get<double>()), bench::fmt(r["p95_ms"].get<double>()),

@@ -44,10 +44,8 @@ struct Size {
 };
 
 const std::vector<Size> kSizes = {
-    {"26k", "armadillo", 0, 100, 10},
-    {"52k", "mannequin-devil", 1, 50, 6},
-    {"151k", "bunny00", 1, 20, 4},
-    {"416k", "armadillo", 2, 10, 3},
+    {"26k", "armadillo", 0, 100, 10}, {"52k", "mannequin-devil", 1, 50, 6},
+    {"151k", "bunny00", 1, 20, 4},    {"416k", "armadillo", 2, 10, 3},
     {"1m", "man", 3, 5, 2},
 };
 
@@ -97,7 +95,9 @@ json run_one(const Size& size, const std::string& method) {
   const Setup s = make_setup(m, method == "cgal_arap" ? size.peer_frames : size.frames);
   if (method == "cgal_arap") {
     std::unique_ptr<peers::CgalArap> cgal;
-    r["setup_s"] = bench::time_ms([&] { cgal = std::make_unique<peers::CgalArap>(m, s.sel.roi, s.sel.region_handles[0]); }) / 1000.0;
+    r["setup_s"] =
+        bench::time_ms([&] { cgal = std::make_unique<peers::CgalArap>(m, s.sel.roi, s.sel.region_handles[0]); }) /
+        1000.0;
     std::vector<double> per_it;
     for (const Eigen::Matrix4d& T : s.drag) {
       cgal->set_targets(apply_to_rest(m, T));
@@ -182,11 +182,13 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--implicit-large") == 0) implicit_large = true;
   }
   json results = json::array();
-  bench::Table table({"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
+  bench::Table table(
+      {"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
   for (const Size& s : kSizes) {
     if (sizes.find(s.name) == std::string::npos) continue;
     for (const char* method : {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap"}) {
-      if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large) continue;
+      if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large)
+        continue;
       const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
       FILE* p = popen(cmd.c_str(), "r");
       std::string out;
@@ -200,8 +202,8 @@ int main(int argc, char** argv) {
       const json r = json::parse(out);
       results.push_back(r);
       table.row({s.name, std::to_string(r["vertices"].get<int>()), method, field(r, "setup_s", 2), field(r, "frame_ms"),
-                 field(r, "ms_per_iteration"), field(r, "first_solve_ms"), field(r, "polar_ms"), field(r, "second_solve_ms"),
-                 field(r, "peak_rss_mib", 0)});
+                 field(r, "ms_per_iteration"), field(r, "first_solve_ms"), field(r, "polar_ms"),
+                 field(r, "second_solve_ms"), field(r, "peak_rss_mib", 0)});
       std::fprintf(stderr, "%s %s done\n", s.name.c_str(), method);
     }
   }

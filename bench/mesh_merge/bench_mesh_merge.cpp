@@ -4,10 +4,10 @@
 // Usage: bench_mesh_merge [--quick]   (--quick: the 10K and 16K cases only)
 // Besides the in-process repetitions, each case is merged once in a fresh process ("cold"):
 // what `lapis merge` pays, with every page of its memory new to the process.
-#include <cmath>
-#include <ctime>
-#include <cstring>
 #include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <string>
 
@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
                       "cold ms", "cpu ms", "re-merge ms", "seam ok", "residual"});
   nlohmann::json results = nlohmann::json::array();
   const bench::MemoryBandwidth bandwidth = bench::measure_memory_bandwidth();
-  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
-              bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
+  std::printf("memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n", bandwidth.one_thread_gbs,
+              bandwidth.all_threads_gbs, bandwidth.threads);
   for (const Case& c : cases) {
     if (quick && std::strcmp(c.name, "50K") == 0) break;
     const Inputs in = inputs(c);
@@ -132,7 +132,8 @@ int main(int argc, char** argv) {
     const int boundary = static_cast<int>(r.source_boundary.size());
     table.row({c.name, std::to_string(src.num_vertices()), std::to_string(boundary), bench::fmt(r.timings.setup_ms),
                bench::fmt(r.timings.solve_ms), bench::fmt(r.timings.zip_ms), bench::fmt(r.timings.smooth_ms),
-               bench::fmt(bench::median(total)), bench::fmt(cold_ms), bench::fmt(bench::median(cpu)), bench::fmt(remerge_ms), q.valid() ? "yes" : "NO", bench::fmt(d.laplacian_residual, 4)});
+               bench::fmt(bench::median(total)), bench::fmt(cold_ms), bench::fmt(bench::median(cpu)),
+               bench::fmt(remerge_ms), q.valid() ? "yes" : "NO", bench::fmt(d.laplacian_residual, 4)});
     results.push_back({{"case", c.name},
                        {"source_vertices", src.num_vertices()},
                        {"boundary_vertices", boundary},
@@ -154,8 +155,9 @@ int main(int argc, char** argv) {
                        {"second_factor_nnz", r.solver.second_factor_nnz}});
   }
   table.print();
-  if (!quick) bench::write_results("mesh_merge", {{"cases", results},
-                                                  {"memory_bandwidth", bandwidth.to_json()},
-                                                  {"peak_rss_mib", bench::peak_rss_mib()}});
+  if (!quick)
+    bench::write_results(
+        "mesh_merge",
+        {{"cases", results}, {"memory_bandwidth", bandwidth.to_json()}, {"peak_rss_mib", bench::peak_rss_mib()}});
   return 0;
 }

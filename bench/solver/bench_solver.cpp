@@ -133,9 +133,12 @@ int main(int argc, char** argv) {
   std::vector<int> sizes = {24, 32, 37, 48};
   std::vector<int> ks = {10, 100, 1000};
   for (int a = 1; a < argc; ++a) {
-    if (!std::strcmp(argv[a], "--sizes") && a + 1 < argc) sizes = parse_sizes(argv[++a]);
-    else if (!std::strcmp(argv[a], "--with-64")) sizes.push_back(64);
-    else if (!std::strcmp(argv[a], "--quick")) sizes = {24, 32}, ks = {10, 100};
+    if (!std::strcmp(argv[a], "--sizes") && a + 1 < argc)
+      sizes = parse_sizes(argv[++a]);
+    else if (!std::strcmp(argv[a], "--with-64"))
+      sizes.push_back(64);
+    else if (!std::strcmp(argv[a], "--quick"))
+      sizes = {24, 32}, ks = {10, 100};
     else {
       std::fprintf(stderr, "usage: bench_solver [--sizes 24,32,37,48] [--with-64] [--quick]\n");
       return 2;
@@ -143,16 +146,18 @@ int main(int argc, char** argv) {
   }
   const std::string blas = loaded_blas();
   const bench::MemoryBandwidth bandwidth = bench::measure_memory_bandwidth();
-  std::printf("Lapis solver benchmark: hair-sketching normal matrix, omega = 100, BLAS: %s\n"
-              "memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
-              blas.c_str(), bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
+  std::printf(
+      "Lapis solver benchmark: hair-sketching normal matrix, omega = 100, BLAS: %s\n"
+      "memory read bandwidth: %.1f GB/s on one thread, %.1f GB/s on %d\n\n",
+      blas.c_str(), bandwidth.one_thread_gbs, bandwidth.all_threads_gbs, bandwidth.threads);
 
   nlohmann::json results;
   results["blas"] = blas;
   results["omega"] = 100;
   results["memory_bandwidth"] = bandwidth.to_json();
-  bench::Table table({"N", "n", "nnz(L)", "ordering", "factor ms", "simplicial ms", "solve3 ms", "cholmod solve3", "LDLt solve3", "k",
-                      "updown ms", "refactor ms", "auto ms", "auto chose", "k+solve ms", "eigen ms"});
+  bench::Table table({"N", "n", "nnz(L)", "ordering", "factor ms", "simplicial ms", "solve3 ms", "cholmod solve3",
+                      "LDLt solve3", "k", "updown ms", "refactor ms", "auto ms", "auto chose", "k+solve ms",
+                      "eigen ms"});
   double simplicial_ms_per_flop = 0, eigen_ms_per_flop = 0;
 
   for (int N : sizes) {
@@ -263,8 +268,8 @@ int main(int argc, char** argv) {
       }
       for (const auto& [method, times] : ms) mk[to_string(method)] = bench::median(times);
       const double auto_ms = bench::median(ms[ModifyMethod::Auto]);
-      const double best = std::min(bench::median(ms[ModifyMethod::UpdateDowndate]),
-                                   bench::median(ms[ModifyMethod::Refactorize]));
+      const double best =
+          std::min(bench::median(ms[ModifyMethod::UpdateDowndate]), bench::median(ms[ModifyMethod::Refactorize]));
       mk["auto_choice"] = auto_choice;
       mk["auto_over_best"] = auto_ms / best;
       upd.set_method(ModifyMethod::Auto);
@@ -281,11 +286,12 @@ int main(int argc, char** argv) {
       mk["modify_plus_solve3_ms"] = plus_solve;
       modify[std::to_string(k)] = mk;
       table.row({first_row ? std::to_string(N) : "", first_row ? std::to_string(n) : "",
-                 first_row ? fmt(sup.stats().nnz_L / 1e6, 1) + "M" : "",
-                 first_row ? sup.stats().ordering : "", first_row ? fmt(sup.stats().factorize_ms, 0) : "",
-                 first_row ? simplicial_cell : "", first_row ? fmt(solve3, 1) : "", first_row ? fmt(r["cholmod_solve3_ms"].get<double>(), 1) : "", first_row ? fmt(simplicial_solve3, 1) : "", std::to_string(k),
-                 fmt(mk["update/downdate"].get<double>(), 1), fmt(mk["refactorize"].get<double>(), 1),
-                 fmt(auto_ms, 1), auto_choice, fmt(plus_solve, 1), first_row ? eigen_cell : ""});
+                 first_row ? fmt(sup.stats().nnz_L / 1e6, 1) + "M" : "", first_row ? sup.stats().ordering : "",
+                 first_row ? fmt(sup.stats().factorize_ms, 0) : "", first_row ? simplicial_cell : "",
+                 first_row ? fmt(solve3, 1) : "", first_row ? fmt(r["cholmod_solve3_ms"].get<double>(), 1) : "",
+                 first_row ? fmt(simplicial_solve3, 1) : "", std::to_string(k),
+                 fmt(mk["update/downdate"].get<double>(), 1), fmt(mk["refactorize"].get<double>(), 1), fmt(auto_ms, 1),
+                 auto_choice, fmt(plus_solve, 1), first_row ? eigen_cell : ""});
       first_row = false;
     }
     r["modify_ms"] = modify;

@@ -6,13 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app_runner.h"
+#include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/selection_io.h"
-#include "lapis/geometry/connectivity.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/input_events.h"
-#include "lapis/viewer/surface_select.h"
 #include "lapis/viewer/orbit_camera.h"
+#include "lapis/viewer/surface_select.h"
 
 using namespace lapis;
 using namespace lapis::apps_test;
@@ -39,7 +39,8 @@ Eigen::Vector2d pixel(const geometry::CameraMatrices& cam, const Eigen::Vector3d
 }
 
 std::string xy(const Eigen::Vector2d& p) {
-  return std::to_string(static_cast<int>(std::lround(p.x()))) + " " + std::to_string(static_cast<int>(std::lround(p.y())));
+  return std::to_string(static_cast<int>(std::lround(p.x()))) + " " +
+         std::to_string(static_cast<int>(std::lround(p.y())));
 }
 
 Eigen::Vector2d rounded(const Eigen::Vector2d& p) { return {std::lround(p.x()), std::lround(p.y())}; }
@@ -47,11 +48,12 @@ Eigen::Vector2d rounded(const Eigen::Vector2d& p) { return {std::lround(p.x()), 
 // A drag along one gizmo arrow, planned from the app's first view.
 struct PlannedDrag {
   int axis = -1;
-  Eigen::Vector2d from, to;     // pixels
-  double expected = 0;          // world translation along the axis the gizmo maps it to
+  Eigen::Vector2d from, to;  // pixels
+  double expected = 0;       // world translation along the axis the gizmo maps it to
 };
 
-PlannedDrag plan_drag(const geometry::TriMesh& mesh, const std::vector<int>& handle, const geometry::CameraMatrices& cam) {
+PlannedDrag plan_drag(const geometry::TriMesh& mesh, const std::vector<int>& handle,
+                      const geometry::CameraMatrices& cam) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int v : handle) c += mesh.V.row(v).transpose();
   c /= static_cast<double>(handle.size());
@@ -85,19 +87,22 @@ PlannedDrag plan_drag(const geometry::TriMesh& mesh, const std::vector<int>& han
   return best;
 }
 
-double max_difference(const geometry::Vertices& a, const geometry::Vertices& b) { return (a - b).cwiseAbs().maxCoeff(); }
+double max_difference(const geometry::Vertices& a, const geometry::Vertices& b) {
+  return (a - b).cwiseAbs().maxCoeff();
+}
 
 // Runs the app in a visible window under Xvfb: waits until it has drawn and finished its
 // setup (--ready-file), runs `actions` (xdotool, with $w the window), waits for `wait_for` to
 // exist (up to 240 s), quits.
 int run_window(const std::string& app_args, const std::string& actions, const fs::path& wait_for) {
   const fs::path dir = scratch_dir();
-  const std::string body =
-      kApp + kSize + " " + app_args + " --ready-file " + (dir / "deform.ready").string() + " &\napp=$!\n"
-      "window lapis-deform || { kill $app; exit 3; }\n"
-      "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n" + actions +
-      "\nfor i in $(seq 1 2400); do [ -e " + wait_for.string() + " ] && break; sleep 0.1; done\n"
-      "xdotool key --window $w ctrl+q; wait $app\n";
+  const std::string body = kApp + kSize + " " + app_args + " --ready-file " + (dir / "deform.ready").string() +
+                           " &\napp=$!\n"
+                           "window lapis-deform || { kill $app; exit 3; }\n"
+                           "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n" +
+                           actions + "\nfor i in $(seq 1 2400); do [ -e " + wait_for.string() +
+                           " ] && break; sleep 0.1; done\n"
+                           "xdotool key --window $w ctrl+q; wait $app\n";
   return run_under_xvfb(ready_script(dir / "deform.sh", dir / "deform.ready", body));
 }
 
@@ -192,7 +197,8 @@ TEST_CASE("apps: deform app — lasso a handle, brush the fixed feet, grow, undo
   paint.log.save(dir / "paint.json");
   const fs::path roi = dir / "sel.roi.txt", handles = dir / "sel.handles.json";
   const std::string files = " --mesh " + kMesh.string() + " --roi " + roi.string() + " --handles " + handles.string();
-  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "paint.json").string() + " --exit-after-replay") == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "paint.json").string() +
+                         " --exit-after-replay") == 0);
 
   // The handle: what the lasso enclosed and the camera saw.
   REQUIRE(fs::exists(handles));
@@ -224,7 +230,8 @@ TEST_CASE("apps: deform app — lasso a handle, brush the fixed feet, grow, undo
   edit.frame += 5;
   edit.log.width = kWidth, edit.log.height = kHeight;
   edit.log.save(dir / "edit.json");
-  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "edit.json").string() + " --exit-after-replay") == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless" + files + " --replay " + (dir / "edit.json").string() +
+                         " --exit-after-replay") == 0);
   const std::vector<int> grown = complement(mesh_deform::read_roi(roi), mesh.num_vertices());
   const geometry::Connectivity conn(mesh);
   std::vector<int> expected = viewer::grow_rings(conn, fixed, 1);
@@ -252,7 +259,8 @@ TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle
 
   // Press on the arrow, pull it in small steps (a person's drag), release, export with Ctrl+E.
   std::string actions = "xdotool mousemove --window $w " + xy(drag.from) + " sleep 0.3 mousedown 1";
-  for (int k = 1; k <= 20; ++k) actions += " mousemove --window $w " + xy(drag.from + (drag.to - drag.from) * (k / 20.0)) + " sleep 0.03";
+  for (int k = 1; k <= 20; ++k)
+    actions += " mousemove --window $w " + xy(drag.from + (drag.to - drag.from) * (k / 20.0)) + " sleep 0.03";
   actions += " sleep 0.2 mouseup 1 sleep 0.3; xdotool key --window $w ctrl+e";
   const fs::path out = dir / "dragged.obj";
   REQUIRE(run_window("--mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " + kHandles.string() +
@@ -269,8 +277,8 @@ TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle
   mean /= static_cast<double>(handle.size());
   CAPTURE(mean.transpose());
   CAPTURE(drag.expected);
-  CHECK(mean.dot(axis) * drag.expected > 0);                           // direction
-  CHECK(std::abs(mean.dot(axis)) > 0.5 * std::abs(drag.expected));     // order of magnitude
+  CHECK(mean.dot(axis) * drag.expected > 0);                        // direction
+  CHECK(std::abs(mean.dot(axis)) > 0.5 * std::abs(drag.expected));  // order of magnitude
   CHECK(std::abs(mean.dot(axis)) < 2.0 * std::abs(drag.expected));
   CHECK((mean - mean.dot(axis) * axis).norm() < 0.1 * std::abs(drag.expected));  // along the axis only
   // The fixed region (outside the ROI) did not move at all.
@@ -295,17 +303,17 @@ TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle
   const auto j = nlohmann::json::parse(report);
   CHECK(j["method"] == "implicit");
   const fs::path cli_out = dir / "cli.obj";
-  REQUIRE(run(kCli + " deform --mesh " + kMesh.string() + " --roi " + (dir / "dragged.roi.txt").string() + " --handles " +
-              (dir / "dragged.handles.json").string() + " --method implicit --weights " + j["weights"].get<std::string>() +
-              " --out " + cli_out.string() + " > /dev/null") == 0);
+  REQUIRE(run(kCli + " deform --mesh " + kMesh.string() + " --roi " + (dir / "dragged.roi.txt").string() +
+              " --handles " + (dir / "dragged.handles.json").string() + " --method implicit --weights " +
+              j["weights"].get<std::string>() + " --out " + cli_out.string() + " > /dev/null") == 0);
   const geometry::TriMesh cli = geometry::read_mesh(cli_out);
   CHECK(max_difference(cli.V, result.V) < 1e-9);
 }
 
 TEST_CASE("apps: deform app — a replayed drag renders headless, neither blank nor the unedited scene") {
   const fs::path dir = scratch_dir();
-  const std::string common = " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " +
-                             kHandles.string() + " --method implicit";
+  const std::string common = " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() +
+                             " --handles " + kHandles.string() + " --method implicit";
   const fs::path still = dir / "still.png", replayed = dir / "replayed.png", out = dir / "replayed.obj";
   REQUIRE(run_under_xvfb(kApp + common + " --screenshot " + still.string()) == 0);
   REQUIRE(run_under_xvfb(kApp + common + " --replay " + (kData / "deform_drag_events.json").string() +
@@ -317,7 +325,10 @@ TEST_CASE("apps: deform app — a replayed drag renders headless, neither blank 
   REQUIRE(a.rgba.size() == b.rgba.size());
   size_t changed = 0;
   for (size_t k = 0; k < a.rgba.size(); k += 4)
-    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) + std::abs(a.rgba[k + 2] - b.rgba[k + 2]) > 30) ++changed;
+    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) +
+            std::abs(a.rgba[k + 2] - b.rgba[k + 2]) >
+        30)
+      ++changed;
   CHECK(changed > a.rgba.size() / 4 / 100);  // over 1% of the pixels
   // The replay moved the handle: the exported mesh is not the rest mesh.
   const geometry::TriMesh rest = geometry::read_mesh(kMesh), moved = geometry::read_mesh(out);
@@ -333,21 +344,25 @@ TEST_CASE("apps: deform app — bad input is reported, not a crash") {
   CHECK(text.find("lapis-deform: error:") == 0);
   CHECK(text.find("bad.off") != std::string::npos);
   // A handle outside the mesh: the app starts, says why, and exports nothing.
-  std::ofstream(dir / "h.json") << R"({"regions": [{"vertices": [999999], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  std::ofstream(dir / "h.json")
+      << R"({"regions": [{"vertices": [999999], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
   std::ofstream(dir / "roi.txt") << "1 2 3";
   REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
                          " --handles " + (dir / "h.json").string() + " --export " + (dir / "none.obj").string() +
-                         " --export-on-exit --screenshot " + (dir / "err.png").string() + " 2> " + (dir / "err2.txt").string()) == 0);
+                         " --export-on-exit --screenshot " + (dir / "err.png").string() + " 2> " +
+                         (dir / "err2.txt").string()) == 0);
   std::ifstream err2(dir / "err2.txt");
   const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
   CHECK(text2.find("out of range") != std::string::npos);
   CHECK(!fs::exists(dir / "none.obj"));
   // A handle outside the ROI: the message `lapis deform` gives for the same files.
-  std::ofstream(dir / "h2.json") << R"({"regions": [{"vertices": [7], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  std::ofstream(dir / "h2.json")
+      << R"({"regions": [{"vertices": [7], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
   REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
                          " --handles " + (dir / "h2.json").string() + " --screenshot " + (dir / "err3.png").string() +
                          " 2> " + (dir / "err3.txt").string()) == 0);
   std::ifstream err3(dir / "err3.txt");
   const std::string text3((std::istreambuf_iterator<char>(err3)), std::istreambuf_iterator<char>());
-  CHECK(text3.find("mesh_deform::Deformer::precompute(): region handle 0 vertex 7 is outside the ROI") != std::string::npos);
+  CHECK(text3.find("mesh_deform::Deformer::precompute(): region handle 0 vertex 7 is outside the ROI") !=
+        std::string::npos);
 }

@@ -47,8 +47,10 @@ Eigen::Vector2d scalp_pixel(const hair_sketch::Head& head, const geometry::Camer
   Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
   for (Eigen::Index f = 0; f < head.mesh.F.rows(); ++f) {
     if (!head.scalp_face[static_cast<size_t>(f)]) continue;
-    const Eigen::Vector3d c = (head.mesh.V.row(head.mesh.F(f, 0)) + head.mesh.V.row(head.mesh.F(f, 1)) +
-                               head.mesh.V.row(head.mesh.F(f, 2))).transpose() / 3.0;
+    const Eigen::Vector3d c =
+        (head.mesh.V.row(head.mesh.F(f, 0)) + head.mesh.V.row(head.mesh.F(f, 1)) + head.mesh.V.row(head.mesh.F(f, 2)))
+            .transpose() /
+        3.0;
     if (head.face_normals.row(f).dot((eye - c).normalized()) < 0.5) continue;  // clearly facing us
     const Eigen::Vector2d s = geometry::project(cam, c).head<2>();
     visible.push_back(s);
@@ -83,16 +85,18 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
     drag += " mousemove --window $w " + std::to_string(int(start.x() + 2 * k)) + " " +
             std::to_string(int(start.y() + 9 * k)) + " sleep 0.02";
   drag += " mouseup 1";
-  const std::string body =
-      kApp + size + " --save-session " + session.string() + " --screenshot " + shot.string() + " --record " +
-      events.string() + " --ready-file " + (dir / "drawn.ready").string() + " &\napp=$!\n"
-      "window lapis-hair-sketch || { kill $app; exit 3; }\n"
-      "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"  // the first strands have grown
-      "mark; " + drag + "\n"
-      "wait_handled 0 2 || { kill $app; exit 5; }\n"  // press and release arrived, strands regrown
-      "mark; xdotool key --window $w ctrl+s; wait_handled 4 0 || { kill $app; exit 6; }\n"
-      "mark; xdotool key --window $w ctrl+p; wait_handled 4 0 || { kill $app; exit 7; }\n"
-      "xdotool key --window $w ctrl+q; wait $app\n";
+  const std::string body = kApp + size + " --save-session " + session.string() + " --screenshot " + shot.string() +
+                           " --record " + events.string() + " --ready-file " + (dir / "drawn.ready").string() +
+                           " &\napp=$!\n"
+                           "window lapis-hair-sketch || { kill $app; exit 3; }\n"
+                           "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"  // the first strands have grown
+                           "mark; " +
+                           drag +
+                           "\n"
+                           "wait_handled 0 2 || { kill $app; exit 5; }\n"  // press and release arrived, strands regrown
+                           "mark; xdotool key --window $w ctrl+s; wait_handled 4 0 || { kill $app; exit 6; }\n"
+                           "mark; xdotool key --window $w ctrl+p; wait_handled 4 0 || { kill $app; exit 7; }\n"
+                           "xdotool key --window $w ctrl+q; wait $app\n";
   REQUIRE(run_under_xvfb(ready_script(dir / "drawn.sh", dir / "drawn.ready", body)) == 0);
 
   // The events arrived as sent: one press and one release of the left button, the moves between.
@@ -118,7 +122,8 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
   // On or above the scalp: no point inside the head.
   for (const auto& p : curve->points) CHECK(!head.inside(p));
   // The drag went down the screen: so does the curve.
-  const Eigen::Vector3d a = geometry::project(cam, curve->points.front()), b = geometry::project(cam, curve->points.back());
+  const Eigen::Vector3d a = geometry::project(cam, curve->points.front()),
+                        b = geometry::project(cam, curve->points.back());
   CHECK(b.y() - a.y() > 60);
   CHECK(std::abs(b.x() - a.x()) < b.y() - a.y());
   // Resampled at d and lifted off the scalp.
@@ -162,10 +167,10 @@ TEST_CASE("apps: hair app — a headless export that cannot be written fails the
   const fs::path dir = scratch_dir();
   std::ofstream(dir / "a_file") << "not a directory";
   const fs::path log = dir / "export_failed.log";
-  const int status = run_under_xvfb("timeout 300 " + kApp + " --headless --size 320x240 --export-hair " +
-                                    (dir / "a_file" / "s.hair").string() + " --export-obj " +
-                                    (dir / "a_file" / "s.obj").string() + " --save-session " +
-                                    (dir / "a_file" / "s.json").string() + " > " + log.string() + " 2>&1");
+  const int status =
+      run_under_xvfb("timeout 300 " + kApp + " --headless --size 320x240 --export-hair " +
+                     (dir / "a_file" / "s.hair").string() + " --export-obj " + (dir / "a_file" / "s.obj").string() +
+                     " --save-session " + (dir / "a_file" / "s.json").string() + " > " + log.string() + " 2>&1");
   std::ifstream in(log);
   const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CAPTURE(output);

@@ -11,13 +11,13 @@
 #include <sstream>
 
 #include "app_runner.h"
+#include "first_view.h"  // lapis-merge's camera angles and panel width
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/pairs_file.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/orbit_camera.h"
-#include "first_view.h"  // lapis-merge's camera angles and panel width
 
 using namespace lapis;
 using namespace lapis::apps_test;
@@ -59,7 +59,8 @@ std::string text_of(const fs::path& path) {
 }
 
 std::string click(const Eigen::Vector2i& p) {
-  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) + " sleep 0.3 click 1 sleep 0.5; ";
+  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) +
+         " sleep 0.3 click 1 sleep 0.5; ";
 }
 
 // Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
@@ -80,9 +81,12 @@ struct DefaultScene {
     camera = first_view(source, target);
     const geometry::Connectivity sc(source), tc(target);
     sloop = sc.boundary_loops().at(0);
-    tloop = tc.boundary_loops().at(static_cast<size_t>(mesh_merge::facing_target_loop(source, sloop, target, tc.boundary_loops())));
+    tloop = tc.boundary_loops().at(
+        static_cast<size_t>(mesh_merge::facing_target_loop(source, sloop, target, tc.boundary_loops())));
   }
-  std::string pair_and_key() const { return pair_and_key_clicks(front_pixel(source, sloop), front_pixel(target, tloop)); }
+  std::string pair_and_key() const {
+    return pair_and_key_clicks(front_pixel(source, sloop), front_pixel(target, tloop));
+  }
   // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
   Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
     const Eigen::Vector3d eye = geometry::eye_position(camera);
@@ -143,7 +147,8 @@ void check_watertight_seam(const Exported& e) {
   for (const auto& p : e.pairs)
     for (size_t l = 0; l < tc.boundary_loops().size(); ++l) {
       const auto& loop = tc.boundary_loops()[l];
-      if (std::find(loop.begin(), loop.end(), p.keys.at(0).target) != loop.end()) paired_target_loops.insert(static_cast<int>(l));
+      if (std::find(loop.begin(), loop.end(), p.keys.at(0).target) != loop.end())
+        paired_target_loops.insert(static_cast<int>(l));
     }
   REQUIRE(paired_target_loops.size() == e.pairs.size());
   std::set<std::array<double, 3>> kept;
@@ -196,8 +201,9 @@ TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then me
   REQUIRE(std::min(s.y(), t.y()) > 30);
   const fs::path events = dir / "merge_events.json", prefix = dir / "live";
   REQUIRE(run_under_xvfb(xdotool_session("--record " + events.string() + " --export " + prefix.string(),
-                                         pair_and_key_clicks(s, t) + "mark; xdotool key --window $w m; wait_handled 2 0;"
-                                         " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;")) == 0);
+                                         pair_and_key_clicks(s, t) +
+                                             "mark; xdotool key --window $w m; wait_handled 2 0;"
+                                             " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.pairs.size() == 1);
   REQUIRE(e.pairs[0].keys.size() == 1);
@@ -231,7 +237,9 @@ TEST_CASE("apps: merge app — the headless screenshot after a merge is neither 
   CHECK(foreground_fraction(b) > 0.03);
   size_t differ = 0;
   for (size_t k = 0; k < a.rgba.size(); k += 4)
-    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) + std::abs(a.rgba[k + 2] - b.rgba[k + 2]) > 30)
+    if (std::abs(a.rgba[k] - b.rgba[k]) + std::abs(a.rgba[k + 1] - b.rgba[k + 1]) +
+            std::abs(a.rgba[k + 2] - b.rgba[k + 2]) >
+        30)
       ++differ;
   CHECK(static_cast<double>(differ) / static_cast<double>(a.rgba.size() / 4) > 0.01);
 }
@@ -239,7 +247,8 @@ TEST_CASE("apps: merge app — the headless screenshot after a merge is neither 
 TEST_CASE("apps: merge app — merging before anything is paired reports the module's error and keeps running") {
   const fs::path dir = scratch_dir(), events = dir / "merge_now.json", log = dir / "merge_now.log";
   write_merge_key_events(events);
-  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay 2> " +
+                         log.string()) == 0);
   const std::string text = text_of(log);
   CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
         std::string::npos);
@@ -253,16 +262,18 @@ TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis
   viewer::Gizmo gizmo;
   const Eigen::Vector3d c = scene.source.V.colwise().mean().transpose();
   gizmo.set_center(c);
-  const Eigen::Vector3d grab = geometry::project(scene.camera, c + 0.9 * gizmo.world_size(scene.camera) * Eigen::Vector3d::UnitY());
+  const Eigen::Vector3d grab =
+      geometry::project(scene.camera, c + 0.9 * gizmo.world_size(scene.camera) * Eigen::Vector3d::UnitY());
   REQUIRE(gizmo.hit(scene.camera, grab.head<2>()) == viewer::GizmoPart::TranslateY);
-  std::string drag = "xdotool key --window $w 4; sleep 0.5; xdotool mousemove --window $w " + pixel(grab) +
-                     " sleep 0.3 mousedown 1";
+  std::string drag =
+      "xdotool key --window $w 4; sleep 0.5; xdotool mousemove --window $w " + pixel(grab) + " sleep 0.3 mousedown 1";
   for (int k = 1; k <= 12; ++k)
-    drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " + std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
+    drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " +
+            std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
   drag += " mouseup 1; sleep 1; ";
-  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
-                                         scene.pair_and_key() +
-                                         drag + "mark; xdotool key --window $w m; wait_handled 2 0;")) == 0);
+  REQUIRE(run_under_xvfb(xdotool_session(
+              "--export " + prefix.string(),
+              scene.pair_and_key() + drag + "mark; xdotool key --window $w m; wait_handled 2 0;")) == 0);
   const Exported e = read_exports(prefix);
   REQUIRE(e.source.num_vertices() == scene.source.num_vertices());
   // A pure translation along +y: every vertex moved by the same vector.
@@ -279,20 +290,26 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
   // The cactus is closed: merging it says so. Painted across its middle and cut, it has one
   // boundary loop, so the module's complaint becomes the missing pair.
   const fs::path dir = scratch_dir(), log = dir / "paint.log";
-  const fs::path cactus = kSource / "assets/external/cactus.off", other = kSource / "assets/merge/dome_placed.obj";  // beside the cactus, not around it
+  const fs::path cactus = kSource / "assets/external/cactus.off",
+                 other = kSource / "assets/merge/dome_placed.obj";  // beside the cactus, not around it
   REQUIRE_MESSAGE(fs::exists(cactus), "run scripts/setup");
   const geometry::TriMesh source = geometry::read_mesh(cactus), target = geometry::read_mesh(other);
   const geometry::CameraMatrices cam = first_view(source, target);
   const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
-  std::string paint = "mark; xdotool key --window $w m; wait_handled 2 0; xdotool key --window $w 5; sleep 0.3; xdotool mousemove --window $w " +
-                      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
+  std::string paint =
+      "mark; xdotool key --window $w m; wait_handled 2 0; xdotool key --window $w 5; sleep 0.3; xdotool mousemove "
+      "--window $w " +
+      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
   for (int k = 1; k <= 8; ++k)
-    paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.05";
-  paint += " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; mark; xdotool key --window $w m; wait_handled 2 0;";
-  REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) + " 2> " +
-                         log.string()) == 0);
+    paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " +
+             std::to_string(std::lround(mid.y())) + " sleep 0.05";
+  paint +=
+      " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; mark; xdotool key --window $w m; wait_handled 2 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) +
+                         " 2> " + log.string()) == 0);
   const std::string text = text_of(log);
-  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): the source is closed (no boundary loop)") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): the source is closed (no boundary loop)") !=
+        std::string::npos);
   CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
         std::string::npos);
   CHECK(text.find("not manifold") == std::string::npos);
@@ -304,17 +321,20 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
   // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
   // of the dome, clicked with tool 3.
   double zmin = 1e300, zmax = -1e300;
-  for (int v = 0; v < scene.source.num_vertices(); ++v) zmin = std::min(zmin, scene.source.V(v, 2)), zmax = std::max(zmax, scene.source.V(v, 2));
+  for (int v = 0; v < scene.source.num_vertices(); ++v)
+    zmin = std::min(zmin, scene.source.V(v, 2)), zmax = std::max(zmax, scene.source.V(v, 2));
   const Eigen::Vector3d eye = geometry::eye_position(scene.camera);
   int handle = -1;
   for (int v = 0; v < scene.source.num_vertices(); ++v)
     if (scene.source.V(v, 2) > 0.5 * (zmin + zmax) &&
-        (handle < 0 || (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
+        (handle < 0 ||
+         (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
       handle = v;
   const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
   const std::string actions = scene.pair_and_key() +
                               "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
-                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; mark; xdotool key --window $w m; wait_handled 2 0;";
+                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; mark; xdotool key "
+                              "--window $w m; wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
@@ -330,15 +350,17 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
 }
 
 TEST_CASE("apps: merge app — undo takes the key back (the module's error names it), redo restores the merge") {
-  const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log", prefix = dir / "redone";
+  const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log",
+                 prefix = dir / "redone";
   // The recorded session, then Ctrl+Z, M, Ctrl+Shift+Z, M.
   constexpr int kZ = 90, kCtrl = 2, kShift = 1;
   write_recorded_session_then_keys(events, {{kZ, kCtrl}, {kM, 0}, {kZ, kCtrl | kShift}, {kM, 0}});
-  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string() +
-                         " 2> " + log.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " +
+                         prefix.string() + " 2> " + log.string()) == 0);
   const std::string text = text_of(log);
   CHECK(text.find("undo: key correspondence") != std::string::npos);
-  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): pair 0 has no key correspondence, expected at least one") !=
+  CHECK(text.find(
+            "merge failed: mesh_merge::check_merge_input(): pair 0 has no key correspondence, expected at least one") !=
         std::string::npos);
   CHECK(text.find("redo: key correspondence") != std::string::npos);
   const Exported e = read_exports(prefix);
@@ -352,7 +374,8 @@ TEST_CASE("apps: merge app — transition regions (T) merge watertight and expor
   const fs::path dir = scratch_dir(), events = dir / "transition.json", prefix = dir / "transition";
   // The recorded session, then T (transition regions on, suggested widths) and M.
   write_recorded_session_then_keys(events, {{kT, 0}, {kM, 0}});
-  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " + prefix.string()) == 0);
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " +
+                         prefix.string()) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
   CHECK(e.command.find("--keep source") != std::string::npos);
@@ -367,7 +390,9 @@ TEST_CASE("apps: merge app — a non-manifold source is refused with the module'
     out << "v 0 0 0\nv 1 0 0\nv 0.5 1 0\nv 0.5 -1 0\nv 0.5 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
   }
   write_merge_key_events(events);
-  REQUIRE(run_under_xvfb(kApp + " --headless --source " + bad.string() + " --target " + (kSource / "assets/merge/neck.obj").string() +
-                         " --replay " + events.string() + " --exit-after-replay 2> " + log.string()) == 0);
-  CHECK(text_of(log).find("merge failed: mesh_merge::check_merge_input(): the source is not manifold") != std::string::npos);
+  REQUIRE(run_under_xvfb(kApp + " --headless --source " + bad.string() + " --target " +
+                         (kSource / "assets/merge/neck.obj").string() + " --replay " + events.string() +
+                         " --exit-after-replay 2> " + log.string()) == 0);
+  CHECK(text_of(log).find("merge failed: mesh_merge::check_merge_input(): the source is not manifold") !=
+        std::string::npos);
 }

@@ -54,8 +54,8 @@ TEST_CASE("hair_app: display strands meet the budget with decimated, evenly spre
       const int a = s.offsets[static_cast<size_t>(src)], b = s.offsets[static_cast<size_t>(src) + 1];
       const int da = d.offsets[static_cast<size_t>(k)], db = d.offsets[static_cast<size_t>(k) + 1];
       CHECK(db - da == std::min(b - a, 32));
-      CHECK(d.points[static_cast<size_t>(da)] == s.points[static_cast<size_t>(a)]);           // root kept
-      CHECK(d.points[static_cast<size_t>(db) - 1] == s.points[static_cast<size_t>(b) - 1]);   // tip kept
+      CHECK(d.points[static_cast<size_t>(da)] == s.points[static_cast<size_t>(a)]);          // root kept
+      CHECK(d.points[static_cast<size_t>(db) - 1] == s.points[static_cast<size_t>(b) - 1]);  // tip kept
       for (int i = da + 1; i < db; ++i)  // a subsequence of the strand, in order
         CHECK(d.points[static_cast<size_t>(i)].y() > d.points[static_cast<size_t>(i) - 1].y());
     }

@@ -37,7 +37,8 @@ TEST_CASE("apps: a replayed zoom changes the picture the way zooming should") {
     log.events.push_back(s);
   }
   log.save(dir / "zoom.json");
-  REQUIRE(run_under_xvfb(kView + " " + kMesh + " --headless --size 640x480 --screenshot " + (dir / "far.png").string()) == 0);
+  REQUIRE(run_under_xvfb(kView + " " + kMesh + " --headless --size 640x480 --screenshot " +
+                         (dir / "far.png").string()) == 0);
   REQUIRE(run_under_xvfb(kView + " " + kMesh + " --headless --replay " + (dir / "zoom.json").string() +
                          " --exit-after-replay --screenshot " + (dir / "near.png").string()) == 0);
   const double far = foreground_fraction(viewer::read_png(dir / "far.png"));
@@ -51,15 +52,16 @@ TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
   // A visible window under Xvfb: xdotool finds it once it has drawn, presses the right button,
   // drags (orbit), scrolls, and quits with Ctrl+Q once those arrived, so the app exits cleanly
   // and writes the recording.
-  const std::string body =
-      kView + " " + kMesh + " --size 640x480 --record " + rec.string() + " --ready-file " +
-      (dir / "view.ready").string() + " &\napp=$!\n"
-      "window lapis-view || { kill $app; exit 3; }\n"
-      "mark; xdotool mousemove --window $w 300 240 mousedown 3 mousemove --window $w 360 250"
-      " mousemove --window $w 420 260 mouseup 3 click 4 click 4\n"
-      // 3 moves, 2 buttons, 2 wheel clicks (GLFW scrolls); in order, so ctrl+q comes after them
-      "wait_ready \"[ \\$buttons -ge $((mark_buttons + 2)) ] && [ \\$events -ge $((mark_events + 6)) ]\" || { kill $app; exit 4; }\n"
-      "xdotool key --window $w ctrl+q; wait $app\n";
+  const std::string body = kView + " " + kMesh + " --size 640x480 --record " + rec.string() + " --ready-file " +
+                           (dir / "view.ready").string() +
+                           " &\napp=$!\n"
+                           "window lapis-view || { kill $app; exit 3; }\n"
+                           "mark; xdotool mousemove --window $w 300 240 mousedown 3 mousemove --window $w 360 250"
+                           " mousemove --window $w 420 260 mouseup 3 click 4 click 4\n"
+                           // 3 moves, 2 buttons, 2 wheel clicks (GLFW scrolls); in order, so ctrl+q comes after them
+                           "wait_ready \"[ \\$buttons -ge $((mark_buttons + 2)) ] && [ \\$events -ge $((mark_events + "
+                           "6)) ]\" || { kill $app; exit 4; }\n"
+                           "xdotool key --window $w ctrl+q; wait $app\n";
   REQUIRE(run_under_xvfb(ready_script(dir / "view.sh", dir / "view.ready", body)) == 0);
   const viewer::EventLog log = viewer::EventLog::load(rec);
   int presses = 0, releases = 0, scrolls = 0, moves = 0;
@@ -68,7 +70,7 @@ TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
     if (e.type == viewer::EventType::Scroll) ++scrolls;
     if (e.type == viewer::EventType::MouseMove) ++moves;
   }
-  CHECK(presses == 1);    // GLFW's right button is 1; X's button 3
+  CHECK(presses == 1);  // GLFW's right button is 1; X's button 3
   CHECK(releases == 1);
   CHECK(scrolls == 2);
   CHECK(moves >= 2);

@@ -32,7 +32,8 @@ Result deform(const fs::path& mesh, const std::string& roi, const std::string& h
                    " --method naive --out " + out.string() + extra);
 }
 
-const char* kLift = R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]]}]})";
+const char* kLift =
+    R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]]}]})";
 
 }  // namespace
 
@@ -53,8 +54,8 @@ TEST_CASE("cli: lapis deform refuses the meshes that lapis mesh calls invalid") 
     CHECK(r.output.find("lapis deform: error: " + mesh.string() + ": invalid mesh: ") == 0);
     CHECK_FALSE(fs::exists(d / "bad.obj"));
   }
-  const Result merged = lapis_cli("merge --source " + duplicate.string() + " --target " + good.string() +
-                                  " --pairs " + write(d / "p.json", R"({"pairs": [{"keys": [{"source": 0, "target": 0}]}]})") +
+  const Result merged = lapis_cli("merge --source " + duplicate.string() + " --target " + good.string() + " --pairs " +
+                                  write(d / "p.json", R"({"pairs": [{"keys": [{"source": 0, "target": 0}]}]})") +
                                   " --out " + (d / "m.obj").string());
   CHECK(merged.status == 1);
   CHECK(merged.output.find("lapis merge: error: " + duplicate.string() + ": invalid mesh: 1 duplicate face") == 0);
@@ -68,9 +69,11 @@ TEST_CASE("cli: lapis deform refuses indices that would wrap and writes nothing 
   Result r = deform(mesh, write(d / "wrap.txt", "1 2 4294967296 5 7 8\n"), handles, out);
   CHECK(r.status == 1);
   CHECK(r.output.find("ROI entry 2: expected an integer in [0, 2147483647], found 4294967296") != std::string::npos);
-  r = deform(mesh, roi, write(d / "wrap.json", R"({"points": [{"vertex": 4294967301, "translations": [[0, 0, 1]]}]})"), out);
+  r = deform(mesh, roi, write(d / "wrap.json", R"({"points": [{"vertex": 4294967301, "translations": [[0, 0, 1]]}]})"),
+             out);
   CHECK(r.status == 1);
-  CHECK(r.output.find("point handle 0: vertex: expected an integer in [0, 2147483647], found 4294967301") != std::string::npos);
+  CHECK(r.output.find("point handle 0: vertex: expected an integer in [0, 2147483647], found 4294967301") !=
+        std::string::npos);
   r = deform(mesh, write(d / "frac.json", "[1, 2, 4.5]"), handles, out);
   CHECK(r.status == 1);
   CHECK(r.output.find("ROI[2]: expected an integer in [0, 2147483647], found '4.5'") != std::string::npos);
@@ -81,7 +84,8 @@ TEST_CASE("cli: lapis deform refuses indices that would wrap and writes nothing 
   // Translations of 1e308 are finite, the deformation's metrics (or positions) are not: no OBJ,
   // no report, exit 1.
   const std::string far = write(
-      d / "far.json", R"({"points": [{"vertex": 2, "translations": [[1e308, -1e308, 1e308]]}, {"vertex": 8, "translations": [[-1e308, 1e308, -1e308]]}]})");
+      d / "far.json",
+      R"({"points": [{"vertex": 2, "translations": [[1e308, -1e308, 1e308]]}, {"vertex": 8, "translations": [[-1e308, 1e308, -1e308]]}]})");
   r = deform(mesh, roi, far, out, " --report " + (d / "far_report.json").string());
   CHECK(r.status == 1);
   CHECK(r.output.find("lapis deform: error: ") == 0);

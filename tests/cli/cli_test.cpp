@@ -4,8 +4,8 @@
 
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -82,15 +82,16 @@ TEST_CASE("cli: lapis hair replays a bundled session into .hair, OBJ and a repor
   const fs::path d = fs::temp_directory_path() / ("lapis_cli_hair_" + std::to_string(::getpid()));
   fs::create_directories(d);
   const fs::path sessions = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
-  const Result replay = lapis_cli("hair --session " + (sessions / "parting.json").string() + " --out-hair " +
-                                       (d / "p.hair").string() + " --out-obj " + (d / "p.obj").string() +
-                                       " --report " + (d / "r.json").string());
+  const Result replay =
+      lapis_cli("hair --session " + (sessions / "parting.json").string() + " --out-hair " + (d / "p.hair").string() +
+                " --out-obj " + (d / "p.obj").string() + " --report " + (d / "r.json").string());
   REQUIRE_MESSAGE(replay.status == 0, replay.output);
   const auto report = read_cli_json(d / "r.json"), settings = read_cli_json(sessions / "parting.json")["settings"];
   // Nearly every root grows a strand (a root whose field is zero grows none) of at least one
   // and at most max_length / step segments; scalp avoidance (§4.6) keeps all but a few
   // percent of the segments off the head.
-  const double roots = settings["roots"], per_strand = settings["max_length"].get<double>() / settings["step"].get<double>();
+  const double roots = settings["roots"],
+               per_strand = settings["max_length"].get<double>() / settings["step"].get<double>();
   const double strand_count = report["strands"], segments = report["segments"];
   CHECK(strand_count <= roots);
   CHECK(strand_count >= 0.95 * roots);
@@ -155,8 +156,9 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
     std::ofstream roi(d / "small_roi.txt");
     roi << "1 4 7\n";
   }
-  const Result outside = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "small_roi.txt").string() +
-                                   " --handles " + (d / "handles.json").string() + " --method naive --out x.obj");
+  const Result outside =
+      lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "small_roi.txt").string() +
+                " --handles " + (d / "handles.json").string() + " --method naive --out x.obj");
   CHECK(outside.status == 1);
   CHECK(outside.output ==
         "lapis deform: error: mesh_deform::Deformer::precompute(): region handle 0 vertex 2 is outside the ROI\n");

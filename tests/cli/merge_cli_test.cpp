@@ -27,9 +27,10 @@ fs::path scratch_dir() { return lapis::cli_test::scratch_dir("merge_cli_test"); 
 
 TEST_CASE("cli: lapis merge writes a watertight merge and its report") {
   const fs::path d = scratch_dir();
-  const std::string common = "--target " + asset("neck.obj").string() + " --pairs " + asset("dome_on_neck.json").string();
-  const Run r = lapis_merge("--source " + asset("dome.obj").string() + " " + common + " --out " + (d / "m.obj").string() +
-                            " --report " + (d / "m.json").string());
+  const std::string common =
+      "--target " + asset("neck.obj").string() + " --pairs " + asset("dome_on_neck.json").string();
+  const Run r = lapis_merge("--source " + asset("dome.obj").string() + " " + common + " --out " +
+                            (d / "m.obj").string() + " --report " + (d / "m.json").string());
   REQUIRE_MESSAGE(r.status == 0, r.output);
   std::ifstream in(d / "m.json");
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -43,8 +44,9 @@ TEST_CASE("cli: lapis merge writes a watertight merge and its report") {
     std::ofstream h(d / "handles.json");
     h << "{\"handles\": [12, 27, 67]}\n";
   }
-  const Run dep = lapis_merge("--source " + asset("dome_placed.obj").string() + " " + common + " --mode dependent --handles " +
-                              (d / "handles.json").string() + " --out " + (d / "dep.obj").string());
+  const Run dep =
+      lapis_merge("--source " + asset("dome_placed.obj").string() + " " + common + " --mode dependent --handles " +
+                  (d / "handles.json").string() + " --out " + (d / "dep.obj").string());
   CHECK_MESSAGE(dep.status == 0, dep.output);
   CHECK(dep.output.find("\"mode\": \"dependent\"") != std::string::npos);
   fs::remove_all(d);
@@ -98,7 +100,8 @@ TEST_CASE("cli: lapis merge fails with one line naming the cause") {
   CHECK(width.output.find("transition source_width and target_width must be finite and > 0") != std::string::npos);
   const Run range = lapis_merge("--source a --target b --pairs c --out d --mode dependent --roi-width -1");
   CHECK(range.status == 2);
-  CHECK(range.output.find("--roi-width: expected a finite number in [0, 1e+300], found -1\n") != std::string::npos);  // not 300 digits
+  CHECK(range.output.find("--roi-width: expected a finite number in [0, 1e+300], found -1\n") !=
+        std::string::npos);  // not 300 digits
   const Run stray = lapis_merge("--source a --target b --pairs c --out d --target-width 0.1");
   CHECK(stray.status == 2);
   CHECK(stray.output.find("--target-width needs --mode transition") != std::string::npos);

@@ -2,11 +2,11 @@
 // then the source tree; a missing asset names every place searched.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <string>
-#include <unistd.h>
 
 #include "lapis/core/asset_path.h"
 #include "lapis/core/error.h"
@@ -22,12 +22,16 @@ class AssetDirEnv {
  public:
   explicit AssetDirEnv(const std::optional<fs::path>& dir) {
     if (const char* old = std::getenv("LAPIS_ASSET_DIR")) old_ = old;
-    if (dir) ::setenv("LAPIS_ASSET_DIR", dir->c_str(), 1);
-    else ::unsetenv("LAPIS_ASSET_DIR");
+    if (dir)
+      ::setenv("LAPIS_ASSET_DIR", dir->c_str(), 1);
+    else
+      ::unsetenv("LAPIS_ASSET_DIR");
   }
   ~AssetDirEnv() {
-    if (old_) ::setenv("LAPIS_ASSET_DIR", old_->c_str(), 1);
-    else ::unsetenv("LAPIS_ASSET_DIR");
+    if (old_)
+      ::setenv("LAPIS_ASSET_DIR", old_->c_str(), 1);
+    else
+      ::unsetenv("LAPIS_ASSET_DIR");
   }
 
  private:

@@ -18,10 +18,12 @@ TEST_CASE("core: text integers are whole, in range and never wrap") {
   CHECK_THROWS_WITH_AS(parse_index("4294967301", "vertex"),
                        "vertex: expected an integer in [0, 2147483647], found 4294967301", InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_index("99999999999999999999999", "vertex"),
-                       "vertex: expected an integer in [0, 2147483647], found 99999999999999999999999", InvalidArgument);
+                       "vertex: expected an integer in [0, 2147483647], found 99999999999999999999999",
+                       InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_index("-1", "vertex"), "vertex: expected an integer in [0, 2147483647], found -1",
                        InvalidArgument);
-  CHECK_THROWS_WITH_AS(parse_index("5", "vertex", 5), "vertex: expected an integer in [0, 4], found 5", InvalidArgument);
+  CHECK_THROWS_WITH_AS(parse_index("5", "vertex", 5), "vertex: expected an integer in [0, 4], found 5",
+                       InvalidArgument);
   for (const char* bad : {"1.5", "1e3", "", "+", "12abc", " 1", "0x10"})
     CHECK_THROWS_AS(parse_integer(bad, "n", 0, 1000), InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_integer<IoError>("1.5", "f.txt: entry 3", 0, 9),
@@ -32,13 +34,13 @@ TEST_CASE("core: text and computed numbers are finite and in range") {
   CHECK(parse_finite("1e-3", "step") == 1e-3);
   CHECK(parse_finite("+2.5", "x", 0, 3) == 2.5);
   for (const char* bad : {"1e400", "nan", "inf", "-inf", "", "1.0x", "4", "-0.5"})
-    CHECK_THROWS_WITH_AS(parse_finite(bad, "x", 0, 3), doctest::Contains("x: expected a finite number in [0, 3], found"),
-                         InvalidArgument);
+    CHECK_THROWS_WITH_AS(parse_finite(bad, "x", 0, 3),
+                         doctest::Contains("x: expected a finite number in [0, 3], found"), InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_finite("nan", "x"), "x: expected a finite number, found nan", InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_finite("1e999", "x"), "x: expected a finite number, found 1e999", InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_finite("0x1p3", "x"), "x: expected a finite number, found '0x1p3'", InvalidArgument);
-  CHECK_THROWS_WITH_AS(parse_finite("-0.5", "--width", 0, 1e300), "--width: expected a finite number in [0, 1e+300], found -0.5",
-                       InvalidArgument);
+  CHECK_THROWS_WITH_AS(parse_finite("-0.5", "--width", 0, 1e300),
+                       "--width: expected a finite number in [0, 1e+300], found -0.5", InvalidArgument);
   CHECK(check_finite(1e308, "y") == 1e308);
   CHECK_THROWS_WITH_AS(check_finite(1e308 * 10, "vertex 3 x"), "vertex 3 x: expected a finite number, found inf",
                        InvalidArgument);
@@ -69,6 +71,7 @@ TEST_CASE("core: JSON numbers are finite and in range") {
   CHECK(json_finite(json::parse("-1e308"), "t") == -1e308);
   CHECK_THROWS_WITH_AS(json_finite(json::parse("2"), "t", 0, 1), "t: expected a finite number in [0, 1], found 2",
                        InvalidArgument);
-  CHECK_THROWS_WITH_AS(json_finite(json::parse("[1]"), "t"), "t: expected a finite number, found '[1]'", InvalidArgument);
+  CHECK_THROWS_WITH_AS(json_finite(json::parse("[1]"), "t"), "t: expected a finite number, found '[1]'",
+                       InvalidArgument);
   CHECK_THROWS_AS(json_finite(json(std::numeric_limits<double>::infinity()), "t"), InvalidArgument);
 }

@@ -30,12 +30,13 @@ const std::vector<CommandLine>& command_lines() {
        {{"--grid-unknowns", 8, 1e8}, {"--roots", 0, 1e7}},
        {}},
       {{"--scale-features"},
-       {"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out", "--report"},
+       {"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
+        "--report"},
        {{"--iterations", 1, 1e6}},
        {}},
       {{},
-       {"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
-        "--source-width", "--target-width", "--keep", "--report"},
+       {"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width", "--source-width",
+        "--target-width", "--keep", "--report"},
        {{"--smooth", 0, 1000}},
        {{"--roi-width", 0, 1e300}, {"--source-width", -1e300, 1e300}, {"--target-width", -1e300, 1e300}}},
       {{},
@@ -55,8 +56,10 @@ const std::vector<CommandLine>& command_lines() {
 std::vector<std::string> split_at_nul(const std::uint8_t* data, std::size_t size) {
   std::vector<std::string> argv(1);
   for (std::size_t i = 0; i < size; ++i) {
-    if (data[i] == 0) argv.emplace_back();
-    else argv.back().push_back(static_cast<char>(data[i]));
+    if (data[i] == 0)
+      argv.emplace_back();
+    else
+      argv.back().push_back(static_cast<char>(data[i]));
   }
   return argv;
 }
@@ -71,8 +74,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const lapis::cli::Args args(argv, line.switches);
     args.allow_only(line.known);
     for (const auto& flag : line.known) (void)args.get(flag, "");
-    for (const auto& r : line.ints)
-      (void)args.get_int(r.flag, 0, static_cast<long>(r.lo), static_cast<long>(r.hi));
+    for (const auto& r : line.ints) (void)args.get_int(r.flag, 0, static_cast<long>(r.lo), static_cast<long>(r.hi));
     for (const auto& r : line.doubles) (void)args.get_double(r.flag, 0.0, r.lo, r.hi);
     if (!line.known.empty()) (void)args.get(*line.known.begin());
   });

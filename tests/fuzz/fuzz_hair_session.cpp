@@ -57,7 +57,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     session.settings.grid.memory_limit_bytes = kMemoryLimitBytes;
     session.settings.field.memory_limit_bytes = kMemoryLimitBytes;
     const Hairstyle style = session.strokes.empty() ? session : replay_strokes(session, head);
-    if (!affordable(style)) throw lapis::ResourceLimit("fuzz_hair_session: replayed primitives beyond the fuzzing limits");
+    if (!affordable(style))
+      throw lapis::ResourceLimit("fuzz_hair_session: replayed primitives beyond the fuzzing limits");
     (void)build_hairstyle(style, head);
   });
 }

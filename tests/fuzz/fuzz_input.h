@@ -3,14 +3,14 @@
 // the replay driver) and is a finding.
 #pragma once
 
+#include <unistd.h>
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "lapis/core/error.h"
 
@@ -18,10 +18,8 @@ namespace lapis::fuzz {
 
 // Writes the input to one file per process and returns its path; `extension` keeps
 // dispatching readers honest (".obj", ".ply", ...).
-inline std::filesystem::path input_file(const std::uint8_t* data, std::size_t size,
-                                        const std::string& extension) {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("lapis_fuzz_" + std::to_string(::getpid()) + extension);
+inline std::filesystem::path input_file(const std::uint8_t* data, std::size_t size, const std::string& extension) {
+  const auto path = std::filesystem::temp_directory_path() / ("lapis_fuzz_" + std::to_string(::getpid()) + extension);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return path;
@@ -43,8 +41,7 @@ int expect_lapis_errors_only(Body&& body) {
 
 // Reads the file the input was written to with `reader(path)`.
 template <class Reader>
-int read_as_file(const std::uint8_t* data, std::size_t size, const std::string& extension,
-                 Reader&& reader) {
+int read_as_file(const std::uint8_t* data, std::size_t size, const std::string& extension, Reader&& reader) {
   const auto path = input_file(data, size, extension);
   return expect_lapis_errors_only([&] { reader(path); });
 }

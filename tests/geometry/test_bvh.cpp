@@ -43,7 +43,8 @@ TEST_CASE("geometry: BVH ray hits agree with brute force on 10K random rays") {
   int hits = 0, mismatches = 0;
   for (int i = 0; i < 10000; ++i) {
     // Origins outside and inside the bounding box, aimed at random points near the mesh.
-    const Eigen::Vector3d origin = centre + (i % 2 ? radius : 0.3 * radius) * Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+    const Eigen::Vector3d origin =
+        centre + (i % 2 ? radius : 0.3 * radius) * Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
     const Eigen::Vector3d target = m.V.row(static_cast<int>(u(rng) * m.num_vertices()) % m.num_vertices()).transpose() +
                                    0.01 * radius * Eigen::Vector3d(g(rng), g(rng), g(rng));
     const Eigen::Vector3d dir = target - origin;
@@ -103,8 +104,8 @@ TEST_CASE("geometry: BVH inside test on a closed mesh") {
 TEST_CASE("geometry: BVH handles degenerate input") {
   const Bvh empty(TriMesh{});
   CHECK_FALSE(empty.intersect(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()).has_value());
-  CHECK_THROWS_WITH_AS(empty.closest_point(Eigen::Vector3d::Zero()), "geometry::Bvh::closest_point(): the mesh has no faces",
-                       lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(empty.closest_point(Eigen::Vector3d::Zero()),
+                       "geometry::Bvh::closest_point(): the mesh has no faces", lapis::InvalidArgument);
   // Many coincident triangles: SAH finds no split, the median fallback keeps the tree shallow.
   TriMesh stack;
   stack.V.resize(3, 3);

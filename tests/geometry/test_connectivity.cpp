@@ -58,7 +58,8 @@ TEST_CASE("geometry: boundary loops of a cylinder are two ordered cycles") {
   }
   CHECK(euler_characteristic(conn) == 0);
   CHECK(genus(conn) == 0);
-  for (int v = 0; v < cyl.num_vertices(); ++v) CHECK(conn.is_boundary_vertex(v) == (cyl.V(v, 2) == 0.0 || cyl.V(v, 2) == 1.0));
+  for (int v = 0; v < cyl.num_vertices(); ++v)
+    CHECK(conn.is_boundary_vertex(v) == (cyl.V(v, 2) == 0.0 || cyl.V(v, 2) == 1.0));
 }
 
 TEST_CASE("geometry: edges, faces and neighbours are consistent") {
@@ -70,11 +71,12 @@ TEST_CASE("geometry: edges, faces and neighbours are consistent") {
       const auto [a, b] = conn.edges()[conn.face_edge(f, k)];
       CHECK(std::set<int>{a, b} == std::set<int>{m.F(f, k), m.F(f, (k + 1) % 3)});
       const int g = conn.face_neighbor(f, k);
-      if (g >= 0) CHECK(conn.face_neighbor(g, [&] {
-                          for (int j = 0; j < 3; ++j)
-                            if (conn.face_edge(g, j) == conn.face_edge(f, k)) return j;
-                          return -1;
-                        }()) == f);
+      if (g >= 0)
+        CHECK(conn.face_neighbor(g, [&] {
+          for (int j = 0; j < 3; ++j)
+            if (conn.face_edge(g, j) == conn.face_edge(f, k)) return j;
+          return -1;
+        }()) == f);
     }
   for (int v = 0; v < m.num_vertices(); ++v) {
     const auto n = conn.vertex_neighbors(v);
@@ -97,8 +99,7 @@ TEST_CASE("geometry: ordered one-rings follow face orientation") {
       const int a = ring[i], b = ring[(i + 1) % ring.size()];
       bool found = false;
       for (int f : conn.vertex_faces(v))
-        for (int k = 0; k < 3; ++k)
-          found |= m.F(f, k) == v && m.F(f, (k + 1) % 3) == a && m.F(f, (k + 2) % 3) == b;
+        for (int k = 0; k < 3; ++k) found |= m.F(f, k) == v && m.F(f, (k + 1) % 3) == a && m.F(f, (k + 2) % 3) == b;
       CHECK(found);
     }
   }

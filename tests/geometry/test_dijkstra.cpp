@@ -43,7 +43,7 @@ TEST_CASE("geometry: Dijkstra with per-edge costs, limits and multiple sources")
   };
   const std::vector<int> from{0};
   const ShortestPaths sp = dijkstra(conn, from, cost);
-  const std::vector<int> path = extract_path(sp, 13);  // top right corner
+  const std::vector<int> path = extract_path(sp, 13);           // top right corner
   CHECK(std::find(path.begin(), path.end(), 3) != path.end());  // through the bottom vertex at x = 0.5
   // max_distance stops growth; target stops early.
   DijkstraOptions limited;

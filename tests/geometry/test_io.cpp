@@ -2,10 +2,10 @@
 // real meshes of assets/external/.
 #include <doctest/doctest.h>
 
-#include <bit>
-#include <fstream>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <bit>
+#include <fstream>
 
 #include "lapis/core/error.h"
 #include "lapis/core/format.h"
@@ -54,8 +54,8 @@ TEST_CASE("geometry: every reader round-trips what its writer wrote") {
 }
 
 TEST_CASE("geometry: OBJ polylines round-trip") {
-  const std::vector<std::vector<Eigen::Vector3d>> curves = {
-      {{0, 0, 0}, {1, 0.5, 0}, {2, 0, 1e-7}}, {{5, 5, 5}, {6, 6, 6}}};
+  const std::vector<std::vector<Eigen::Vector3d>> curves = {{{0, 0, 0}, {1, 0.5, 0}, {2, 0, 1e-7}},
+                                                            {{5, 5, 5}, {6, 6, 6}}};
   const fs::path path = test::scratch_dir() / "curves.obj";
   write_obj_polylines(path, curves);
   const Polylines p = read_obj_polylines(path);
@@ -67,10 +67,10 @@ TEST_CASE("geometry: OBJ polylines round-trip") {
 }
 
 TEST_CASE("geometry: OBJ corner forms, negative indices, polygons, CRLF and comments") {
-  const fs::path path = test::write_bytes(
-      "forms.obj",
-      "# comment\r\nv 0 0 0\r\nv 1 0 0 # trailing\r\nv 1 1 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\n"
-      "g quad\r\nf 1/1/1 2//1 3/1 -1\r\n");
+  const fs::path path =
+      test::write_bytes("forms.obj",
+                        "# comment\r\nv 0 0 0\r\nv 1 0 0 # trailing\r\nv 1 1 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\n"
+                        "g quad\r\nf 1/1/1 2//1 3/1 -1\r\n");
   Warnings warnings;
   const TriMesh m = read_obj(path, &warnings);
   REQUIRE(m.num_faces() == 2);
@@ -83,7 +83,8 @@ TEST_CASE("geometry: OBJ corner forms, negative indices, polygons, CRLF and comm
 TEST_CASE("geometry: OFF without edge count, counts on the keyword line, COFF colours") {
   const TriMesh a = read_off(test::write_bytes("noedges.off", "OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"));
   CHECK(a.num_faces() == 1);
-  const TriMesh b = read_off(test::write_bytes("oneline.off", "COFF 3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n"));
+  const TriMesh b = read_off(test::write_bytes(
+      "oneline.off", "COFF 3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2 10 20 30\n"));
   CHECK(b.V(1, 0) == 1.0);
   CHECK(b.F.row(0) == Eigen::RowVector3i(0, 1, 2));
 }
@@ -94,7 +95,9 @@ TEST_CASE("geometry: PLY with unusual types, extra properties and elements") {
       "ply\r\nformat binary_big_endian 1.0\r\ncomment hi\r\nelement vertex 3\r\nproperty float x\r\n"
       "property float y\r\nproperty float z\r\nproperty uchar confidence\r\nelement face 1\r\n"
       "property list ushort uint vertex_index\r\nelement edge 1\r\nproperty int a\r\nproperty int b\r\nend_header\r\n";
-  auto be32 = [&](std::uint32_t v) { for (int i = 3; i >= 0; --i) s += static_cast<char>((v >> (8 * i)) & 0xff); };
+  auto be32 = [&](std::uint32_t v) {
+    for (int i = 3; i >= 0; --i) s += static_cast<char>((v >> (8 * i)) & 0xff);
+  };
   auto bef = [&](float f) { be32(std::bit_cast<std::uint32_t>(f)); };
   const float xyz[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 2.5f, 0}};
   for (const auto& p : xyz) {
@@ -131,17 +134,18 @@ TEST_CASE("geometry: writers are atomic and leave no temporary files") {
   const fs::path path = dir / "m.off";
   write_mesh(path, test::tetrahedron());
   // A writer that throws half way leaves the previous file intact and no debris.
-  CHECK_THROWS_AS(write_file_atomically(path, [](std::ostream& out) {
-                    out << "garbage";
-                    throw std::runtime_error("crash");
-                  }),
+  CHECK_THROWS_AS(write_file_atomically(path,
+                                        [](std::ostream& out) {
+                                          out << "garbage";
+                                          throw std::runtime_error("crash");
+                                        }),
                   std::runtime_error);
   CHECK(read_mesh(path).F == test::tetrahedron().F);
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
   CHECK_THROWS_WITH_AS(write_mesh(dir / "missing_dir" / "m.off", test::tetrahedron()),
                        doctest::Contains("geometry::write_file_atomically(): "), lapis::IoError);
-  CHECK_THROWS_WITH_AS(write_mesh(dir / "m.xyz", test::tetrahedron()),
-                       doctest::Contains("unknown extension '.xyz'"), lapis::IoError);
+  CHECK_THROWS_WITH_AS(write_mesh(dir / "m.xyz", test::tetrahedron()), doctest::Contains("unknown extension '.xyz'"),
+                       lapis::IoError);
 }
 
 namespace {
@@ -248,21 +252,34 @@ TEST_CASE("geometry: writers refuse non-finite positions and leave the previous 
     const std::string ext = path.extension().string().substr(1);
     CHECK_THROWS_WITH_AS(write_mesh(path, bad),
                          ("geometry::write_" + ext + "(): vertex 2 = (" + lapis::format_number(bad.V(2, 0)) +
-                          ", -nan, inf) is not finite").c_str(),
+                          ", -nan, inf) is not finite")
+                             .c_str(),
                          lapis::InvalidArgument);
     CHECK(read_mesh(path).num_faces() == 4);  // the previous file
     CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
     fs::remove(path);
   }
-  CHECK_THROWS_WITH_AS(write_obj_polylines(dir / "l.obj", {{Eigen::Vector3d::Zero(), Eigen::Vector3d(1, std::nan(""), 0)}}),
-                       "geometry::write_obj_polylines(): point 1 of polyline 0 is not finite", lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      write_obj_polylines(dir / "l.obj", {{Eigen::Vector3d::Zero(), Eigen::Vector3d(1, std::nan(""), 0)}}),
+      "geometry::write_obj_polylines(): point 1 of polyline 0 is not finite", lapis::InvalidArgument);
   CHECK_FALSE(fs::exists(dir / "l.obj"));
 }
 
 TEST_CASE("geometry: the real meshes in assets/external load and validate") {
-  const char* names[] = {"armadillo", "bunny00", "cactus", "dino", "lion", "camel", "elephant",
-                         "refined_elephant", "mannequin-devil", "man", "diplodocus",
-                         "ChineseDragon-10kv", "double-torus-example", "double-torus-3-holes"};
+  const char* names[] = {"armadillo",
+                         "bunny00",
+                         "cactus",
+                         "dino",
+                         "lion",
+                         "camel",
+                         "elephant",
+                         "refined_elephant",
+                         "mannequin-devil",
+                         "man",
+                         "diplodocus",
+                         "ChineseDragon-10kv",
+                         "double-torus-example",
+                         "double-torus-3-holes"};
   for (const char* name : names) {
     CAPTURE(name);
     const fs::path path = test::external_asset(std::string(name) + ".off");

@@ -54,7 +54,8 @@ std::string garbage(std::uint32_t seed, size_t n, bool with_nul) {
   return s;
 }
 
-const std::string kLongVertices = "0.000000 0.000000 0.000000\n1.000000 0.000000 0.000000\n0.000000 1.000000 0.000000\n";
+const std::string kLongVertices =
+    "0.000000 0.000000 0.000000\n1.000000 0.000000 0.000000\n0.000000 1.000000 0.000000\n";
 
 std::vector<Case> corpus() {
   return {
@@ -63,29 +64,36 @@ std::vector<Case> corpus() {
       {"header.off", "PLY\n3 1 0\n", "line 1: expected an 'OFF' header, found 'PLY'"},
       {"no_counts.off", "OFF\n3\n", "expected face count, found end of file"},
       {"negative.off", "OFF\n-3 1 0\n", "negative vertex or face count (-3, 1)"},
-      {"huge.off", "OFF\n2000000000 1 0\n0 0 0\n", "header claims 2000000000 vertices and 1 faces, more than the remaining"},
+      {"huge.off", "OFF\n2000000000 1 0\n0 0 0\n",
+       "header claims 2000000000 vertices and 1 faces, more than the remaining"},
       {"huge_faces.off", "OFF\n3 99999999999 0\n" + kLongVertices, "header claims 3 vertices and 99999999999 faces"},
       {"trunc_v.off", "OFF\n4 1 0\n" + kLongVertices, "line 6: file ends after 3 of 4 vertices"},
       {"trunc_f.off", "OFF\n3 2 0\n" + kLongVertices + "3 0 1 2\n", "file ends after 1 of 2 faces"},
       {"nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n", "line 4: non-finite vertex x coordinate 'nan'"},
       {"inf.off", "OFF\n3 1 0\n0 0 0\n1 -inf 0\n0 1 0\n3 0 1 2\n", "line 4: non-finite vertex y coordinate '-inf'"},
-      {"letters.off", "OFF\n3 1 0\n0 abc 0\n1 0 0\n0 1 0\n3 0 1 2\n", "line 3: expected vertex y coordinate, found 'abc'"},
-      {"short_vertex.off", "OFF\n3 1 0\n0.000000 0.000000\n" + kLongVertices.substr(27) + "3 0 1 2\n", "line 3: expected vertex z coordinate, found end of line"},
+      {"letters.off", "OFF\n3 1 0\n0 abc 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "line 3: expected vertex y coordinate, found 'abc'"},
+      {"short_vertex.off", "OFF\n3 1 0\n0.000000 0.000000\n" + kLongVertices.substr(27) + "3 0 1 2\n",
+       "line 3: expected vertex z coordinate, found end of line"},
       {"bad_index.off", "OFF\n3 1 0\n" + kLongVertices + "3 0 1 7\n", "line 6: face 0 index 7 out of range [0, 3)"},
       {"neg_index.off", "OFF\n3 1 0\n" + kLongVertices + "3 0 -1 2\n", "face 0 index -1 out of range"},
       {"frac_index.off", "OFF\n3 1 0\n" + kLongVertices + "3 0 1 2.5\n", "expected vertex index, found '2.5'"},
       {"two_corners.off", "OFF\n3 1 0\n" + kLongVertices + "2 0 1\n", "face 0 has 2 corners, expected at least 3"},
-      {"many_corners.off", "OFF\n3 1 0\n" + kLongVertices + "1000000 0 1 2\n", "face 0 claims 1000000 corners, more than the file holds"},
-      {"extra.off", "OFF\n3 1 0\n" + kLongVertices + "3 0 1 2\n3 0 1 2\n", "unexpected data after 1 faces, counts in the header disagree"},
+      {"many_corners.off", "OFF\n3 1 0\n" + kLongVertices + "1000000 0 1 2\n",
+       "face 0 claims 1000000 corners, more than the file holds"},
+      {"extra.off", "OFF\n3 1 0\n" + kLongVertices + "3 0 1 2\n3 0 1 2\n",
+       "unexpected data after 1 faces, counts in the header disagree"},
       {"nul.off", "OFF\n3 1 0\n" + garbage(1, 200, true), "binary data (NUL byte), expected text"},
       {"garbage.off", garbage(2, 300, false), "expected an 'OFF' header"},
       // OBJ
       {"empty.obj", "", "no vertices, expected 'v' statements"},
       {"comments_only.obj", "# nothing\n\n# here\r\n", "no vertices, expected 'v' statements"},
       {"unknown.obj", "v 0 0 0\nxyz 1 2\n", "line 2: unknown statement 'xyz'"},
-      {"bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4: vertex index 9 out of range, 3 vertices defined so far"},
+      {"bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n",
+       "line 4: vertex index 9 out of range, 3 vertices defined so far"},
       {"neg_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", "vertex index -4 out of range"},
-      {"zero_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "expected a vertex index (1-based or negative), found '0'"},
+      {"zero_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
+       "expected a vertex index (1-based or negative), found '0'"},
       {"slash_garbage.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/x 2 a/1\n", "found 'a/1'"},
       {"nan.obj", "v 0 0 0\nv NaN 0 0\n", "line 2: non-finite vertex x coordinate 'NaN'"},
       {"short_v.obj", "v 1 2", "line 1: expected vertex z coordinate, found end of file"},
@@ -98,46 +106,66 @@ std::vector<Case> corpus() {
       {"magic.ply", "plx\nformat ascii 1.0\nend_header\n", "expected 'ply' magic, found 'plx"},
       {"no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "no 'end_header' line"},
       {"no_format.ply", "ply\nelement vertex 0\nend_header\n", "no 'format' line in the header"},
-      {"format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "line 2: unknown format 'binary_middle_endian'"},
+      {"format.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n",
+       "line 2: unknown format 'binary_middle_endian'"},
       {"version.ply", "ply\nformat ascii 2.0\nend_header\n", "line 2: expected format version 1.0"},
-      {"type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n", "line 4: unknown property type 'float128'"},
+      {"type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float128 x\nend_header\n",
+       "line 4: unknown property type 'float128'"},
       {"count_type.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list float int vertex_indices\nend_header\n",
        "list count type 'float' is not an integer type"},
       {"keyword.ply", "ply\nformat ascii 1.0\nelephant 3\nend_header\n", "line 3: unknown header keyword 'elephant'"},
       {"orphan.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n", "property before any element"},
-      {"huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n" + std::string(64, '\0'),
+      {"huge.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty "
+       "float z\nend_header\n" +
+           std::string(64, '\0'),
        "element 'vertex' claims 4000000000 instances, more than the remaining 64 bytes can hold"},
       {"no_xyz.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n",
        "element 'vertex' lacks scalar properties x, y and z"},
-      {"no_vertex.ply", "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n0\n", "no 'vertex' element in the header"},
-      {"no_indices.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty int a\nend_header\n0\n",
+      {"no_vertex.ply", "ply\nformat ascii 1.0\nelement point 1\nproperty float x\nend_header\n0\n",
+       "no 'vertex' element in the header"},
+      {"no_indices.ply",
+       "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face "
+       "1\nproperty int a\nend_header\n0\n",
        "element 'face' has no list property 'vertex_indices'"},
       {"nan.ply", kPlyFloatHeader + ply_triangle_body(std::nanf("")), "non-finite coordinate x of vertex 1"},
       {"bad_index.ply", kPlyFloatHeader + ply_triangle_body(0, 3), "face 0 index 3.000000 out of range [0, 3)"},
       {"list_bomb.ply", kPlyFloatHeader + ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1) + i32(2),
        "list count 255 of face 0 exceeds the remaining 12 bytes"},
-      {"face_bomb.ply", kPlyFloatHeader.substr(0, kPlyFloatHeader.find("element face 1")) + "element face 1000\n" +
+      {"face_bomb.ply",
+       kPlyFloatHeader.substr(0, kPlyFloatHeader.find("element face 1")) + "element face 1000\n" +
            kPlyFloatHeader.substr(kPlyFloatHeader.find("property list")) + ply_triangle_body(),
        "element 'face' claims 1000 instances, more than the remaining 49 bytes can hold"},
       {"extra.ply", kPlyFloatHeader + ply_triangle_body() + "junk", "unexpected data after the last element"},
-      {"trunc_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0",
+      {"trunc_ascii.ply",
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0.0 "
+       "0.0 0.0\n1.0 0.0 0.0\n0.0",
        "file ends early, expected y of vertex 2"},
-      {"ascii_letters.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 abc 0\n",
+      {"ascii_letters.ply",
+       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 "
+       "abc 0\n",
        ":line 8: expected y of vertex 0, found 'abc'"},  // lines counted from the file's start
-      {"neg_count.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list char int vertex_indices\nend_header\n" +
+      {"neg_count.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+       "z\nelement face 1\nproperty list char int vertex_indices\nend_header\n" +
            ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1) + i32(2),
        "invalid list count -1"},
       // STL
       {"empty.stl", "", "empty file, expected 'solid' or an 84-byte binary STL header"},
       {"short.stl", "abc", "byte 3: file ends inside the 84-byte binary STL header and is not ASCII STL"},
-      {"count.stl", stl_binary(1000, 2), "byte 80: binary STL header claims 1000 triangles (50084 bytes), but the file has 184 bytes"},
+      {"count.stl", stl_binary(1000, 2),
+       "byte 80: binary STL header claims 1000 triangles (50084 bytes), but the file has 184 bytes"},
       {"nan.stl", stl_binary(1, 1, std::numeric_limits<float>::infinity()), "non-finite coordinate in triangle 0"},
       {"trunc.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n",
        "line 6: expected 'vertex' (a facet has 3), found end of input"},
-      {"four.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 0\nendloop\nendfacet\nendsolid\n",
+      {"four.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 1 1 "
+       "0\nendloop\nendfacet\nendsolid\n",
        "line 7: expected 'endloop' after 3 vertices, found 'vertex'"},
-      {"nan_ascii.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\n", "line 4: non-finite vertex z coordinate 'nan'"},
-      {"no_end.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n",
+      {"nan_ascii.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 nan\n",
+       "line 4: non-finite vertex z coordinate 'nan'"},
+      {"no_end.stl",
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n",
        "file ends early, expected 'facet' or 'endsolid'"},
       // dispatch
       {"mesh.xyz", "whatever", "geometry::read_mesh(): "},
@@ -167,7 +195,8 @@ TEST_CASE("geometry: every malformed file yields an IoError naming file, place a
     CHECK(message.find(c.expected) != std::string::npos);
     CHECK(message.rfind("geometry::" + reader_name(c.name) + "(): " + path.string(), 0) == 0);
   }
-  CHECK_THROWS_WITH_AS(read_mesh(test::scratch_dir() / "does_not_exist.off"), doctest::Contains("cannot open"), lapis::IoError);
+  CHECK_THROWS_WITH_AS(read_mesh(test::scratch_dir() / "does_not_exist.off"), doctest::Contains("cannot open"),
+                       lapis::IoError);
   CHECK_THROWS_WITH_AS(read_mesh(test::scratch_dir()), doctest::Contains("unknown extension"), lapis::IoError);
   CHECK_THROWS_WITH_AS(read_obj_polylines(test::write_bytes("nolines.obj", "v 0 0 0\n")),
                        doctest::Contains("no polylines, expected 'l' statements"), lapis::IoError);
@@ -193,18 +222,29 @@ TEST_CASE("geometry: readers survive random mutations of valid files") {
     for (int trial = 0; trial < 300; ++trial) {
       std::string s = original;
       switch (trial % 4) {
-        case 0: s.resize(rng() % s.size()); break;                              // truncation
-        case 1: for (int k = 0; k < 4; ++k) s[rng() % s.size()] ^= static_cast<char>(1 << (rng() % 8)); break;  // bit flips
-        case 2: s[rng() % s.size()] = "0123456789-.e \n/#\xff\0"[rng() % 18]; break;  // plausible bytes
-        case 3: s.insert(rng() % s.size(), std::string(1 + rng() % 8, static_cast<char>(rng() % 256))); break;
+        case 0:
+          s.resize(rng() % s.size());
+          break;  // truncation
+        case 1:
+          for (int k = 0; k < 4; ++k) s[rng() % s.size()] ^= static_cast<char>(1 << (rng() % 8));
+          break;  // bit flips
+        case 2:
+          s[rng() % s.size()] = "0123456789-.e \n/#\xff\0"[rng() % 18];
+          break;  // plausible bytes
+        case 3:
+          s.insert(rng() % s.size(), std::string(1 + rng() % 8, static_cast<char>(rng() % 256)));
+          break;
       }
       const auto path = test::scratch_dir() / ("mutant" + seed.extension().string());
       test::write_bytes(path.filename().string(), s);
       try {
         const TriMesh r = read_mesh(path);
         // Whatever loads is in range and finite: readers never return a broken mesh.
-        CHECK(validate(r, {.check_degenerate = false, .check_duplicates = false, .check_manifold = false,
-                           .check_orientation = false}).ok());
+        CHECK(validate(r, {.check_degenerate = false,
+                           .check_duplicates = false,
+                           .check_manifold = false,
+                           .check_orientation = false})
+                  .ok());
         ++loaded;
       } catch (const lapis::IoError&) {
         ++rejected;

@@ -45,7 +45,7 @@ TEST_CASE("geometry: bridging two open polylines of different lengths") {
   TriMesh m;
   m.V.resize(9, 3);
   m.V << 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0,  // a: 5 points
-      0, 1, 0, 1.3, 1, 0, 2.7, 1, 0, 4, 1, 0;         // b: 4 points
+      0, 1, 0, 1.3, 1, 0, 2.7, 1, 0, 4, 1, 0;          // b: 4 points
   const int added = bridge_polylines(m, {0, 1, 2, 3, 4}, {5, 6, 7, 8}, false);
   CHECK(added == 7);
   const ValidationReport r = validate(m);

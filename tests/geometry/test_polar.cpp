@@ -31,8 +31,8 @@ std::vector<Eigen::Matrix3d> test_matrices() {
     for (int k = 0; k < 9; ++k) M(k / 3, k % 3) = u(rng);
     out.push_back(M);
   }
-  const double sv[][3] = {{1, 1, 1}, {1, 1, -1}, {2, 1, 0}, {1, 0, 0}, {0, 0, 0}, {1, 1e-9, 1e-12},
-                          {1e8, 1, 1e-8}, {3, 3, 1}, {1, 2, -2}, {5, 1e-300, 0}};
+  const double sv[][3] = {{1, 1, 1},        {1, 1, -1},     {2, 1, 0}, {1, 0, 0},  {0, 0, 0},
+                          {1, 1e-9, 1e-12}, {1e8, 1, 1e-8}, {3, 3, 1}, {1, 2, -2}, {5, 1e-300, 0}};
   for (const auto& s : sv)
     for (int rep = 0; rep < 20; ++rep)
       out.push_back(random_rotation(rng) * Eigen::Vector3d(s[0], s[1], s[2]).asDiagonal() * random_rotation(rng));

@@ -16,7 +16,8 @@ namespace {
 double signed_volume(const TriMesh& m) {
   double v = 0;
   for (int f = 0; f < m.num_faces(); ++f)
-    v += Eigen::Vector3d(m.V.row(m.F(f, 0))).dot(Eigen::Vector3d(m.V.row(m.F(f, 1))).cross(Eigen::Vector3d(m.V.row(m.F(f, 2)))));
+    v += Eigen::Vector3d(m.V.row(m.F(f, 0)))
+             .dot(Eigen::Vector3d(m.V.row(m.F(f, 1))).cross(Eigen::Vector3d(m.V.row(m.F(f, 2)))));
   return v / 6;
 }
 }  // namespace
@@ -26,9 +27,9 @@ TEST_CASE("geometry: procedural meshes are valid with the promised sizes") {
   CHECK(make_plane_grid(3, 2).num_faces() == 12);
   CHECK(make_icosphere(3).num_vertices() == 10 * 64 + 2);
   CHECK(make_cylinder(12, 3).num_faces() == 72);
-  for (const TriMesh& m : {make_plane_grid(5, 4), make_irregular_grid(8, 8), make_box_bar(2, 3, 10, 1, 1, 5),
-                           make_cylinder(16, 4), make_icosphere(2), make_torus(24, 12), make_double_torus(),
-                           loop_subdivide(make_cylinder(8, 2), 2)}) {
+  for (const TriMesh& m :
+       {make_plane_grid(5, 4), make_irregular_grid(8, 8), make_box_bar(2, 3, 10, 1, 1, 5), make_cylinder(16, 4),
+        make_icosphere(2), make_torus(24, 12), make_double_torus(), loop_subdivide(make_cylinder(8, 2), 2)}) {
     const ValidationReport r = validate(m);
     CHECK_MESSAGE(r.ok(), r.summary());
   }

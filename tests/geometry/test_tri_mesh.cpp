@@ -22,18 +22,20 @@ TEST_CASE("geometry: validate reports each problem with its indices") {
   TriMesh m = make_plane_grid(2, 2);  // 9 vertices, 8 faces
   m.V(4, 2) = std::numeric_limits<double>::quiet_NaN();
   m.F.conservativeResize(12, 3);
-  m.F.row(8) << 0, 1, 9;       // out of range
-  m.F.row(9) << 0, 0, 1;       // repeated index
-  m.F.row(10) = m.F.row(0);    // duplicate of face 0, also misoriented against it
-  m.F.row(11) << 0, 1, 2;      // collinear: zero area
+  m.F.row(8) << 0, 1, 9;     // out of range
+  m.F.row(9) << 0, 0, 1;     // repeated index
+  m.F.row(10) = m.F.row(0);  // duplicate of face 0, also misoriented against it
+  m.F.row(11) << 0, 1, 2;    // collinear: zero area
   const ValidationReport r = validate(m);
   CHECK(r.out_of_range_faces == std::vector<int>{8});
   CHECK(r.non_finite_vertices == std::vector<int>{4});
   CHECK(r.degenerate_faces == std::vector<int>{9, 11});
   CHECK(r.duplicate_faces == std::vector<int>{10});
   CHECK(!r.misoriented_edges.empty());
-  CHECK_THROWS_WITH_AS(require_valid(m), doctest::Contains("geometry::require_valid(): invalid mesh: 1 faces with out-of-range indices: 8"),
-                       lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      require_valid(m),
+      doctest::Contains("geometry::require_valid(): invalid mesh: 1 faces with out-of-range indices: 8"),
+      lapis::InvalidArgument);
   CHECK(r.summary().find("2 degenerate faces: 9, 11") != std::string::npos);
 }
 

@@ -2,10 +2,10 @@
 // hand-made meshes.
 #pragma once
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "lapis/geometry/tri_mesh.h"
 

@@ -66,16 +66,18 @@ TEST_CASE("hair_field: multigrid field within 1e-6 of the exact minimizer over a
   ConstraintSet prev;
   int max_iter = 0;
   for (int step = 0; step < 12; ++step) {
-    if (curves.size() < 3 || rng() % 3 == 0) curves.push_back(random_curve(g, rng, 20));
-    else if (rng() % 2) curves[rng() % curves.size()] = random_curve(g, rng, 20);
-    else curves.erase(curves.begin() + rng() % curves.size());
+    if (curves.size() < 3 || rng() % 3 == 0)
+      curves.push_back(random_curve(g, rng, 20));
+    else if (rng() % 2)
+      curves[rng() % curves.size()] = random_curve(g, rng, 20);
+    else
+      curves.erase(curves.begin() + rng() % curves.size());
     const ConstraintSet cur = ConstraintSet::merge(curves);
     const auto rep = mg.apply(diff(prev, cur), cur);
     prev = cur;
     const Field ref = exact_field(g, cur);
     const double err = (mg.field() - ref).norm() / ref.norm();
-    MESSAGE("step " << step << " iterations " << rep.iterations << " est " << rep.error_estimate
-                    << " true " << err);
+    MESSAGE("step " << step << " iterations " << rep.iterations << " est " << rep.error_estimate << " true " << err);
     CHECK(err <= 1e-6);
     max_iter = std::max(max_iter, rep.iterations);
   }
@@ -119,10 +121,11 @@ TEST_CASE("hair_field: multigrid within 1e-6 of a direct solve on an 18K grid af
     bool relaxes;        // the report names the nodes relaxed near the edit
   };
   // Automatic: levels 2 (512 nodes) and 3 run on one thread, so two corrections go into each.
-  Case cases[] = {{"automatic", MultigridFieldSolver(g, options), "(corrections per coarse visit: 2, 2)", false},
-                  {"four corrections", MultigridFieldSolver(g, w4_options), "(corrections per coarse visit: 4, 4)", false},
-                  {"V-cycles", MultigridFieldSolver(g, v_options), nullptr, false},
-                  {"relaxed near the edit", MultigridFieldSolver(g, relax_options), "(corrections per coarse visit: 2, 2)", true}};
+  Case cases[] = {
+      {"automatic", MultigridFieldSolver(g, options), "(corrections per coarse visit: 2, 2)", false},
+      {"four corrections", MultigridFieldSolver(g, w4_options), "(corrections per coarse visit: 4, 4)", false},
+      {"V-cycles", MultigridFieldSolver(g, v_options), nullptr, false},
+      {"relaxed near the edit", MultigridFieldSolver(g, relax_options), "(corrections per coarse visit: 2, 2)", true}};
   for (const Case& c : cases) CHECK(c.solver.levels() == 5);
   std::mt19937 rng(19);
   std::vector<std::vector<Constraint>> curves;

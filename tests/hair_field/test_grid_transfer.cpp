@@ -14,16 +14,15 @@ namespace {
 
 // P (fine × coarse) from the 1D rule, zero rows at pinned nodes.
 Eigen::SparseMatrix<double, Eigen::RowMajor> prolongation_matrix(const std::array<int, 3>& fd,
-                                                                const std::array<int, 3>& cd,
-                                                                const std::vector<char>& pinned) {
+                                                                 const std::array<int, 3>& cd,
+                                                                 const std::vector<char>& pinned) {
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < fd[2]; ++k)
     for (int j = 0; j < fd[1]; ++j)
       for (int i = 0; i < fd[0]; ++i) {
         const int row = i + fd[0] * (j + fd[1] * k);
         if (pinned[row]) continue;
-        const CoarseNeighbours nx = coarse_neighbours(i), ny = coarse_neighbours(j),
-                               nz = coarse_neighbours(k);
+        const CoarseNeighbours nx = coarse_neighbours(i), ny = coarse_neighbours(j), nz = coarse_neighbours(k);
         for (int c = 0; c < nz.count; ++c)
           for (int b = 0; b < ny.count; ++b)
             for (int a = 0; a < nx.count; ++a)

@@ -69,8 +69,10 @@ TEST_CASE("hair_field: local relaxation's node update is the assembled row's min
     for (int k = 0; k < 3; ++k) {
       double off = 0, diag = 0;
       for (SparseMatrix::InnerIterator it(p.A, v); it; ++it)
-        if (it.row() == v) diag = it.value();
-        else off += it.value() * p.x(it.row(), k);
+        if (it.row() == v)
+          diag = it.value();
+        else
+          off += it.value() * p.x(it.row(), k);
       const double expected = (p.w[v] * p.c(v, k) - off) / diag;
       CHECK(x(v, k) == doctest::Approx(expected).epsilon(1e-12));
     }

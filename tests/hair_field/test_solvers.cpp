@@ -24,9 +24,7 @@ Field fresh_factorization(const Grid& g, const ConstraintSet& s, double omega = 
   return lapis::solver::solve_spd(normal_matrix(g, w), b);
 }
 
-double cosine(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return a.dot(b) / (a.norm() * b.norm() + 1e-300);
-}
+double cosine(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.dot(b) / (a.norm() * b.norm() + 1e-300); }
 
 }  // namespace
 
@@ -45,13 +43,13 @@ TEST_CASE("hair_field: constraint diff lists added, removed and changed nodes") 
   const ConstraintSet m = ConstraintSet::merge(groups);
   REQUIRE(m.size() == 1);
   CHECK((*m.find(3) - Eigen::Vector3d(0.5, 0.5, 0)).norm() < 1e-15);
-  CHECK_THROWS_WITH_AS(ConstraintSet::from({{-2, {1, 0, 0}}}),
-                       "hair_field::ConstraintSet::merge(): negative node -2",
+  CHECK_THROWS_WITH_AS(ConstraintSet::from({{-2, {1, 0, 0}}}), "hair_field::ConstraintSet::merge(): negative node -2",
                        lapis::InvalidArgument);
 }
 
-TEST_CASE("hair_field: thesis path equals a fresh factorization after 100 random edits; "
-          "multigrid stays within 1e-6") {
+TEST_CASE(
+    "hair_field: thesis path equals a fresh factorization after 100 random edits; "
+    "multigrid stays within 1e-6") {
   Grid g;
   g.dims = {12, 14, 11};
   g.spacing = 0.1;
@@ -96,9 +94,8 @@ TEST_CASE("hair_field: thesis path equals a fresh factorization after 100 random
     worst_relaxed = std::max(worst_relaxed, (relaxed.field() - ref).norm() / ref.norm());
     if (d.weight_changes() > 0) CHECK(rr.detail.find("nodes relaxed near the edit") != std::string::npos);
   }
-  MESSAGE("worst relative error: thesis " << worst_thesis << ", multigrid " << worst_fast
-                                          << " (relaxed near the edits " << worst_relaxed
-                                          << "), update/downdate edits " << updowns);
+  MESSAGE("worst relative error: thesis " << worst_thesis << ", multigrid " << worst_fast << " (relaxed near the edits "
+                                          << worst_relaxed << "), update/downdate edits " << updowns);
   CHECK(worst_thesis <= 1e-8);
   CHECK(worst_fast <= 1e-6);
   CHECK(worst_relaxed <= 1e-6);
@@ -154,9 +151,9 @@ TEST_CASE("hair_field: Auto picks the method from the grid size and the report n
   CHECK(f.method == FieldMethod::Multigrid);
   CHECK(f.iterations > 0);
   CHECK((fast->field() - small->field()).norm() <= 1e-6 * small->field().norm());
-  CHECK_THROWS_WITH_AS(small->apply(diff(s, ConstraintSet::from({{5000, {1, 0, 0}}})),
-                                    ConstraintSet::from({{5000, {1, 0, 0}}})),
-                       "hair_field::CholeskyFieldSolver::apply(): constraint node 5000 outside "
-                       "the grid of 720 nodes",
-                       lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      small->apply(diff(s, ConstraintSet::from({{5000, {1, 0, 0}}})), ConstraintSet::from({{5000, {1, 0, 0}}})),
+      "hair_field::CholeskyFieldSolver::apply(): constraint node 5000 outside "
+      "the grid of 720 nodes",
+      lapis::InvalidArgument);
 }

@@ -86,8 +86,8 @@ inline Stroke surface_stroke(const lapis::geometry::CameraMatrices& cam, const E
   return s;
 }
 
-inline RecordedStroke recorded(StrokeAction a, const lapis::geometry::CameraMatrices& cam,
-                               std::vector<Stroke> strokes, int target = -1) {
+inline RecordedStroke recorded(StrokeAction a, const lapis::geometry::CameraMatrices& cam, std::vector<Stroke> strokes,
+                               int target = -1) {
   RecordedStroke r;
   r.action = a;
   r.camera = cam;

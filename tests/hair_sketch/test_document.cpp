@@ -36,19 +36,25 @@ TEST_CASE("hair_sketch: undo of every command restores the document and the fiel
     fields.push_back(field.field());
   };
   const auto cam = right_camera(), top = top_camera();
-  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2, 10)}), head, grid);
+  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2, 10)}),
+               head, grid);
   CHECK(doc.undo_name() == "add stream curve");
   record();
-  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.7, 0.8, 0.2}, {0.3, -0.5, -1}, 1.0, 8)}), head, grid);
+  apply_stroke(
+      doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.7, 0.8, 0.2}, {0.3, -0.5, -1}, 1.0, 8)}),
+      head, grid);
   record();
-  apply_stroke(doc, recorded(StrokeAction::DividingCurve, top, {surface_stroke(top, {-0.1, 1, 0.5}, {0, 0.1, -1}, 0.7)}), head, grid);
+  apply_stroke(doc,
+               recorded(StrokeAction::DividingCurve, top, {surface_stroke(top, {-0.1, 1, 0.5}, {0, 0.1, -1}, 0.7)}),
+               head, grid);
   record();
   // Tilt: a stroke from the parting's start outward on one side.
   {
     const auto& dc = std::get<DividingCurve>(doc.style().primitives[2].shape);
     const Eigen::Vector3d foot = dc.points[1], x0 = dividing_side_axis(dc, head, 0.1);
     std::vector<Eigen::Vector3d> pts;
-    for (int k = 1; k <= 6; ++k) pts.push_back(on_head(foot + 0.05 * k * x0 + 0.02 * k * Eigen::Vector3d(0, 0, 1) - head.center));
+    for (int k = 1; k <= 6; ++k)
+      pts.push_back(on_head(foot + 0.05 * k * x0 + 0.02 * k * Eigen::Vector3d(0, 0, 1) - head.center));
     apply_stroke(doc, recorded(StrokeAction::Tilt, top, {project_path(top, pts)}, 2), head, grid);
     CHECK(doc.undo_name() == "tilt parting");
     CHECK(std::get<DividingCurve>(doc.style().primitives[2].shape).alpha0 != 0.0);
@@ -108,7 +114,8 @@ TEST_CASE("hair_sketch: a rejected stroke or command leaves the document unchang
   Document& doc = f.doc;
   const Grid& grid = f.grid;
   const auto cam = right_camera();
-  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2)}), head, grid);
+  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2)}),
+               head, grid);
   const Hairstyle before = doc.style();
   const auto rev = doc.revision();
   const auto rejected = [&](const RecordedStroke& r, const char* reason) {
@@ -122,7 +129,8 @@ TEST_CASE("hair_sketch: a rejected stroke or command leaves the document unchang
   rejected(recorded(StrokeAction::Hint, cam, {{{3, 3}, {40, 50}}}, 7), "target 7 is not a primitive index");
   rejected(recorded(StrokeAction::Tilt, cam, {{{3, 3}, {40, 50}}}, 0), "is a stream_curve, expected a dividing curve");
   rejected(recorded(StrokeAction::Ponytail, cam, {{{3, 3}, {40, 50}}}), "needs 4 stroke(s), got 1");
-  rejected(recorded(StrokeAction::Hint, cam, {{{3, 3}, {40, 50}}}, 0), "does not start on the curve's supporting surface");
+  rejected(recorded(StrokeAction::Hint, cam, {{{3, 3}, {40, 50}}}, 0),
+           "does not start on the curve's supporting surface");
   CHECK_THROWS_WITH_AS(doc.execute({"bad", RemovePrimitive{3}, std::nullopt}),
                        doctest::Contains("remove index 3 out of range"), lapis::InvalidArgument);
   CHECK(same_hairstyle(doc.style(), before));

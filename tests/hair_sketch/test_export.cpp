@@ -25,8 +25,7 @@ fs::path temp_path(const std::string& name) { return hair_test::temp_path("lapis
 Strands sample_strands() {
   Strands s;
   for (int n : {4, 1, 3}) {
-    for (int i = 0; i < n; ++i)
-      s.points.emplace_back(0.1f * i + s.count(), -0.25f * i, 1.0f / (i + 3));
+    for (int i = 0; i < n; ++i) s.points.emplace_back(0.1f * i + s.count(), -0.25f * i, 1.0f / (i + 3));
     s.offsets.push_back(static_cast<int>(s.points.size()));
   }
   return s;
@@ -81,13 +80,13 @@ TEST_CASE("hair_sketch: .hair header follows Yuksel's layout") {
   // header 128 + uint16 segments + xyz points + thickness + colors, nothing else.
   CHECK(b.size() == 128 + 2 * 3 + 12 * 8 + 4 * 8 + 12 * 8);
   CHECK(b.substr(0, 4) == "HAIR");
-  CHECK(at<std::uint32_t>(b, 4) == 3);   // hair count
-  CHECK(at<std::uint32_t>(b, 8) == 8);   // point count
+  CHECK(at<std::uint32_t>(b, 4) == 3);  // hair count
+  CHECK(at<std::uint32_t>(b, 8) == 8);  // point count
   CHECK(at<std::uint32_t>(b, 12) == (kHairSegments | kHairPoints | kHairThickness | kHairColors));
-  CHECK(at<float>(b, 20) == 1.0f);       // default thickness
-  CHECK(at<float>(b, 28) == 0.1f);       // default color r
-  CHECK(std::string(b.data() + 40).rfind("Lapis", 0) == 0);  // info
-  CHECK(at<std::uint16_t>(b, 128) == 3);          // first strand's segments
+  CHECK(at<float>(b, 20) == 1.0f);                             // default thickness
+  CHECK(at<float>(b, 28) == 0.1f);                             // default color r
+  CHECK(std::string(b.data() + 40).rfind("Lapis", 0) == 0);    // info
+  CHECK(at<std::uint16_t>(b, 128) == 3);                       // first strand's segments
   CHECK(at<float>(b, 134) == sample_strands().points[0].x());  // first point follows
   const HairFile g = read_hair_file(p);
   CHECK(g.thickness == f.thickness);

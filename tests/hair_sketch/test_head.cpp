@@ -1,10 +1,10 @@
 // Head loading, scalp, roots and growth determinism.
 #include <doctest/doctest.h>
 
+#include <omp.h>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <omp.h>
 
 #include "fixture.h"
 #include "lapis/core/error.h"
@@ -90,8 +90,9 @@ TEST_CASE("hair_sketch: growth is deterministic and independent of the thread co
   for (int i = 0; i < one.count(); ++i) CHECK_FALSE(bundled_head().inside(one.points[one.offsets[i]].cast<double>()));
 }
 
-TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth into reused storage "
-          "gives the same strands") {
+TEST_CASE(
+    "hair_sketch: growth follows the §4.6 rule step by step; regrowth into reused storage "
+    "gives the same strands") {
   const SampledField field = stream_curve_field();
   const Grid& g = field.grid();
   const auto roots = scalp_roots(3000);
@@ -131,8 +132,9 @@ TEST_CASE("hair_sketch: growth follows the §4.6 rule step by step; regrowth int
   CHECK(reused.points == grown.points);
 }
 
-TEST_CASE("hair_sketch: growth from a root outside the grid stops at once; bad roots and "
-          "options are rejected by name") {
+TEST_CASE(
+    "hair_sketch: growth from a root outside the grid stops at once; bad roots and "
+    "options are rejected by name") {
   const SampledField field = stream_curve_field();
   const Grid& g = field.grid();
   std::vector<Eigen::Vector3d> roots = scalp_roots(20);

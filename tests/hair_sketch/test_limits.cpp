@@ -46,11 +46,13 @@ TEST_CASE("hair_sketch: a curve point far from the others is refused before samp
   Ponytail pt = back_ponytail();
   CHECK_FALSE(pt.constraints(g).empty());
   pt.spine.back() = Eigen::Vector3d(-1e308, 0, 0);
-  CHECK_THROWS_WITH_AS(pt.constraints(g), doctest::Contains("hair_sketch::Ponytail::constraints(): a curve of length inf at spacing"),
+  CHECK_THROWS_WITH_AS(pt.constraints(g),
+                       doctest::Contains("hair_sketch::Ponytail::constraints(): a curve of length inf at spacing"),
                        lapis::ResourceLimit);
   StreamCurve c;
   c.points = {Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 1e12, 0)};
-  CHECK_THROWS_WITH_AS(c.constraints(g), doctest::Contains("samples, at most 1.04858e+06 allowed"), lapis::ResourceLimit);
+  CHECK_THROWS_WITH_AS(c.constraints(g), doctest::Contains("samples, at most 1.04858e+06 allowed"),
+                       lapis::ResourceLimit);
   CHECK(seconds_since(t0) < 5);
 }
 
@@ -59,7 +61,8 @@ TEST_CASE("hair_sketch: a ponytail section of radius 1e9 is refused with its est
   const auto t0 = std::chrono::steady_clock::now();
   Ponytail pt = back_ponytail();
   pt.cross_section[3] *= 1e9;  // one point: the mean radius becomes about 6e7
-  CHECK_THROWS_WITH_AS(pt.constraints(g), doctest::Contains("hair_sketch::Ponytail::constraints(): the cross sections need"),
+  CHECK_THROWS_WITH_AS(pt.constraints(g),
+                       doctest::Contains("hair_sketch::Ponytail::constraints(): the cross sections need"),
                        lapis::ResourceLimit);
   pt = back_ponytail();
   // One profile far out beside the spine: radii of 5e5 along the ponytail, rings of 1.7e7 points.
@@ -76,12 +79,14 @@ TEST_CASE("hair_sketch: settings whose strands would not fit in memory are refus
   CHECK(estimate_strand_bytes(s.roots.count, s.growth) < 100e6);  // the defaults: tens of MB
   const auto t0 = std::chrono::steady_clock::now();
   s.roots.count = 10'000'000;  // the largest a session allows: 10M strands of 241 points
-  CHECK_THROWS_WITH_AS(hairstyle_grid(head, s),
-                       doctest::Contains("hair_sketch::hairstyle_grid(): 1e+07 strands of up to 240 steps (max_length 120 / "
-                                         "step 0.5) may have 2.41e+09 points"),
-                       lapis::ResourceLimit);
+  CHECK_THROWS_WITH_AS(
+      hairstyle_grid(head, s),
+      doctest::Contains("hair_sketch::hairstyle_grid(): 1e+07 strands of up to 240 steps (max_length 120 / "
+                        "step 0.5) may have 2.41e+09 points"),
+      lapis::ResourceLimit);
   s.roots.count = 2'000'000;
-  CHECK_THROWS_WITH_AS(hairstyle_grid(head, s), doctest::Contains("MiB, more than the limit of 4096 MiB"), lapis::ResourceLimit);
+  CHECK_THROWS_WITH_AS(hairstyle_grid(head, s), doctest::Contains("MiB, more than the limit of 4096 MiB"),
+                       lapis::ResourceLimit);
   s.roots.count = 5000;
   s.growth.step = 0.001;
   s.growth.max_length = 1e6;  // 1e9 steps a strand

@@ -2,11 +2,11 @@
 // under SIGKILL, hostile files, and the bundled example sessions against their reports.
 #include <doctest/doctest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -30,9 +30,14 @@ Hairstyle drawn_session() {
   Document doc(start);
   const Grid grid = hairstyle_grid(head, start.settings);
   const auto cam = right_camera(), top = top_camera();
-  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2, 10)}), head, grid);
-  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.7, 0.8, 0.2}, {0.3, -0.5, -1}, 1.0, 8)}), head, grid);
-  apply_stroke(doc, recorded(StrokeAction::DividingCurve, top, {surface_stroke(top, {-0.1, 1, 0.5}, {0, 0.1, -1}, 0.7)}), head, grid);
+  apply_stroke(doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.4, 1, 0}, {0.2, 0, -1}, 1.2, 10)}),
+               head, grid);
+  apply_stroke(
+      doc, recorded(StrokeAction::StreamCurve, cam, {surface_stroke(cam, {0.7, 0.8, 0.2}, {0.3, -0.5, -1}, 1.0, 8)}),
+      head, grid);
+  apply_stroke(doc,
+               recorded(StrokeAction::DividingCurve, top, {surface_stroke(top, {-0.1, 1, 0.5}, {0, 0.1, -1}, 0.7)}),
+               head, grid);
   // Concatenate onto curve 1: from its end, further down in the picture.
   const auto& c1 = std::get<StreamCurve>(doc.style().primitives[1].shape).points;
   Stroke more = curve_on_screen(cam, c1, 0.9, 0.9);
@@ -59,8 +64,7 @@ TEST_CASE("hair_sketch: session save, load and replay give identical documents a
   const Hairstyle replayed = replay_strokes(loaded, head);
   CHECK(same_hairstyle(replayed, drawn));
   const HairstyleResult a = build_hairstyle(drawn, head), b = build_hairstyle(replayed, head);
-  REQUIRE(a.strands.count() >
-          0.9 * drawn.settings.roots.count);  // roots sample θ, φ steps: about `roots`
+  REQUIRE(a.strands.count() > 0.9 * drawn.settings.roots.count);  // roots sample θ, φ steps: about `roots`
   CHECK(a.strands.offsets == b.strands.offsets);
   CHECK(a.strands.points == b.strands.points);
   CHECK(a.penetrating_segments == b.penetrating_segments);
@@ -107,7 +111,8 @@ TEST_CASE("hair_sketch: malformed and hostile sessions give clear errors") {
         "$.settings.grid_unknowns: expected a number, got string");
   fails(mutate([](auto& j) { j["settings"].erase("roots"); }), "$.settings: missing key \"roots\"");
   fails(mutate([](auto& j) { j["settings"]["roots"] = -5; }), "$.settings.roots: expected an integer in [0, ");
-  fails(mutate([](auto& j) { j["settings"]["step"] = 0; }), "$.settings.step: expected a finite number in [0.001, 10], found 0");
+  fails(mutate([](auto& j) { j["settings"]["step"] = 0; }),
+        "$.settings.step: expected a finite number in [0.001, 10], found 0");
   // An unsigned integer beyond long long is refused, not wrapped to -1 (a valid target).
   fails(mutate([](auto& j) { j["strokes"][0]["target"] = 18446744073709551615ull; }),
         "$.strokes[0].target: expected an integer in [-1, 1073741824], found 18446744073709551615");
@@ -116,7 +121,9 @@ TEST_CASE("hair_sketch: malformed and hostile sessions give clear errors") {
   fails(mutate([](auto& j) { j["primitives"][1]["type"] = "braid"; }), "$.primitives[1].type: expected stream_curve");
   fails(mutate([](auto& j) { j["camera"]["view"].erase(3); }), "$.camera.view: expected 16 elements, got 15");
   fails(mutate([](auto& j) { j["strokes"][0]["action"] = 3; }), "$.strokes[0].action: expected a string, got number");
-  fails(mutate([](auto& j) { j["strokes"][0]["strokes"][0] = nlohmann::json::array({1, 2}); }),
+  fails(mutate([](auto& j) {
+          j["strokes"][0]["strokes"][0] = nlohmann::json::array({1, 2});
+        }),
         "$.strokes[0].strokes[0][0]: expected an array, got number");
   std::string inf = good;
   const auto from = inf.find("\"omega\": ") + 9;

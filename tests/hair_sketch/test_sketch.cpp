@@ -102,8 +102,8 @@ TEST_CASE("hair_sketch: unusable strokes are rejected with their reason") {
                        doctest::Contains("stroke has 1 points, expected at least 2"), StrokeRejected);
   CHECK_THROWS_WITH_AS(stream_curve_from_stroke({on_scalp[0], on_scalp[0], on_scalp[0]}, cam, head, o),
                        doctest::Contains("degenerate stroke"), StrokeRejected);
-  CHECK_THROWS_WITH_AS(stream_curve_from_stroke({on_scalp[0], {NAN, 3}}, cam, head, o),
-                       doctest::Contains("not finite"), StrokeRejected);
+  CHECK_THROWS_WITH_AS(stream_curve_from_stroke({on_scalp[0], {NAN, 3}}, cam, head, o), doctest::Contains("not finite"),
+                       StrokeRejected);
   // Starting on the face (head, not scalp).
   const Stroke face{{400, 300}, {400, 360}};  // the face's middle, seen from the front
   CHECK_THROWS_WITH_AS(stream_curve_from_stroke(face, look_at({0, 0, 5}, {0, 0, 0}), head, o),
@@ -111,8 +111,8 @@ TEST_CASE("hair_sketch: unusable strokes are rejected with their reason") {
   // A dividing curve must stay on the scalp.
   Stroke off = on_scalp;
   off.push_back({5, 5});
-  CHECK_THROWS_WITH_AS(dividing_curve_from_stroke(off, cam, head, o),
-                       doctest::Contains("misses the head"), StrokeRejected);
+  CHECK_THROWS_WITH_AS(dividing_curve_from_stroke(off, cam, head, o), doctest::Contains("misses the head"),
+                       StrokeRejected);
   const DividingCurve d = dividing_curve_from_stroke(on_scalp, cam, head, o);
   for (const auto& p : d.points) CHECK(distance_to_path(p, scalp_path()) < 0.5 * o.spacing);
 }
@@ -189,8 +189,8 @@ TEST_CASE("hair_sketch: hint strokes are classified as in Fig. 4.3") {
   SUBCASE("rejected: off the surface, or matching no rule") {
     CHECK_THROWS_WITH_AS(hint(line({0.9, -0.3, 0}, {0.9, -0.6, 0})),
                          doctest::Contains("does not start on the curve's supporting surface"), StrokeRejected);
-    CHECK_THROWS_WITH_AS(hint(line({0.2, -0.3, 0}, {0.25, -0.6, 0})),
-                         doctest::Contains("does not run across it"), StrokeRejected);
+    CHECK_THROWS_WITH_AS(hint(line({0.2, -0.3, 0}, {0.25, -0.6, 0})), doctest::Contains("does not run across it"),
+                         StrokeRejected);
     CHECK_THROWS_WITH_AS(hint(line({0.2, -0.02, 0}, {-0.2, -0.02, 0}, 2)),
                          doctest::Contains("shorter than one grid spacing"), StrokeRejected);
   }
@@ -230,8 +230,9 @@ TEST_CASE("hair_sketch: a tilt stroke beside a dividing curve sets alpha at its 
   const TiltEdit m = interpret_tilt(curve, tilt_stroke(0.15, -1, 0.4), top, head, o);
   CHECK(m.side == -1);
   CHECK(m.curve.alpha0 == doctest::Approx(0.4).epsilon(0.25));
-  CHECK_THROWS_WITH_AS(interpret_tilt(curve, project_path(top, {on_head({1, 0.2, 0}), on_head({1, 0, 0.2})}), top, head, o),
-                       doctest::Contains("from the parting"), StrokeRejected);
+  CHECK_THROWS_WITH_AS(
+      interpret_tilt(curve, project_path(top, {on_head({1, 0.2, 0}), on_head({1, 0, 0.2})}), top, head, o),
+      doctest::Contains("from the parting"), StrokeRejected);
 }
 
 TEST_CASE("hair_sketch: four strokes make a ponytail whose cross sections lie between the profiles") {
@@ -256,8 +257,8 @@ TEST_CASE("hair_sketch: four strokes make a ponytail whose cross sections lie be
     pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
   }
   const Ponytail t = ponytail_from_strokes(
-      {project_path(back, spine), project_path(back, loop), project_path(back, pa), project_path(back, pb)},
-      back, head, o);
+      {project_path(back, spine), project_path(back, loop), project_path(back, pa), project_path(back, pb)}, back, head,
+      o);
   const Ponytail::Section s = t.first_section();
   CHECK(s.radius > 0.5 * r);  // a planar loop drawn on the strip: mean distance 2r/π .. r
   CHECK(s.radius < 1.1 * r);
@@ -273,7 +274,8 @@ TEST_CASE("hair_sketch: four strokes make a ponytail whose cross sections lie be
   CHECK(s.radius <= distance_to_path(t.profile_a.front(), t.spine) + o.spacing);
   CHECK(s.radius >= distance_to_path(t.profile_a.back(), t.spine) - o.spacing);
   // A missing cross section is a reason, not a crash.
-  CHECK_THROWS_WITH_AS(ponytail_from_strokes({project_path(back, spine), Stroke{{1, 1}}, project_path(back, pa),
-                                              project_path(back, pb)}, back, head, o),
-                       doctest::Contains("cross section"), StrokeRejected);
+  CHECK_THROWS_WITH_AS(
+      ponytail_from_strokes({project_path(back, spine), Stroke{{1, 1}}, project_path(back, pa), project_path(back, pb)},
+                            back, head, o),
+      doctest::Contains("cross section"), StrokeRejected);
 }

@@ -47,9 +47,7 @@ TEST_CASE("hair_sketch: a stream curve aligns the field with its tangent and str
     // One cell away (6-neighbours that are not constrained), away from the curve's ends.
     const auto ijk = g.coords(c.node);
     const Eigen::Vector3d p = g.position(c.node);
-    if ((p - curve.points.front()).norm() < 3 * g.spacing ||
-        (p - curve.points.back()).norm() < 3 * g.spacing)
-      continue;
+    if ((p - curve.points.front()).norm() < 3 * g.spacing || (p - curve.points.back()).norm() < 3 * g.spacing) continue;
     for (int a = 0; a < 3; ++a)
       for (int s = -1; s <= 1; s += 2) {
         auto q = ijk;

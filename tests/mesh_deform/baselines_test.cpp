@@ -7,10 +7,10 @@
 
 #include <Eigen/SVD>
 
+#include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
-#include "lapis/geometry/polar.h"
 #include "rotation_fit.h"
 #include "test_meshes.h"
 
@@ -26,14 +26,23 @@ Eigen::Matrix3d random_local_matrix(int kind, std::mt19937& rng) {
   std::normal_distribution<double> g;
   Eigen::Matrix3d A;
   for (int i = 0; i < 9; ++i) A(i) = g(rng);
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(3.1 * g(rng), Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(3.1 * g(rng), Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
   switch (kind % 6) {
-    case 1: return R * (Eigen::Matrix3d::Identity() + 0.1 * A);
-    case 2: return R * (Eigen::Matrix3d::Identity() + 0.1 * A) * Eigen::Vector3d(1, 1, -0.5).asDiagonal();
-    case 3: A.col(2) = 0.3 * A.col(0) - 2 * A.col(1); return A;
-    case 4: A.col(2) = 1e-9 * A.col(0) + A.col(1); return A;
-    case 5: return R * Eigen::Vector3d(1, 1e-3, 1e-6).asDiagonal() * Eigen::AngleAxisd(g(rng), Eigen::Vector3d::UnitX());
-    default: return A;
+    case 1:
+      return R * (Eigen::Matrix3d::Identity() + 0.1 * A);
+    case 2:
+      return R * (Eigen::Matrix3d::Identity() + 0.1 * A) * Eigen::Vector3d(1, 1, -0.5).asDiagonal();
+    case 3:
+      A.col(2) = 0.3 * A.col(0) - 2 * A.col(1);
+      return A;
+    case 4:
+      A.col(2) = 1e-9 * A.col(0) + A.col(1);
+      return A;
+    case 5:
+      return R * Eigen::Vector3d(1, 1e-3, 1e-6).asDiagonal() * Eigen::AngleAxisd(g(rng), Eigen::Vector3d::UnitX());
+    default:
+      return A;
   }
 }
 
@@ -58,8 +67,9 @@ TEST_CASE("mesh_deform: nearest rotation equals the SVD polar factor to rounding
     Eigen::Quaterniond near(Rs * Eigen::AngleAxisd(0.01 * g(rng), Eigen::Vector3d::UnitZ()));
     Eigen::Quaterniond far = Eigen::Quaterniond(Eigen::Vector4d(g(rng), g(rng), g(rng), g(rng))).normalized();
     bool fell_back = false;
-    for (const Eigen::Matrix3d& R : {detail::nearest_rotation(A, &fell_back), detail::nearest_rotation(A, near, &fell_back),
-                                     detail::nearest_rotation(A, far, &fell_back)}) {
+    for (const Eigen::Matrix3d& R :
+         {detail::nearest_rotation(A, &fell_back), detail::nearest_rotation(A, near, &fell_back),
+          detail::nearest_rotation(A, far, &fell_back)}) {
       CHECK((R - Rs).norm() <= 1e-15 * std::max(kappa, 100.0));
       CHECK(std::abs(R.determinant() - 1) < 1e-14);
       CHECK((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-14);
@@ -135,10 +145,12 @@ TEST_CASE("mesh_deform: ARAP energy decreases monotonically and a rigid drag sta
   o.max_iterations = 400;  // ARAP converges linearly and slowly
   ArapDeformer d(m, o);
   d.set_selection(s);
-  const Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(1, 1, 0), 40, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3));
+  const Eigen::Matrix4d T =
+      t::rotation_about(Eigen::Vector3d(1, 1, 0), 40, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3));
   const Vertices X = d.deform(HandleTransforms{{T, T}, {}});
   double e = 0;
-  for (int i = 0; i < m.num_vertices(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
+  for (int i = 0; i < m.num_vertices(); ++i)
+    e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
   CHECK(e < 1e-6);
 }
 

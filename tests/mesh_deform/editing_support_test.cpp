@@ -71,7 +71,8 @@ TEST_CASE("mesh_deform: selection files round-trip every bit of a drag and read 
   std::ofstream(d / "roi.json") << "[4, 2, 8]";
   CHECK(read_roi(d / "roi.json") == std::vector<int>{4, 2, 8});
   // A held handle (one transform) beside a dragged one: held for every frame.
-  std::ofstream(d / "held.json") << R"({"regions": [{"vertices": [1], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]},
+  std::ofstream(d / "held.json")
+      << R"({"regions": [{"vertices": [1], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]},
                                                     {"vertices": [2], "transforms": [[[1,0,0,1],[0,1,0,0],[0,0,1,0],[0,0,0,1]],
                                                                                      [[1,0,0,2],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
   const Drag held = read_handles(d / "held.json");
@@ -87,9 +88,10 @@ TEST_CASE("mesh_deform: malformed selection files are IoErrors naming the file")
                        doctest::Contains("bad_roi.txt: ROI entry 2: expected an integer in [0, 2147483647], found 'x'"),
                        lapis::IoError);
   CHECK_THROWS_WITH_AS(read_roi(d / "missing.txt"), doctest::Contains("cannot open ROI file"), lapis::IoError);
-  std::ofstream(d / "bad_m.json") << R"({"regions": [{"vertices": [1], "transforms": [[[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
-  CHECK_THROWS_WITH_AS(read_handles(d / "bad_m.json"), doctest::Contains("region handle 0: expected 4 rows of 4 numbers"),
-                       lapis::IoError);
+  std::ofstream(d / "bad_m.json")
+      << R"({"regions": [{"vertices": [1], "transforms": [[[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  CHECK_THROWS_WITH_AS(read_handles(d / "bad_m.json"),
+                       doctest::Contains("region handle 0: expected 4 rows of 4 numbers"), lapis::IoError);
   std::ofstream(d / "counts.json") << R"({"regions": [{"vertices": [1], "transforms": [
       [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]], [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]},
       {"vertices": [2], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]], [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]],
@@ -165,7 +167,9 @@ TEST_CASE("mesh_deform: the method list makes every method and the preview equal
     CHECK(d->name() == info.name);
     d->set_selection(sel);
     const Vertices X = d->deform({{turn(0.3, 0.5)}, {}});
-    CHECK((X.row(sel.region_handles[0][0]).transpose() - apply(turn(0.3, 0.5), m.V.row(sel.region_handles[0][0]).transpose())).norm() < 1e-9);
+    CHECK((X.row(sel.region_handles[0][0]).transpose() -
+           apply(turn(0.3, 0.5), m.V.row(sel.region_handles[0][0]).transpose()))
+              .norm() < 1e-9);
   }
   // Preview on a full-pipeline deformer = a first-system-only deformer, frame for frame; off
   // again = the full pipeline, without a new setup.
@@ -256,7 +260,8 @@ TEST_CASE("mesh_deform: growing and shrinking labels by rings works on what acts
   grow_labels(painted, conn, VertexLabels::kRoi, -1);
   CHECK(painted.acting_as(VertexLabels::kRoi).size() == 20);  // columns 4 and 5
   CHECK(painted.acting_as(VertexLabels::kFixed).size() == 80);
-  CHECK_THROWS_AS(grow_labels(painted, lapis::geometry::Connectivity(test::planar_grid(3, 3, 0.0)), 0, 1), lapis::InvalidArgument);
+  CHECK_THROWS_AS(grow_labels(painted, lapis::geometry::Connectivity(test::planar_grid(3, 3, 0.0)), 0, 1),
+                  lapis::InvalidArgument);
 }
 
 TEST_CASE("mesh_deform: selection files refuse indices that would wrap or truncate and numbers that are not finite") {

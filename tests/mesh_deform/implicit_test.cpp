@@ -90,8 +90,10 @@ TEST_CASE("mesh_deform: planar irregular mesh with degenerate vertices follows a
   std::vector<int> border, centre;
   for (int i = 0; i < m.num_vertices(); ++i) {
     const double x = m.V(i, 0), y = m.V(i, 1);
-    if (x <= 1e-12 || y <= 1e-12 || x >= 1 - 1e-12 || y >= 1 - 1e-12) border.push_back(i);
-    else if (std::hypot(x - 0.5, y - 0.5) < 0.12) centre.push_back(i);
+    if (x <= 1e-12 || y <= 1e-12 || x >= 1 - 1e-12 || y >= 1 - 1e-12)
+      border.push_back(i);
+    else if (std::hypot(x - 0.5, y - 0.5) < 0.12)
+      centre.push_back(i);
   }
   s.region_handles = {border, centre};
   const Eigen::Matrix4d T = similarity(35, Eigen::Vector3d::UnitZ(), 1.3, Eigen::Vector3d(0.4, -0.2, 0));
@@ -144,7 +146,10 @@ TEST_CASE("mesh_deform: bar bent 90 and twisted 150 degrees: implicit and ARAP k
   ao.max_iterations = 200;
   ArapDeformer arap(m, ao);
   const Distortion dn = run(naive), di = run(implicit), ds = run(no_shear), da = run(arap);
-  for (auto [name, d] : {std::pair<std::string, Distortion>{"naive", dn}, {"implicit", di}, {"implicit, no shearing removal", ds}, {"arap", da}})
+  for (auto [name, d] : {std::pair<std::string, Distortion>{"naive", dn},
+                         {"implicit", di},
+                         {"implicit, no shearing removal", ds},
+                         {"arap", da}})
     MESSAGE(name << ": edge mean " << d.edge_length.mean << " p95 " << d.edge_length.p95 << ", laplacian mean "
                  << d.laplacian_length.mean << ", angle mean " << d.angle.mean << ", arap energy " << d.arap_energy);
   // Measured (box bar 5 x 5 x 30 cells): naive edge 0.109 / Laplacian 0.043 / ARAP energy 0.103;
@@ -209,12 +214,14 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
   CHECK(turn_p > -70);
   // The drag back to identity returns the rest mesh: the angle unwinds.
   for (int deg = 260; deg >= 0; deg -= 10)
-    Xg = guided.deform(HandleTransforms{{t::rotation_about(Eigen::Vector3d::UnitZ(), deg, Eigen::Vector3d(0.5, 0.5, 0))}, {}});
+    Xg = guided.deform(
+        HandleTransforms{{t::rotation_about(Eigen::Vector3d::UnitZ(), deg, Eigen::Vector3d(0.5, 0.5, 0))}, {}});
   CHECK_FALSE(guided.stats().guided);
   CHECK((Xg - m.V).norm() <= 1e-9 * m.V.norm());
 }
 
-TEST_CASE("mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked, vanish when consistent and pull when not") {
+TEST_CASE(
+    "mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked, vanish when consistent and pull when not") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
   const Selection s = whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
@@ -242,10 +249,12 @@ TEST_CASE("mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked,
   pull.set_selection(s);
   pull.set_laplacian_blends({{side, {edge, edge, edge}, {0.5, 0.5, 0}}}, 10.0);
   CHECK((pull.deform(h) - X0).rowwise().norm().maxCoeff() > 1e-4 * diag);
-  CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({}, 0.0), doctest::Contains("set_laplacian_blends(): weight must be finite and > 0"),
+  CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({}, 0.0),
+                       doctest::Contains("set_laplacian_blends(): weight must be finite and > 0"),
                        lapis::InvalidArgument);
   CHECK_THROWS_WITH_AS(pull.set_laplacian_blends({{side, {edge, m.num_vertices(), edge}, {1, 0, 0}}}, 0.1),
-                       doctest::Contains("has a vertex out of range or a weight that is not finite"), lapis::InvalidArgument);
+                       doctest::Contains("has a vertex out of range or a weight that is not finite"),
+                       lapis::InvalidArgument);
 }
 
 TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution for any handle transforms") {
@@ -266,10 +275,12 @@ TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution fo
     b.set_selection(s);
     for (int frame = 0; frame < 4; ++frame) {
       CAPTURE(frame);
-      Eigen::Matrix4d shear = similarity(20.0 * frame, Eigen::Vector3d(1, 1, 0), 1.0 + 0.1 * frame, Eigen::Vector3d(0.3, 0, -0.2 * frame));
+      Eigen::Matrix4d shear =
+          similarity(20.0 * frame, Eigen::Vector3d(1, 1, 0), 1.0 + 0.1 * frame, Eigen::Vector3d(0.3, 0, -0.2 * frame));
       shear(0, 1) += 0.15 * frame;  // not a similarity: every entry of the 3×4 block matters
-      HandleTransforms h{{similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
-                         {Eigen::Vector3d(0.05 * frame, -0.1, 0.02), Eigen::Vector3d(0, 0.2 * frame, 0)}};
+      HandleTransforms h{
+          {similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
+          {Eigen::Vector3d(0.05 * frame, -0.1, 0.02), Eigen::Vector3d(0, 0.2 * frame, 0)}};
       const Vertices Xa = a.deform(h), Xb = b.deform(h);
       CHECK(a.stats().basis_columns == 4 * 2 + 2);
       CHECK(b.stats().basis_columns == 0);

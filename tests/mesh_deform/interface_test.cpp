@@ -66,11 +66,14 @@ TEST_CASE("mesh_deform: invalid selections throw messages naming the cause") {
   CHECK(message_of(d, Selection{{0, 1, 1}, {}, {}}) == pre + "ROI vertex 1 listed twice");
   CHECK(message_of(d, Selection{{0, 1}, {{2}}, {}}) == pre + "region handle 0 vertex 2 is outside the ROI");
   CHECK(message_of(d, Selection{{0, 1}, {{}}, {}}) == pre + "region handle 0 is empty");
-  CHECK(message_of(d, Selection{{0, 1, 2}, {{0}}, {0}}) == pre + "point handle 0 vertex 0 already belongs to region handle 0");
-  CHECK(message_of(d, Selection{{0, 1}, {}, {-1}}) == pre + "point handle 0 vertex -1 out of range [0, " + std::to_string(n) + ")");
+  CHECK(message_of(d, Selection{{0, 1, 2}, {{0}}, {0}}) ==
+        pre + "point handle 0 vertex 0 already belongs to region handle 0");
+  CHECK(message_of(d, Selection{{0, 1}, {}, {-1}}) ==
+        pre + "point handle 0 vertex -1 out of range [0, " + std::to_string(n) + ")");
   CHECK(message_of(d, Selection{test::all_vertices(m), {}, {}}) ==
         pre + "the ROI covers the whole mesh and there is no handle: nothing anchors the deformation");
-  CHECK(message_of(d, Selection{{0, 1}, {{0, 1}}, {}}) == pre + "every ROI vertex is a handle vertex: nothing is left to deform");
+  CHECK(message_of(d, Selection{{0, 1}, {{0, 1}}, {}}) ==
+        pre + "every ROI vertex is a handle vertex: nothing is left to deform");
 }
 
 TEST_CASE("mesh_deform: deform rejects wrong transform counts and non-affine transforms") {
@@ -79,13 +82,15 @@ TEST_CASE("mesh_deform: deform rejects wrong transform counts and non-affine tra
   NaiveLaplacianDeformer d(m);
   d.set_selection(s);
   HandleTransforms t;
-  CHECK_THROWS_WITH_AS(d.deform(t), "mesh_deform::Deformer::deform(): 0 region and 0 point transforms, expected 1 and 0",
+  CHECK_THROWS_WITH_AS(d.deform(t),
+                       "mesh_deform::Deformer::deform(): 0 region and 0 point transforms, expected 1 and 0",
                        lapis::InvalidArgument);
   t = HandleTransforms::identity(s);
   t.regions[0](3, 0) = 1;
-  CHECK_THROWS_WITH_AS(d.deform(t),
-                       "mesh_deform::Deformer::deform(): transform of region handle 0 is not affine (bottom row must be 0 0 0 1)",
-                       lapis::InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      d.deform(t),
+      "mesh_deform::Deformer::deform(): transform of region handle 0 is not affine (bottom row must be 0 0 0 1)",
+      lapis::InvalidArgument);
   t.regions[0](3, 0) = 0;
   t.regions[0](0, 3) = std::nan("");
   CHECK_THROWS_WITH_AS(d.deform(t), "mesh_deform::Deformer::deform(): transform of region handle 0 is not finite",

@@ -19,7 +19,8 @@ TEST_CASE("mesh_deform: distortion is zero under rigid motion and measures a uni
   CHECK(s.laplacian_length.mean == doctest::Approx(1.0));
   CHECK(s.angle.max < 1e-9);
   CHECK(s.arap_energy == doctest::Approx(1.0));  // Σ w ‖2e − e‖² / Σ w ‖e‖², R = I
-  CHECK_THROWS_WITH_AS(distortion(m, X.topRows(3)), doctest::Contains("mesh_deform::distortion(): deformed positions have 3 rows"),
+  CHECK_THROWS_WITH_AS(distortion(m, X.topRows(3)),
+                       doctest::Contains("mesh_deform::distortion(): deformed positions have 3 rows"),
                        lapis::InvalidArgument);
 }
 

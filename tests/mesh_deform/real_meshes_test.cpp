@@ -34,7 +34,8 @@ TEST_CASE("mesh_deform: real meshes: identity, similarity and a drag of the top 
     d.set_selection(s);
     CHECK((d.deform(HandleTransforms::identity(s)) - m.V).norm() <= 1e-9 * m.V.norm());
     const Eigen::Vector3d top = m.V(s.region_handles[0], Eigen::all).colwise().mean().transpose();
-    const HandleTransforms drag{{t::rotation_about(Eigen::Vector3d::UnitZ(), 45, top, Eigen::Vector3d(0.15 * diag, 0, 0))}, {}};
+    const HandleTransforms drag{
+        {t::rotation_about(Eigen::Vector3d::UnitZ(), 45, top, Eigen::Vector3d(0.15 * diag, 0, 0))}, {}};
     const Vertices X = d.deform(drag);
     REQUIRE(X.allFinite());
     MESSAGE(name << ": " << m.num_vertices() << " vertices, " << d.stats().degenerate_vertices << " degenerate, setup "
@@ -43,8 +44,8 @@ TEST_CASE("mesh_deform: real meshes: identity, similarity and a drag of the top 
     naive.set_selection(s);
     const Distortion di = distortion(m, X), dn = distortion(m, naive.deform(drag));
     MESSAGE("  implicit / naive: Laplacian " << di.laplacian_length.mean << " / " << dn.laplacian_length.mean
-                                                << ", edge " << di.edge_length.mean << " / " << dn.edge_length.mean
-                                                << ", arap energy " << di.arap_energy << " / " << dn.arap_energy);
+                                             << ", edge " << di.edge_length.mean << " / " << dn.edge_length.mean
+                                             << ", arap energy " << di.arap_energy << " / " << dn.arap_energy);
     // A moderate drag: both stay mild (the bar test compares methods under a large one).
     CHECK(di.edge_length.mean < 0.15);
     CHECK(di.laplacian_length.mean < 2 * dn.laplacian_length.mean);
@@ -66,11 +67,13 @@ TEST_CASE("mesh_deform: high genus: a similarity of all handles of the double to
   o.shearing = ShearingRemoval::ScaleFeatures;
   ImplicitLaplacianDeformer d(m, o);
   d.set_selection(s);
-  Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(1, 0, 1), 75, Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 0, 1));
+  Eigen::Matrix4d T =
+      t::rotation_about(Eigen::Vector3d(1, 0, 1), 75, Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 0, 1));
   T.topLeftCorner<3, 3>() *= 0.8;
   const Vertices X = d.deform(HandleTransforms{{T, T}, {}});
   double e = 0;
-  for (int i = 0; i < m.num_vertices(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
+  for (int i = 0; i < m.num_vertices(); ++i)
+    e = std::max(e, (X.row(i).transpose() - apply(T, m.V.row(i).transpose())).norm());
   CHECK(e <= 1e-6 * t::bbox_diagonal(m.V));
 }
 

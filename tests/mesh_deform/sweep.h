@@ -12,8 +12,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -121,8 +121,10 @@ inline Selection selection(const TriMesh& m, bool both_ends) {
     const int k = c.vertex_component[v];
     if (k < 0) continue;
     const bool fixed = m.V(v, axis) <= lo[k] + 0.1 * (hi[k] - lo[k]);
-    if (fixed) bottom.push_back(v);
-    else if (m.V(v, axis) >= top) handle.push_back(v);
+    if (fixed)
+      bottom.push_back(v);
+    else if (m.V(v, axis) >= top)
+      handle.push_back(v);
     if (!fixed || both_ends) s.roi.push_back(v);
   }
   s.region_handles.push_back(handle);
@@ -309,9 +311,9 @@ inline void check_arap_against_cgal(const TriMesh& m, int steps, double toleranc
   cgal.deform(3000, 1e-9);
   const double e = max_distance(X, cgal.positions()) / diag;
   const double lapis_energy = distortion(m, X).arap_energy, cgal_energy = distortion(m, cgal.positions()).arap_energy;
-  MESSAGE("arap against CGAL, both converged: " << e << " of the diagonal after "
-                                               << static_cast<const ArapDeformer&>(*d).stats().iterations
-                                               << " iterations; energy " << lapis_energy << " against CGAL's " << cgal_energy);
+  MESSAGE("arap against CGAL, both converged: "
+          << e << " of the diagonal after " << static_cast<const ArapDeformer&>(*d).stats().iterations
+          << " iterations; energy " << lapis_energy << " against CGAL's " << cgal_energy);
   if (e > tolerance) CHECK_MESSAGE(lapis_energy < cgal_energy, "another minimum than CGAL's, and not a lower one");
 }
 
@@ -339,8 +341,10 @@ inline Eigen::VectorXd handle_field(const TriMesh& m, const Selection& s) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, c); it; ++it) {
       const int i = static_cast<int>(it.row()), j = c;
       if (index[i] < 0) continue;
-      if (index[j] >= 0) t.emplace_back(index[i], index[j], -it.value());
-      else if (role[j] == 2) b(index[i]) += it.value();
+      if (index[j] >= 0)
+        t.emplace_back(index[i], index[j], -it.value());
+      else if (role[j] == 2)
+        b(index[i]) += it.value();
     }
   Eigen::SparseMatrix<double> A(nf, nf);
   A.setFromTriplets(t.begin(), t.end());
@@ -384,7 +388,8 @@ inline void check_large_twist(const TriMesh& m, int total) {
     const double commanded = std::remainder(level * total, 360.0);
     if (std::abs(std::abs(commanded) - 180) < 1) continue;  // half a turn either way looks the same
     const double turn = band_turn(m, X, phi, level - 0.05, level + 0.05, axis);
-    MESSAGE("after a " << total << "° twist the band at φ = " << level << " turned " << turn << "°, commanded " << commanded << "°");
+    MESSAGE("after a " << total << "° twist the band at φ = " << level << " turned " << turn << "°, commanded "
+                       << commanded << "°");
     CHECK(std::abs(std::remainder(turn - commanded, 360.0)) <= 45);
   }
 }

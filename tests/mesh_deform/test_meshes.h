@@ -65,12 +65,12 @@ inline TriMesh box_bar(int n, double w, double h) {
       }
   };
   using R = Eigen::RowVector3d;
-  face(R(0, 0, 0), R(0, w, 0), n, R(w, 0, 0), n);            // bottom, normal -z
-  face(R(0, 0, h), R(w, 0, 0), n, R(0, w, 0), n);            // top, +z
-  face(R(0, 0, 0), R(w, 0, 0), n, R(0, 0, h), nz);           // y = 0, normal -y
-  face(R(w, w, 0), R(-w, 0, 0), n, R(0, 0, h), nz);          // y = w, +y
-  face(R(0, w, 0), R(0, -w, 0), n, R(0, 0, h), nz);          // x = 0, -x
-  face(R(w, 0, 0), R(0, w, 0), n, R(0, 0, h), nz);           // x = w, +x
+  face(R(0, 0, 0), R(0, w, 0), n, R(w, 0, 0), n);    // bottom, normal -z
+  face(R(0, 0, h), R(w, 0, 0), n, R(0, w, 0), n);    // top, +z
+  face(R(0, 0, 0), R(w, 0, 0), n, R(0, 0, h), nz);   // y = 0, normal -y
+  face(R(w, w, 0), R(-w, 0, 0), n, R(0, 0, h), nz);  // y = w, +y
+  face(R(0, w, 0), R(0, -w, 0), n, R(0, 0, h), nz);  // x = 0, -x
+  face(R(w, 0, 0), R(0, w, 0), n, R(0, 0, h), nz);   // x = w, +x
   TriMesh m;
   m.V.resize(static_cast<int>(pts.size()), 3);
   for (size_t i = 0; i < pts.size(); ++i) m.V.row(static_cast<int>(i)) = pts[i];

@@ -76,9 +76,10 @@ TEST_CASE("mesh_merge: cut_by_region fills unpainted islands inside the region")
 
 TEST_CASE("mesh_merge: cut_by_region names what is wrong with the region") {
   const TriMesh sphere = geometry::make_icosphere(2, 1.0);
-  CHECK_THROWS_WITH_AS(cut_by_region(sphere, {0}),
-                       "mesh_merge::cut_by_region(): no face has all three corners in the region, expected a painted area",
-                       InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      cut_by_region(sphere, {0}),
+      "mesh_merge::cut_by_region(): no face has all three corners in the region, expected a painted area",
+      InvalidArgument);
   std::vector<int> all(static_cast<size_t>(sphere.num_vertices()));
   for (int v = 0; v < sphere.num_vertices(); ++v) all[static_cast<size_t>(v)] = v;
   CHECK_THROWS_WITH_AS(cut_by_region(sphere, all),
@@ -109,14 +110,18 @@ TEST_CASE("mesh_merge: pairs and handles files round-trip and reject malformed c
   }
   CHECK_THROWS_WITH_AS(read_pairs_file(path),
                        ("mesh_merge::read_pairs_file(): " + path.string() +
-                        ": pairs[0].keys[0].source: expected an integer in [0, 2147483647], found '1.5'").c_str(),
+                        ": pairs[0].keys[0].source: expected an integer in [0, 2147483647], found '1.5'")
+                           .c_str(),
                        InvalidArgument);
   // Integers beyond int are refused, not wrapped (4294967471 would be vertex 175).
   std::ofstream(path) << R"({"pairs": [{"keys": [{"source": 4294967471, "target": 2}]}]})";
-  CHECK_THROWS_WITH_AS(read_pairs_file(path), doctest::Contains("pairs[0].keys[0].source: expected an integer in [0, 2147483647], found 4294967471"),
-                       InvalidArgument);
+  CHECK_THROWS_WITH_AS(
+      read_pairs_file(path),
+      doctest::Contains("pairs[0].keys[0].source: expected an integer in [0, 2147483647], found 4294967471"),
+      InvalidArgument);
   std::ofstream(hpath) << R"({"handles": [3, -4]})";
-  CHECK_THROWS_WITH_AS(read_handles_file(hpath), doctest::Contains("handles[1]: expected an integer in [0, 2147483647], found -4"),
+  CHECK_THROWS_WITH_AS(read_handles_file(hpath),
+                       doctest::Contains("handles[1]: expected an integer in [0, 2147483647], found -4"),
                        InvalidArgument);
   {
     std::ofstream bad(path);

@@ -48,7 +48,9 @@ TEST_CASE("mesh_merge: invalid inputs throw errors naming the cause") {
     p = good;
     const geometry::Connectivity ct(tgt);
     const auto& other = ct.boundary_loops()[std::find(ct.boundary_loops()[0].begin(), ct.boundary_loops()[0].end(),
-                                                      good[0].keys[0].target) == ct.boundary_loops()[0].end() ? 0 : 1];
+                                                      good[0].keys[0].target) == ct.boundary_loops()[0].end()
+                                                ? 0
+                                                : 1];
     const auto& sl = c.boundary_loops()[0];
     p[0].keys.push_back({sl[sl.size() / 2], other[0]});
     CHECK(merge_error(src, tgt, p) == check + "pair 0 key 1: target vertex " + std::to_string(other[0]) +
@@ -84,8 +86,8 @@ TEST_CASE("mesh_merge: invalid inputs throw errors naming the cause") {
     TriMesh bad = src;
     bad.F(3, 2) = bad.F(3, 0);
     CHECK(merge_error(bad, tgt, good) == check + "the source's face 3 (" + std::to_string(bad.F(3, 0)) + ", " +
-                                            std::to_string(bad.F(3, 1)) + ", " + std::to_string(bad.F(3, 0)) +
-                                            ") names a vertex twice");
+                                             std::to_string(bad.F(3, 1)) + ", " + std::to_string(bad.F(3, 0)) +
+                                             ") names a vertex twice");
   }
   SUBCASE("keys in opposite cyclic orders") {
     const geometry::Connectivity cs(src), ct(tgt);
@@ -110,7 +112,8 @@ TEST_CASE("mesh_merge: invalid inputs throw errors naming the cause") {
     o = {};
     o.mode = MergeMode::Dependent;
     o.handles = {good[0].keys[0].source};
-    CHECK(merge_error(src, tgt, good, o) ==
-          "mesh_merge::merge(): handle vertex " + std::to_string(good[0].keys[0].source) + " lies on the merging boundary");
+    CHECK(merge_error(src, tgt, good, o) == "mesh_merge::merge(): handle vertex " +
+                                                std::to_string(good[0].keys[0].source) +
+                                                " lies on the merging boundary");
   }
 }

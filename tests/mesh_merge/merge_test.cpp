@@ -8,7 +8,9 @@ using namespace lapis::mesh_merge;
 
 namespace {
 
-int boundary_loop_count(const TriMesh& m) { return static_cast<int>(geometry::Connectivity(m).boundary_loops().size()); }
+int boundary_loop_count(const TriMesh& m) {
+  return static_cast<int>(geometry::Connectivity(m).boundary_loops().size());
+}
 
 }  // namespace
 
@@ -27,7 +29,7 @@ TEST_CASE("mesh_merge: several loop pairs at once (a tube between two column hal
   const TriMesh src = test::tube(), tgt = test::split_column();
   const MergeResult r = merge(src, tgt, test::tube_in_column(src, tgt));
   test::require_watertight(tgt, r);
-  CHECK(boundary_loop_count(r.mesh) == 2);              // the column's two outer ends
+  CHECK(boundary_loop_count(r.mesh) == 2);  // the column's two outer ends
   CHECK(geometry::connected_components(r.mesh).count == 1);
   // The tube widened from radius 0.5 to the column's 1 at both ends.
   for (int v : r.source_boundary)
@@ -126,7 +128,8 @@ TEST_CASE("mesh_merge: a source of genus one (a torus with a hole) merges onto t
   test::jitter(torus, 0.002, 4);
   std::vector<int> hole;
   for (int f = 0; f < torus.num_faces(); ++f) {
-    const Eigen::RowVector3d c = (torus.V.row(torus.F(f, 0)) + torus.V.row(torus.F(f, 1)) + torus.V.row(torus.F(f, 2))) / 3;
+    const Eigen::RowVector3d c =
+        (torus.V.row(torus.F(f, 0)) + torus.V.row(torus.F(f, 1)) + torus.V.row(torus.F(f, 2))) / 3;
     if ((c - Eigen::RowVector3d(1.4, 0, 0)).norm() < 0.3) hole.push_back(f);  // a disc on the outer equator
   }
   const TriMesh src = geometry::remove_faces(torus, hole);
@@ -150,7 +153,8 @@ TEST_CASE("mesh_merge: one precomputed Merger gives the one-off results for othe
       if (shift) {  // another key on the same loops: the user dragged the correspondence
         const geometry::Connectivity cs(src);
         const auto& loop = cs.boundary_loops()[0];
-        pairs[0].keys[0].source = loop[(std::find(loop.begin(), loop.end(), pairs[0].keys[0].source) - loop.begin() + 3) % loop.size()];
+        pairs[0].keys[0].source =
+            loop[(std::find(loop.begin(), loop.end(), pairs[0].keys[0].source) - loop.begin() + 3) % loop.size()];
       }
       const MergeResult reused = merger.merge(*tgt, pairs);
       const MergeResult fresh = merge(src, *tgt, pairs);

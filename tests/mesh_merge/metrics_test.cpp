@@ -7,7 +7,8 @@ using namespace lapis;
 using namespace lapis::mesh_merge;
 
 TEST_CASE("mesh_merge: dihedral deviation is zero on a plane and the cylinder's turn angle on a cylinder") {
-  for (double a : dihedral_deviation_deg(geometry::make_plane_grid(6, 5))) CHECK(a == doctest::Approx(0).epsilon(1e-12));
+  for (double a : dihedral_deviation_deg(geometry::make_plane_grid(6, 5)))
+    CHECK(a == doctest::Approx(0).epsilon(1e-12));
   const auto cyl = dihedral_deviation_deg(geometry::make_cylinder(36, 4));
   CHECK(*std::max_element(cyl.begin(), cyl.end()) == doctest::Approx(10.0).epsilon(1e-9));
 }
@@ -35,7 +36,8 @@ TEST_CASE("mesh_merge: seam metrics see a hole, a moved target vertex and distor
 
   MergeResult moved = r;
   int far = 0;
-  while (moved.target_map[far] < 0 || std::binary_search(r.smoothed.begin(), r.smoothed.end(), moved.target_map[far])) ++far;
+  while (moved.target_map[far] < 0 || std::binary_search(r.smoothed.begin(), r.smoothed.end(), moved.target_map[far]))
+    ++far;
   moved.mesh.V(moved.target_map[far], 0) += 0.01;
   CHECK(seam_quality(tgt, moved).max_target_displacement > 0);
 

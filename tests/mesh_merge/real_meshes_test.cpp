@@ -25,7 +25,8 @@ int extreme_loop_vertex(const TriMesh& m, int axis) {
 }
 
 MergeResult check_real_merge(const TriMesh& head, const TriMesh& body, int key_axis) {
-  const std::vector<LoopPair> pairs{LoopPair{{{extreme_loop_vertex(head, key_axis), extreme_loop_vertex(body, key_axis)}}}};
+  const std::vector<LoopPair> pairs{
+      LoopPair{{{extreme_loop_vertex(head, key_axis), extreme_loop_vertex(body, key_axis)}}}};
   const MergeResult r = merge(head, body, pairs);
   const SeamQuality q = seam_quality(body, r);
   const DetailPreservation d = detail_preservation(head, r);
@@ -63,7 +64,8 @@ TEST_CASE("mesh_merge: real meshes: the mannequin's head onto the man's body") {
 TEST_CASE("mesh_merge: real meshes: transition regions merge the mannequin's head onto the man's body") {
   const PlaneCut devil = cut_by_plane(load("mannequin-devil"), {0, 0, -14.0}, {0, 0, 1});
   const PlaneCut man = cut_by_plane(load("man"), {0, 0, 0.36}, {0, 0, 1});
-  const std::vector<LoopPair> pairs{LoopPair{{{extreme_loop_vertex(devil.above, 0), extreme_loop_vertex(man.below, 0)}}}};
+  const std::vector<LoopPair> pairs{
+      LoopPair{{{extreme_loop_vertex(devil.above, 0), extreme_loop_vertex(man.below, 0)}}}};
   MergeOptions o;
   o.mode = MergeMode::Transition;
   o.transition.source_width = o.transition.target_width = suggested_transition_width(man.below, pairs);
@@ -72,7 +74,8 @@ TEST_CASE("mesh_merge: real meshes: transition regions merge the mannequin's hea
     const MergeResult r = merge(devil.above, man.below, pairs, o);
     const SeamQuality q = seam_quality(man.below, r);
     MESSAGE("keep " << (keep == TransitionKeep::Source ? "source" : "target") << ": " << r.timings.total_ms << " ms, "
-                    << r.transition_vertices.size() << " band vertices, seam dihedral mean " << q.seam_dihedral_mean_deg);
+                    << r.transition_vertices.size() << " band vertices, seam dihedral mean "
+                    << q.seam_dihedral_mean_deg);
     CHECK(q.valid());
     CHECK(q.max_target_displacement == 0.0);
     CHECK(geometry::validate(r.mesh).ok());

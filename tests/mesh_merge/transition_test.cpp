@@ -81,7 +81,8 @@ TEST_CASE("mesh_merge: a transition band is an annulus parameterized one-to-one 
     int positive = 0, negative = 0;
     double area = 0;
     for (Eigen::Index f = 0; f < b.param_faces.rows(); ++f) {
-      const Eigen::Vector2d p = b.uv.row(b.param_faces(f, 0)), q = b.uv.row(b.param_faces(f, 1)), r = b.uv.row(b.param_faces(f, 2));
+      const Eigen::Vector2d p = b.uv.row(b.param_faces(f, 0)), q = b.uv.row(b.param_faces(f, 1)),
+                            r = b.uv.row(b.param_faces(f, 2));
       const double a = 0.5 * ((q - p).x() * (r - p).y() - (q - p).y() * (r - p).x());
       positive += a > 1e-15, negative += a < -1e-15;
       area += a;
@@ -100,8 +101,8 @@ TEST_CASE("mesh_merge: transition overlap points map a band onto the other at (u
   const std::vector<double> tu = arc_length_params(tgt.V, corr[0].target_loop);
   const TransitionBand t = transition_band(tgt, tc, corr[0].target_loop, tu, 0.35, true, "target");
   const TransitionBand s =
-      transition_band(r.source_rest, sc, corr[0].source_loop, arc_length_params(r.source_rest.V, corr[0].source_loop), 0.35,
-                      false, "source");
+      transition_band(r.source_rest, sc, corr[0].source_loop, arc_length_params(r.source_rest.V, corr[0].source_loop),
+                      0.35, false, "source");
   const std::vector<BandPoint> on_t = overlap_points(s, t);
   REQUIRE(on_t.size() == s.vertices.size());
   std::vector<char> rim(static_cast<size_t>(tgt.num_vertices()), 0);
@@ -239,22 +240,26 @@ TEST_CASE("mesh_merge: transition merging rejects bad widths with clear errors")
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (auto [sw, tw] : {std::pair{0.0, 0.3}, std::pair{0.3, -1.0}, std::pair{nan, 0.3}, std::pair{0.3, nan}})
-    CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(sw, tw)),
-                         doctest::Contains("mesh_merge::merge(): transition source_width and target_width must be finite and > 0"),
-                         InvalidArgument);
+    CHECK_THROWS_WITH_AS(
+        merge(src, tgt, pairs, with(sw, tw)),
+        doctest::Contains("mesh_merge::merge(): transition source_width and target_width must be finite and > 0"),
+        InvalidArgument);
   // The widths as given, not rounded to six decimals ("-0.000000" before).
-  CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(-2e-9, 0.3)), doctest::Contains("got -2e-09 and 0.3"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(-2e-9, 0.3)), doctest::Contains("got -2e-09 and 0.3"),
+                       InvalidArgument);
   MergeOptions bad_weight = transition_options();
   bad_weight.transition.weight = 0;
   CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, bad_weight), doctest::Contains("weight w_T must be finite and > 0"),
                        InvalidArgument);
   // A source band wider than the dome swallows it.
   CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(5.0, 0.3)),
-                       doctest::Contains("mesh_merge::transition_band(): the source transition band of width 5 covers the whole mesh (no face is that far from the merging loop)"),
+                       doctest::Contains("mesh_merge::transition_band(): the source transition band of width 5 covers "
+                                         "the whole mesh (no face is that far from the merging loop)"),
                        InvalidArgument);
   // A target band reaching the body's other (bottom) loop leaves no target beyond it.
   CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, with(0.3, 1.95)),
-                       doctest::Contains("the target transition band of width 1.95 covers the whole mesh"), InvalidArgument);
+                       doctest::Contains("the target transition band of width 1.95 covers the whole mesh"),
+                       InvalidArgument);
   // A hole in the body's side just below the top: the band around the top loop reaches it.
   std::vector<int> hole;
   for (int f = 0; f < tgt.num_faces(); ++f) {
@@ -265,11 +270,13 @@ TEST_CASE("mesh_merge: transition merging rejects bad widths with clear errors")
   const TriMesh holed = geometry::remove_faces(tgt, hole);
   REQUIRE(geometry::Connectivity(holed).boundary_loops().size() == 3);
   CHECK_THROWS_WITH_AS(merge(src, holed, test::dome_on_body(src, holed), with(0.3, 0.35)),
-                       doctest::Contains("the target transition band of width 0.35 is not an annulus"), InvalidArgument);
+                       doctest::Contains("the target transition band of width 0.35 is not an annulus"),
+                       InvalidArgument);
   // Two pairs whose source bands meet in the middle of the tube (scaled to length 2).
   const TriMesh tube = test::tube(), column = test::split_column();
   CHECK_THROWS_WITH_AS(merge(tube, column, test::tube_in_column(tube, column), with(1.1, 0.2)),
-                       doctest::Contains("mesh_merge::merge(): the transition bands of pairs 0 and 1 overlap"), InvalidArgument);
+                       doctest::Contains("mesh_merge::merge(): the transition bands of pairs 0 and 1 overlap"),
+                       InvalidArgument);
 }
 
 TEST_CASE("mesh_merge: a transition band narrower than an edge is just the loop") {

@@ -120,23 +120,20 @@ TEST_CASE("solver: a matrix that is not positive definite throws naming the colu
       CHECK(e.column() < 50);
     }
     CHECK_THROWS_WITH_AS(chol.solve(DenseMatrix::Ones(50, 1)),
-                         "solver::Cholesky::solve(): no factorization (call factorize() first)",
-                         InvalidArgument);
+                         "solver::Cholesky::solve(): no factorization (call factorize() first)", InvalidArgument);
   }
 }
 
 TEST_CASE("solver: wrong sizes and non-finite input throw with the function and the sizes") {
   Cholesky chol;
   CHECK_THROWS_WITH_AS(chol.compute(SparseMatrix(3, 4)),
-                       "solver::Cholesky::analyze(): matrix is 3x4, expected a square matrix",
+                       "solver::Cholesky::analyze(): matrix is 3x4, expected a square matrix", InvalidArgument);
+  CHECK_THROWS_WITH_AS(chol.compute(SparseMatrix(0, 0)), "solver::Cholesky::analyze(): matrix is empty (0x0)",
                        InvalidArgument);
-  CHECK_THROWS_WITH_AS(chol.compute(SparseMatrix(0, 0)),
-                       "solver::Cholesky::analyze(): matrix is empty (0x0)", InvalidArgument);
   const SparseMatrix A = random_spd(20, 0.2, 6);
   chol.compute(A);
   CHECK_THROWS_WITH_AS(chol.solve(DenseMatrix::Ones(19, 3)),
-                       "solver::Cholesky::solve(): right-hand side is 19x3, expected 20 rows",
-                       InvalidArgument);
+                       "solver::Cholesky::solve(): right-hand side is 19x3, expected 20 rows", InvalidArgument);
   DenseMatrix nan_rhs = DenseMatrix::Ones(20, 1);
   nan_rhs(4, 0) = std::nan("");
   CHECK_THROWS_WITH_AS(chol.solve(nan_rhs),
@@ -144,8 +141,7 @@ TEST_CASE("solver: wrong sizes and non-finite input throw with the function and 
                        InvalidArgument);
   SparseMatrix B = A;
   B.coeffRef(3, 3) = std::numeric_limits<double>::infinity();
-  CHECK_THROWS_WITH_AS(chol.factorize(B),
-                       "solver::Cholesky::factorize(): matrix has a non-finite entry (NaN or Inf)",
+  CHECK_THROWS_WITH_AS(chol.factorize(B), "solver::Cholesky::factorize(): matrix has a non-finite entry (NaN or Inf)",
                        InvalidArgument);
 }
 

@@ -21,8 +21,7 @@ inline SparseMatrix grid_laplacian_3d(int N) {
       for (int x = 0; x < N; ++x) {
         const int i = id(x, y, z);
         int deg = 0;
-        const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
-                              {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
+        const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z}, {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
         for (const auto& q : nb) {
           if (q[0] < 0 || q[1] < 0 || q[2] < 0 || q[0] >= N || q[1] >= N || q[2] >= N) continue;
           t.emplace_back(i, id(q[0], q[1], q[2]), 1.0);
@@ -39,8 +38,7 @@ inline SparseMatrix grid_laplacian_3d(int N) {
 inline std::vector<int> spread_nodes(int n, int count, int offset = 0) {
   std::vector<int> out;
   const int stride = std::max(1, n / std::max(1, count));
-  for (int i = offset % stride; i < n && static_cast<int>(out.size()) < count; i += stride)
-    out.push_back(i);
+  for (int i = offset % stride; i < n && static_cast<int>(out.size()) < count; i += stride) out.push_back(i);
   return out;
 }
 

@@ -93,7 +93,8 @@ TEST_CASE("solver: least squares on thousands of unknowns (threaded assembly) eq
   Sf.setFromTriplets(sf.begin(), sf.end());
   Sc.setFromTriplets(sc.begin(), sc.end());
   const SparseMatrix F1 = A1 * Sf, F2 = A2 * Sf;
-  const SparseMatrix N = SparseMatrix(w1 * SparseMatrix(F1.transpose()) * F1) + SparseMatrix(w2 * SparseMatrix(F2.transpose()) * F2);
+  const SparseMatrix N =
+      SparseMatrix(w1 * SparseMatrix(F1.transpose()) * F1) + SparseMatrix(w2 * SparseMatrix(F2.transpose()) * F2);
   const DenseMatrix rhs = w1 * (SparseMatrix(F1.transpose()) * (r1 - A1 * Sc * c)) +
                           w2 * (SparseMatrix(F2.transpose()) * (r2 - A2 * Sc * c));
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(N);
@@ -128,8 +129,8 @@ TEST_CASE("solver: a block in the metric Dᵀ D solves like the block D A with r
   const DenseMatrix x = with_metric.solve({rl, r}, c), y = plain.solve({rl, DenseMatrix(D * r)}, c);
   CHECK((x - y).norm() <= 1e-8 * (1 + y.norm()));
   CHECK(with_metric.factor().stats().nnz_L == plain.factor().stats().nnz_L);
-  CHECK_THROWS_WITH_AS(with_metric.add_block(A, 1.0, "bad", SparseMatrix(m, m + 1)),
-                       doctest::Contains("metric is"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(with_metric.add_block(A, 1.0, "bad", SparseMatrix(m, m + 1)), doctest::Contains("metric is"),
+                       InvalidArgument);
   // The blocks are kept as added (the caller's copies above, the temporaries below taken),
   // and a rejected block leaves no trace.
   CHECK(with_metric.num_blocks() == 2);
@@ -137,21 +138,19 @@ TEST_CASE("solver: a block in the metric Dᵀ D solves like the block D A with r
   CHECK(with_metric.block_metric(1).isApprox(W));
   CHECK(with_metric.block_metric(0).nonZeros() == 0);
   CHECK(plain.block_matrix(1).isApprox(SparseMatrix(D * A)));
-  CHECK_THROWS_WITH_AS(plain.block_matrix(2),
-                       "solver::LeastSquares::block_matrix(): block 2 out of range [0, 2)", InvalidArgument);
+  CHECK_THROWS_WITH_AS(plain.block_matrix(2), "solver::LeastSquares::block_matrix(): block 2 out of range [0, 2)",
+                       InvalidArgument);
   CHECK_THROWS_AS(plain.block_metric(-1), InvalidArgument);
 }
 
 TEST_CASE("solver: least squares rejects bad input naming the function") {
   LeastSquares ls(10);
   CHECK_THROWS_WITH_AS(ls.add_block(SparseMatrix(4, 9), 1.0),
-                       "solver::LeastSquares::add_block(): block is 4x9, expected 10 columns",
-                       InvalidArgument);
+                       "solver::LeastSquares::add_block(): block is 4x9, expected 10 columns", InvalidArgument);
   CHECK_THROWS_AS(ls.add_block(SparseMatrix(4, 10), -1.0), InvalidArgument);
-  CHECK_THROWS_WITH_AS(ls.set_fixed({2, 11}),
-                       "solver::LeastSquares::set_fixed(): index 11 out of range [0, 10)", InvalidArgument);
-  CHECK_THROWS_WITH_AS(ls.precompute(), "solver::LeastSquares::precompute(): no blocks added",
+  CHECK_THROWS_WITH_AS(ls.set_fixed({2, 11}), "solver::LeastSquares::set_fixed(): index 11 out of range [0, 10)",
                        InvalidArgument);
+  CHECK_THROWS_WITH_AS(ls.precompute(), "solver::LeastSquares::precompute(): no blocks added", InvalidArgument);
   SparseMatrix I(10, 10);
   I.setIdentity();
   ls.add_block(I, 1.0);
@@ -161,8 +160,7 @@ TEST_CASE("solver: least squares rejects bad input naming the function") {
                        "solver::LeastSquares::solve(): right-hand side of block 0 is 9x3, expected 10x3",
                        InvalidArgument);
   CHECK_THROWS_WITH_AS(ls.solve({DenseMatrix::Ones(10, 3)}, DenseMatrix::Ones(3, 3)),
-                       "solver::LeastSquares::solve(): fixed values are 3x3, expected 2x3",
-                       InvalidArgument);
+                       "solver::LeastSquares::solve(): fixed values are 3x3, expected 2x3", InvalidArgument);
   // Unknowns no block touches are undetermined: a typed error, not garbage.
   LeastSquares under(4);
   SparseMatrix row(1, 4);

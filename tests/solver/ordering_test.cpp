@@ -205,9 +205,12 @@ TEST_CASE("solver: given orderings and skeletons are checked") {
   CHECK(message(perm) == "no error");
 
   SparseMatrix small(n - 1, n - 1);
-  CHECK_THROWS_WITH_AS(skeleton_nested_dissection(A, small), doctest::Contains("skeleton is 35 by 35, the matrix 36 by 36"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(skeleton_nested_dissection(A, small),
+                       doctest::Contains("skeleton is 35 by 35, the matrix 36 by 36"), InvalidArgument);
   LeastSquares ls(n);
-  CHECK_THROWS_WITH_AS(ls.set_ordering_skeleton(small), doctest::Contains("set_ordering_skeleton(): skeleton is 35x35, expected 36x36"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(ls.set_ordering_skeleton(small),
+                       doctest::Contains("set_ordering_skeleton(): skeleton is 35x35, expected 36x36"),
+                       InvalidArgument);
 }
 
 TEST_CASE("solver: least squares ordered on a skeleton solves as CHOLMOD's ordering does") {
@@ -252,7 +255,8 @@ TEST_CASE("solver: without OpenBLAS a BLAS thread guard does nothing" * doctest:
 }
 
 // Skipped where the BLAS is not OpenBLAS (scripts/setup installs it).
-TEST_CASE("solver: a BLAS thread guard sets OpenBLAS' count and restores it" * doctest::skip(!ScopedBlasThreads::available())) {
+TEST_CASE("solver: a BLAS thread guard sets OpenBLAS' count and restores it" *
+          doctest::skip(!ScopedBlasThreads::available())) {
   const int before = ScopedBlasThreads::current();
   CHECK(before >= 1);
   {

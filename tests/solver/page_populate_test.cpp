@@ -22,7 +22,8 @@ struct FreshMapping {
   std::size_t bytes;
   char* data;
   explicit FreshMapping(std::size_t b)
-      : bytes(b), data(static_cast<char*>(::mmap(nullptr, b, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0))) {
+      : bytes(b),
+        data(static_cast<char*>(::mmap(nullptr, b, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0))) {
     REQUIRE(data != MAP_FAILED);
     // Small pages: mincore() then reports each page on its own.
     ::madvise(data, bytes, MADV_NOHUGEPAGE);

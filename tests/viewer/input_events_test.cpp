@@ -56,7 +56,9 @@ TEST_CASE("viewer: malformed event logs give an IoError naming the problem") {
   CHECK_THROWS_WITH_AS(EventLog::load(p),
                        ("viewer::EventLog::load(): " + p.string() + ": event 0: unknown event type 'teleport'").c_str(),
                        IoError);
-  write(p, R"({"format":"lapis-events","width":1,"height":1,"events":[{"type":"move","frame":5},{"type":"move","frame":2}]})");
+  write(
+      p,
+      R"({"format":"lapis-events","width":1,"height":1,"events":[{"type":"move","frame":5},{"type":"move","frame":2}]})");
   CHECK_THROWS_WITH_AS(EventLog::load(p),
                        ("viewer::EventLog::load(): " + p.string() + ": event 1: frame 2 goes backwards").c_str(),
                        IoError);
@@ -64,13 +66,14 @@ TEST_CASE("viewer: malformed event logs give an IoError naming the problem") {
   CHECK_THROWS_AS(EventLog::load(p), IoError);
   // Integers are not truncated or wrapped: a key of 4294967297 is not key 1.
   write(p, R"({"format":"lapis-events","width":1,"height":1,"events":[{"type":"key","frame":0,"key":4294967297}]})");
-  CHECK_THROWS_WITH_AS(EventLog::load(p), doctest::Contains("event 0: key: expected an integer in [-2147483648, 2147483647], found 4294967297"),
-                       IoError);
+  CHECK_THROWS_WITH_AS(
+      EventLog::load(p),
+      doctest::Contains("event 0: key: expected an integer in [-2147483648, 2147483647], found 4294967297"), IoError);
   write(p, R"({"format":"lapis-events","width":1,"height":1,"events":[{"type":"button","frame":1.5}]})");
   CHECK_THROWS_WITH_AS(EventLog::load(p), doctest::Contains("event 0: frame: expected an integer in [0, "), IoError);
   write(p, R"({"format":"lapis-events","width":4294967297,"height":1,"events":[]})");
-  CHECK_THROWS_WITH_AS(EventLog::load(p), doctest::Contains(": width: expected an integer in [0, 65536], found 4294967297"),
-                       IoError);
+  CHECK_THROWS_WITH_AS(EventLog::load(p),
+                       doctest::Contains(": width: expected an integer in [0, 65536], found 4294967297"), IoError);
   CHECK_THROWS_AS(EventLog::load(temp_file("missing.json")), IoError);
 }
 

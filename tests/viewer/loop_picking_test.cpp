@@ -31,7 +31,8 @@ TEST_CASE("viewer: loop picking finds the loop and vertex under the cursor and s
     CHECK(!viewer::pick_loop(cam, c.V, loops, s.x(), s.y(), 10, {&bvh}, {1 - static_cast<int>(l)}));
   }
   // The far side of the rim, behind the wall: hidden.
-  const int back = *std::min_element(loops[0].begin(), loops[0].end(), [&](int a, int b) { return c.V(a, 2) < c.V(b, 2); });
+  const int back =
+      *std::min_element(loops[0].begin(), loops[0].end(), [&](int a, int b) { return c.V(a, 2) < c.V(b, 2); });
   CHECK(!viewer::visible(cam, c.V.row(back).transpose(), {&bvh}));
   CHECK(viewer::visible(cam, c.V.row(back).transpose(), {}));
   // Far from every loop: nothing.

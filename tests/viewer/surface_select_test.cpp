@@ -40,8 +40,8 @@ TEST_CASE("viewer: the lasso takes the sphere's front vertices inside the polygo
   // A square around the screen centre, half the sphere's screen radius wide.
   const Eigen::Vector2d c(400, 300);
   const double h = 60;
-  const std::vector<Eigen::Vector2d> lasso{c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h), c + Eigen::Vector2d(h, h),
-                                           c + Eigen::Vector2d(-h, h)};
+  const std::vector<Eigen::Vector2d> lasso{c + Eigen::Vector2d(-h, -h), c + Eigen::Vector2d(h, -h),
+                                           c + Eigen::Vector2d(h, h), c + Eigen::Vector2d(-h, h)};
   const std::vector<int> visible = lasso_vertices(sphere, bvh, cam, lasso);
   const std::vector<int> all = lasso_vertices(sphere, bvh, cam, lasso, {.visible_only = false});
   REQUIRE(!visible.empty());

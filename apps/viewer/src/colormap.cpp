@@ -37,7 +37,8 @@ double percentile(const Eigen::VectorXd& values, double fraction) {
   for (Eigen::Index i = 0; i < values.size(); ++i)
     if (std::isfinite(values(i))) v.push_back(values(i));
   if (v.empty()) return 0;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(v.size())));
+  const size_t k =
+      std::min(v.size() - 1, static_cast<size_t>(std::clamp(fraction, 0.0, 1.0) * static_cast<double>(v.size())));
   std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
   return v[k];
 }

@@ -13,7 +13,9 @@ using geometry::CameraMatrices;
 Eigen::Vector3d unit_axis(int a) { return Eigen::Vector3d::Unit(a); }
 
 // Screen angle of p around c with y pointing up, so counter-clockwise on screen is positive.
-double screen_angle(const Eigen::Vector2d& p, const Eigen::Vector2d& c) { return std::atan2(-(p.y() - c.y()), p.x() - c.x()); }
+double screen_angle(const Eigen::Vector2d& p, const Eigen::Vector2d& c) {
+  return std::atan2(-(p.y() - c.y()), p.x() - c.x());
+}
 
 bool on_screen_depth(const Eigen::Vector3d& s) { return s.z() > 0 && s.z() < 1; }
 
@@ -25,24 +27,39 @@ const Eigen::Vector3f kHighlight{1.0f, 0.9f, 0.2f};
 
 const char* to_string(GizmoPart p) {
   switch (p) {
-    case GizmoPart::None: return "none";
-    case GizmoPart::TranslateX: return "translate x";
-    case GizmoPart::TranslateY: return "translate y";
-    case GizmoPart::TranslateZ: return "translate z";
-    case GizmoPart::RotateX: return "rotate x";
-    case GizmoPart::RotateY: return "rotate y";
-    case GizmoPart::RotateZ: return "rotate z";
-    case GizmoPart::Scale: return "scale";
+    case GizmoPart::None:
+      return "none";
+    case GizmoPart::TranslateX:
+      return "translate x";
+    case GizmoPart::TranslateY:
+      return "translate y";
+    case GizmoPart::TranslateZ:
+      return "translate z";
+    case GizmoPart::RotateX:
+      return "rotate x";
+    case GizmoPart::RotateY:
+      return "rotate y";
+    case GizmoPart::RotateZ:
+      return "rotate z";
+    case GizmoPart::Scale:
+      return "scale";
   }
   return "?";
 }
 
 int gizmo_axis(GizmoPart p) {
   switch (p) {
-    case GizmoPart::TranslateX: case GizmoPart::RotateX: return 0;
-    case GizmoPart::TranslateY: case GizmoPart::RotateY: return 1;
-    case GizmoPart::TranslateZ: case GizmoPart::RotateZ: return 2;
-    default: return -1;
+    case GizmoPart::TranslateX:
+    case GizmoPart::RotateX:
+      return 0;
+    case GizmoPart::TranslateY:
+    case GizmoPart::RotateY:
+      return 1;
+    case GizmoPart::TranslateZ:
+    case GizmoPart::RotateZ:
+      return 2;
+    default:
+      return -1;
   }
 }
 
@@ -108,7 +125,8 @@ std::vector<Gizmo::Polyline> Gizmo::parts(const CameraMatrices& camera) const {
     const Eigen::Vector3d side = axis.cross(eye - tip);
     if (side.norm() > 1e-12) {
       const Eigen::Vector3d p = side.normalized();
-      out.push_back({translate[a], {tip - 0.14 * L * axis + 0.06 * L * p, tip, tip - 0.14 * L * axis - 0.06 * L * p}, false});
+      out.push_back(
+          {translate[a], {tip - 0.14 * L * axis + 0.06 * L * p, tip, tip - 0.14 * L * axis - 0.06 * L * p}, false});
     }
     const Eigen::Vector3d u = unit_axis((a + 1) % 3), v = unit_axis((a + 2) % 3);
     Polyline ring{rotate[a], {}, true};
@@ -120,10 +138,12 @@ std::vector<Gizmo::Polyline> Gizmo::parts(const CameraMatrices& camera) const {
     out.push_back(std::move(ring));
   }
   // The scale square faces the camera: its sides follow the view's right and up vectors.
-  const Eigen::Vector3d right = camera.view.block<1, 3>(0, 0).transpose(), up = camera.view.block<1, 3>(1, 0).transpose();
+  const Eigen::Vector3d right = camera.view.block<1, 3>(0, 0).transpose(),
+                        up = camera.view.block<1, 3>(1, 0).transpose();
   const double h = options_.square_fraction * L;
   out.push_back({GizmoPart::Scale,
-                 {center_ + h * (right + up), center_ + h * (-right + up), center_ + h * (-right - up), center_ + h * (right - up)},
+                 {center_ + h * (right + up), center_ + h * (-right + up), center_ + h * (-right - up),
+                  center_ + h * (right - up)},
                  true});
   return out;
 }
@@ -174,15 +194,20 @@ Eigen::Matrix4d Gizmo::drag_to(const Eigen::Vector2d& pixel) {
   const int a = gizmo_axis(active_);
   const Eigen::Vector2d c = geometry::project(drag_camera_, center_).head<2>();
   switch (active_) {
-    case GizmoPart::TranslateX: case GizmoPart::TranslateY: case GizmoPart::TranslateZ: {
-      const auto t = closest_axis_parameter(geometry::unproject_ray(drag_camera_, pixel.x(), pixel.y()), center_, unit_axis(a));
+    case GizmoPart::TranslateX:
+    case GizmoPart::TranslateY:
+    case GizmoPart::TranslateZ: {
+      const auto t =
+          closest_axis_parameter(geometry::unproject_ray(drag_camera_, pixel.x(), pixel.y()), center_, unit_axis(a));
       // Near the horizon of a steep axis the closest point runs off to infinity: cap a
       // single drag at a hundred gizmo lengths.
       const double limit = 100 * world_size(drag_camera_);
       const double d = t ? std::clamp(*t - start_parameter_, -limit, limit) : 0.0;
       return translation(d * unit_axis(a));
     }
-    case GizmoPart::RotateX: case GizmoPart::RotateY: case GizmoPart::RotateZ: {
+    case GizmoPart::RotateX:
+    case GizmoPart::RotateY:
+    case GizmoPart::RotateZ: {
       // The angle the cursor swept around the gizmo's centre on screen, unwrapped so a drag
       // can turn past half a turn; its sign follows whether the axis points at the viewer.
       const double angle = screen_angle(pixel, c);
@@ -199,7 +224,8 @@ Eigen::Matrix4d Gizmo::drag_to(const Eigen::Vector2d& pixel) {
       const double r0 = std::max((start_pixel_ - c).norm(), 4.0), r = (pixel - c).norm();
       return scale_about(center_, std::clamp(r / r0, 0.02, 50.0));
     }
-    case GizmoPart::None: break;
+    case GizmoPart::None:
+      break;
   }
   return Eigen::Matrix4d::Identity();
 }

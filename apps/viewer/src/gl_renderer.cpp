@@ -142,8 +142,7 @@ class GlRenderer final : public Renderer {
     glUniformMatrix4fv(glGetUniformLocation(program, "projection"), 1, GL_FALSE, proj.data());
   }
 
-  void draw_mesh(const std::string& name, const MeshItem& m, const Eigen::Matrix4f& view,
-                 const Eigen::Matrix4f& proj) {
+  void draw_mesh(const std::string& name, const MeshItem& m, const Eigen::Matrix4f& view, const Eigen::Matrix4f& proj) {
     GpuItem& g = meshes_[name];
     if (g.version != m.version) upload_mesh(g, m);
     if (!g.count) return;
@@ -157,15 +156,16 @@ class GlRenderer final : public Renderer {
     g.create();
     glBindVertexArray(g.vao);
     const Points3f V = m.mesh.V.cast<float>();
-    const Points3f N = m.mesh.F.rows() ? Points3f(geometry::vertex_normals(m.mesh).cast<float>())
-                                       : Points3f(V.rows(), 3);
+    const Points3f N =
+        m.mesh.F.rows() ? Points3f(geometry::vertex_normals(m.mesh).cast<float>()) : Points3f(V.rows(), 3);
     Points3f C = m.colors;
     if (C.rows() != V.rows()) C = m.base_color.transpose().replicate(V.rows(), 1);
     g.attribute(0, V.data(), static_cast<size_t>(V.size()), 3);
     g.attribute(1, N.data(), static_cast<size_t>(N.size()), 3);
     g.attribute(2, C.data(), static_cast<size_t>(C.size()), 3);
     std::vector<GLuint> idx(static_cast<size_t>(m.mesh.F.size()));
-    for (Eigen::Index k = 0; k < m.mesh.F.size(); ++k) idx[static_cast<size_t>(k)] = static_cast<GLuint>(m.mesh.F.data()[k]);
+    for (Eigen::Index k = 0; k < m.mesh.F.size(); ++k)
+      idx[static_cast<size_t>(k)] = static_cast<GLuint>(m.mesh.F.data()[k]);
     g.indices(idx);
     g.version = m.version;
   }

@@ -10,8 +10,8 @@
 namespace lapis::viewer {
 namespace {
 
-constexpr EventType kTypes[] = {EventType::MouseMove, EventType::MouseButton, EventType::Scroll,
-                                EventType::Key, EventType::Char, EventType::Resize, EventType::Idle};
+constexpr EventType kTypes[] = {EventType::MouseMove, EventType::MouseButton, EventType::Scroll, EventType::Key,
+                                EventType::Char,      EventType::Resize,      EventType::Idle};
 
 EventType parse_type(const std::string& s, const std::string& where) {
   for (EventType t : kTypes)
@@ -23,13 +23,20 @@ EventType parse_type(const std::string& s, const std::string& where) {
 
 const char* to_string(EventType t) {
   switch (t) {
-    case EventType::MouseMove: return "move";
-    case EventType::MouseButton: return "button";
-    case EventType::Scroll: return "scroll";
-    case EventType::Key: return "key";
-    case EventType::Char: return "char";
-    case EventType::Resize: return "resize";
-    case EventType::Idle: return "idle";
+    case EventType::MouseMove:
+      return "move";
+    case EventType::MouseButton:
+      return "button";
+    case EventType::Scroll:
+      return "scroll";
+    case EventType::Key:
+      return "key";
+    case EventType::Char:
+      return "char";
+    case EventType::Resize:
+      return "resize";
+    case EventType::Idle:
+      return "idle";
   }
   return "?";
 }
@@ -44,13 +51,26 @@ void EventLog::save(const std::filesystem::path& path) const {
   for (const InputEvent& e : events) {
     nlohmann::json o = {{"type", to_string(e.type)}, {"frame", e.frame}, {"time", e.time}};
     switch (e.type) {
-      case EventType::MouseMove: o["x"] = e.x, o["y"] = e.y; break;
-      case EventType::MouseButton: o["x"] = e.x, o["y"] = e.y, o["button"] = e.button, o["action"] = e.action, o["mods"] = e.mods; break;
-      case EventType::Scroll: o["x"] = e.x, o["y"] = e.y; break;
-      case EventType::Key: o["key"] = e.key, o["action"] = e.action, o["mods"] = e.mods; break;
-      case EventType::Char: o["codepoint"] = e.codepoint; break;
-      case EventType::Resize: o["width"] = e.width, o["height"] = e.height; break;
-      case EventType::Idle: break;
+      case EventType::MouseMove:
+        o["x"] = e.x, o["y"] = e.y;
+        break;
+      case EventType::MouseButton:
+        o["x"] = e.x, o["y"] = e.y, o["button"] = e.button, o["action"] = e.action, o["mods"] = e.mods;
+        break;
+      case EventType::Scroll:
+        o["x"] = e.x, o["y"] = e.y;
+        break;
+      case EventType::Key:
+        o["key"] = e.key, o["action"] = e.action, o["mods"] = e.mods;
+        break;
+      case EventType::Char:
+        o["codepoint"] = e.codepoint;
+        break;
+      case EventType::Resize:
+        o["width"] = e.width, o["height"] = e.height;
+        break;
+      case EventType::Idle:
+        break;
     }
     list.push_back(std::move(o));
   }

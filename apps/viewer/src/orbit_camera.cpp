@@ -36,8 +36,7 @@ void OrbitCamera::zoom(double steps) {
 }
 
 Eigen::Vector3d OrbitCamera::eye() const {
-  const Eigen::Vector3d dir(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
-                            std::cos(pitch) * std::cos(yaw));
+  const Eigen::Vector3d dir(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
   return target + distance * dir;
 }
 

@@ -20,9 +20,9 @@ void append(void* context, void* data, int size) {
 void write_png(const std::filesystem::path& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 4)
-    throw InvalidArgument("viewer::write_png(): " + path.string() + ": image is " +
-                          std::to_string(image.width) + "x" + std::to_string(image.height) + " with " +
-                          std::to_string(image.rgba.size()) + " bytes, expected 4 per pixel");
+    throw InvalidArgument("viewer::write_png(): " + path.string() + ": image is " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + " with " + std::to_string(image.rgba.size()) +
+                          " bytes, expected 4 per pixel");
   geometry::write_file_atomically(path, [&](std::ostream& out) {
     if (!stbi_write_png_to_func(append, &out, image.width, image.height, 4, image.rgba.data(), image.width * 4))
       throw IoError("viewer::write_png(): " + path.string() + ": PNG encoding failed");
@@ -34,7 +34,8 @@ Image read_png(const std::filesystem::path& path) {
   int channels = 0;
   stbi_uc* data = stbi_load(path.c_str(), &image.width, &image.height, &channels, 4);
   if (!data)
-    throw IoError("viewer::read_png(): " + path.string() + ": " + (stbi_failure_reason() ? stbi_failure_reason() : "cannot read"));
+    throw IoError("viewer::read_png(): " + path.string() + ": " +
+                  (stbi_failure_reason() ? stbi_failure_reason() : "cannot read"));
   image.rgba.assign(data, data + static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 4);
   stbi_image_free(data);
   return image;

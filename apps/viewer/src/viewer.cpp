@@ -1,7 +1,9 @@
 #define GL_GLEXT_PROTOTYPES
 #include "lapis/viewer/viewer.h"
 
+// GLFW's header brings in GL/gl.h, which glext.h needs first.
 #include <GLFW/glfw3.h>
+
 #include <GL/glext.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -22,7 +24,7 @@
 namespace lapis::viewer {
 
 namespace {
-constexpr long kSettleFrames = 3;           // frames drawn after input (ImGui hover, releases)
+constexpr long kSettleFrames = 3;            // frames drawn after input (ImGui hover, releases)
 constexpr double kBusyRedrawSeconds = 0.25;  // redraw period while the app's worker runs
 constexpr double kIdleRedrawSeconds = 1.0;   // and while nothing happens (overlay clock)
 
@@ -83,8 +85,10 @@ struct GlfwCallbacks {
     // Where the pointer was at the press: the last motion handled before it. GLFW's query
     // asks the server for where it is now, which on a loaded machine is several queued
     // motions later (a stroke then began 60 px down, off the scalp).
-    if (v.cursor_seen_) e.x = v.cursor_.x(), e.y = v.cursor_.y();
-    else glfwGetCursorPos(w, &e.x, &e.y);
+    if (v.cursor_seen_)
+      e.x = v.cursor_.x(), e.y = v.cursor_.y();
+    else
+      glfwGetCursorPos(w, &e.x, &e.y);
     e.button = button, e.action = action, e.mods = mods;
     v.record(e);
     v.dispatch(e);
@@ -127,13 +131,20 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
   };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--headless") o.headless = true;
-    else if (a == "--replay") o.replay = value(i, "--replay");
-    else if (a == "--record") o.record = value(i, "--record");
-    else if (a == "--screenshot") o.screenshot = value(i, "--screenshot");
-    else if (a == "--exit-after-replay") o.exit_after_replay = true;
-    else if (a == "--benchmark") o.benchmark = value(i, "--benchmark");
-    else if (a == "--ready-file") o.ready_file = value(i, "--ready-file");
+    if (a == "--headless")
+      o.headless = true;
+    else if (a == "--replay")
+      o.replay = value(i, "--replay");
+    else if (a == "--record")
+      o.record = value(i, "--record");
+    else if (a == "--screenshot")
+      o.screenshot = value(i, "--screenshot");
+    else if (a == "--exit-after-replay")
+      o.exit_after_replay = true;
+    else if (a == "--benchmark")
+      o.benchmark = value(i, "--benchmark");
+    else if (a == "--ready-file")
+      o.ready_file = value(i, "--ready-file");
     else if (a == "--size") {
       const std::string s = value(i, "--size");
       if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
@@ -142,7 +153,8 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
       const std::string s = value(i, "--msaa");
       if (std::sscanf(s.c_str(), "%d", &o.msaa_samples) != 1 || o.msaa_samples < 0 || o.msaa_samples > 16)
         throw InvalidArgument("viewer: --msaa expects 0..16 samples per pixel, got '" + s + "'");
-    } else rest.push_back(a);
+    } else
+      rest.push_back(a);
   }
   return rest;
 }
@@ -198,16 +210,26 @@ void Viewer::dispatch(const InputEvent& e) {
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
   switch (e.type) {
-    case EventType::MouseMove: cursor_ = {e.x, e.y}; break;
+    case EventType::MouseMove:
+      cursor_ = {e.x, e.y};
+      break;
     case EventType::MouseButton:
       cursor_ = {e.x, e.y};
       if (e.button >= 0 && e.button < 8) buttons_[e.button] = e.action == GLFW_PRESS;
       if (w) ImGui_ImplGlfw_MouseButtonCallback(w, e.button, e.action, e.mods);
       break;
-    case EventType::Scroll: if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y); break;
-    case EventType::Key: if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods); break;
-    case EventType::Char: if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint); break;
-    case EventType::Resize: case EventType::Idle: break;
+    case EventType::Scroll:
+      if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y);
+      break;
+    case EventType::Key:
+      if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods);
+      break;
+    case EventType::Char:
+      if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint);
+      break;
+    case EventType::Resize:
+    case EventType::Idle:
+      break;
   }
   const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
   if (keyboard && io.WantCaptureKeyboard) return;
@@ -242,8 +264,10 @@ void Viewer::handle_camera(const InputEvent& e) {
   if (e.type == EventType::MouseButton && e.action == GLFW_PRESS) drag_from_ = {e.x, e.y};
   if (e.type == EventType::MouseMove) {
     const Eigen::Vector2d d = Eigen::Vector2d(e.x, e.y) - drag_from_;
-    if (buttons_[GLFW_MOUSE_BUTTON_RIGHT]) camera_.orbit(d.x(), d.y());
-    else if (buttons_[GLFW_MOUSE_BUTTON_MIDDLE]) camera_.pan(d.x(), d.y(), height_);
+    if (buttons_[GLFW_MOUSE_BUTTON_RIGHT])
+      camera_.orbit(d.x(), d.y());
+    else if (buttons_[GLFW_MOUSE_BUTTON_MIDDLE])
+      camera_.pan(d.x(), d.y(), height_);
     drag_from_ = {e.x, e.y};
   }
   if (e.type == EventType::Scroll) camera_.zoom(e.y);
@@ -279,7 +303,8 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
   glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
   const size_t row = static_cast<size_t>(width_) * 4;
   for (int y = 0; y < height_; ++y)  // GL's first row is the bottom one
-    std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row, image.rgba.data() + static_cast<size_t>(y) * row);
+    std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row,
+                image.rgba.data() + static_cast<size_t>(y) * row);
   for (size_t k = 3; k < image.rgba.size(); k += 4) image.rgba[k] = 255;
   geometry::create_parent_directories(path);
   write_png(path, image);
@@ -287,8 +312,9 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
 }
 
 void Viewer::report_ready(bool busy) {
-  const std::string state = " events=" + std::to_string(handled_events_) + " buttons=" + std::to_string(handled_buttons_) +
-                            " keys=" + std::to_string(handled_keys_) + " busy=" + (busy ? "1" : "0");
+  const std::string state = " events=" + std::to_string(handled_events_) +
+                            " buttons=" + std::to_string(handled_buttons_) + " keys=" + std::to_string(handled_keys_) +
+                            " busy=" + (busy ? "1" : "0");
   if (state == last_ready_) return;
   last_ready_ = state;
   geometry::write_file_atomically(options_.ready_file,
@@ -363,8 +389,10 @@ void Viewer::wait_for_next_frame(bool busy) {
     const long next_frame = next.frame + replay_delay_;
     const bool held_until_idle = next.type == EventType::Idle && next_frame <= frame_ && busy;
     if (settled && (next_frame > frame_ || held_until_idle)) {
-      if (busy) glfwWaitEventsTimeout(kBusyRedrawSeconds);
-      else frame_ = next_frame;
+      if (busy)
+        glfwWaitEventsTimeout(kBusyRedrawSeconds);
+      else
+        frame_ = next_frame;
     }
     glfwPollEvents();
   } else if (settled && !pending_screenshot_ && frame_ >= kSettleFrames && !(finishing_run(options_) && !busy)) {
@@ -398,7 +426,8 @@ void Viewer::draw_frame() {
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = ImVec2(static_cast<float>(cursor_.x()), static_cast<float>(cursor_.y()));
   for (int b = 0; b < 3; ++b) io.MouseDown[b] = io.MouseDown[b] || buttons_[b];
-  if (replay_) for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttons_[b];
+  if (replay_)
+    for (int b = 0; b < 3; ++b) io.MouseDown[b] = buttons_[b];
   ImGui::NewFrame();
 
   app_->on_frame(*this);

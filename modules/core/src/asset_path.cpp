@@ -23,7 +23,8 @@ fs::path executable_dir() {
 std::vector<fs::path> asset_search_dirs() {
   std::vector<fs::path> dirs;
   if (const char* env = std::getenv("LAPIS_ASSET_DIR"); env && *env) dirs.emplace_back(env);
-  if (const fs::path exe = executable_dir(); !exe.empty()) dirs.push_back((exe / ".." / "share" / "lapis").lexically_normal());
+  if (const fs::path exe = executable_dir(); !exe.empty())
+    dirs.push_back((exe / ".." / "share" / "lapis").lexically_normal());
 #ifdef LAPIS_SOURCE_ASSET_DIR
   dirs.emplace_back(LAPIS_SOURCE_ASSET_DIR);
 #endif

@@ -19,8 +19,7 @@ namespace lapis::geometry {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what, int err) {
-  throw IoError("geometry::write_file_atomically(): " + path.string() + ": " + what + ": " +
-                std::strerror(err));
+  throw IoError("geometry::write_file_atomically(): " + path.string() + ": " + what + ": " + std::strerror(err));
 }
 
 // A stream buffer straight onto a POSIX descriptor, so that we can fsync what we wrote
@@ -166,13 +165,13 @@ std::vector<std::filesystem::path> stale_temporaries(const std::filesystem::path
     if (name.rfind(prefix, 0) != 0) continue;
     // "<pid>-<n>": a process that no longer exists cannot finish it.
     const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) out.push_back(target.parent_path() / name);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
+      out.push_back(target.parent_path() / name);
   }
   return out;
 }
 
-void write_file_atomically(const std::filesystem::path& path,
-                           const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write) {
   if (path.filename().empty()) fail(path, "not a file name", EINVAL);
   const std::filesystem::path target = resolve_links(path);
   for (const auto& stale : stale_temporaries(target)) ::unlink(stale.c_str());

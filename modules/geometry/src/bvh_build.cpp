@@ -40,7 +40,7 @@ int bin_index(double x, double lo, double half_extent, int nb) {
 
 struct BvhBuilder {
   Bvh& bvh;
-  std::vector<Box> boxes;               // per face
+  std::vector<Box> boxes;  // per face
   std::vector<Eigen::Vector3d> centroids;
   std::atomic<int> next_node{1};
 
@@ -93,8 +93,8 @@ struct BvhBuilder {
     // Leaf when it is allowed and no split beats intersecting every triangle (traversal cost 1).
     if (n <= o.max_leaf_size && !(best_cost < bounds.half_area() * (n - 1))) return kLeaf;
     if (best < 0) return kMedian;
-    const auto mid = std::partition(bvh.order_.begin() + begin, bvh.order_.begin() + end,
-                                    [&](int f) { return bin_of(f) < best; });
+    const auto mid =
+        std::partition(bvh.order_.begin() + begin, bvh.order_.begin() + end, [&](int f) { return bin_of(f) < best; });
     return static_cast<int>(mid - bvh.order_.begin());
   }
 
@@ -109,8 +109,9 @@ struct BvhBuilder {
       bounds.grow(boxes[f]);
       cb.grow(centroids[f]);
     }
-    int mid = depth < kSahDepth ? split(begin, end, bounds, cb)
-              : end - begin <= bvh.options_.max_leaf_size ? kLeaf : kMedian;
+    int mid = depth < kSahDepth                           ? split(begin, end, bounds, cb)
+              : end - begin <= bvh.options_.max_leaf_size ? kLeaf
+                                                          : kMedian;
     if (mid == kLeaf) return set_node(node, bounds, begin, end - begin);
     if (mid == kMedian) {
       mid = begin + (end - begin) / 2;
@@ -148,7 +149,7 @@ Bvh::Bvh(const TriMesh& mesh, const BvhOptions& options) : mesh_(mesh), options_
   order_.resize(nf);
   for (int f = 0; f < nf; ++f) order_[f] = f;
   nodes_.resize(std::max(1, 2 * nf - 1));  // a binary tree with at most nf leaves
-  if (nf == 0) return;  // queries check for an empty mesh before touching the tree
+  if (nf == 0) return;                     // queries check for an empty mesh before touching the tree
 #pragma omp parallel if (nf >= detail::kParallelMin)
 #pragma omp single
   b.build(0, 0, nf, 0);

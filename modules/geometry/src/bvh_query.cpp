@@ -9,9 +9,10 @@
 
 namespace lapis::geometry {
 
-std::optional<std::pair<double, Eigen::Vector3d>> intersect_triangle(
-    const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Eigen::Vector3d& a,
-    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+std::optional<std::pair<double, Eigen::Vector3d>> intersect_triangle(const Eigen::Vector3d& origin,
+                                                                     const Eigen::Vector3d& direction,
+                                                                     const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                                     const Eigen::Vector3d& c) {
   // Moller & Trumbore 1997.
   const Eigen::Vector3d e1 = b - a, e2 = c - a;
   const Eigen::Vector3d p = direction.cross(e2);
@@ -29,8 +30,8 @@ std::optional<std::pair<double, Eigen::Vector3d>> intersect_triangle(
   return std::make_pair(t, Eigen::Vector3d(1 - u - v, u, v));
 }
 
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c) {
   // Ericson 5.1.5: find the Voronoi region of p among vertices, edges and the face.
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -89,7 +90,8 @@ inline double box_distance2(const double lo[3], const double hi[3], const Eigen:
 
 std::optional<RayHit> Bvh::intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                      double t_max) const {
-  if (mesh_.num_faces() == 0 || !origin.allFinite() || !direction.allFinite() || direction.isZero()) return std::nullopt;
+  if (mesh_.num_faces() == 0 || !origin.allFinite() || !direction.allFinite() || direction.isZero())
+    return std::nullopt;
   const Eigen::Vector3d inv = direction.cwiseInverse();
   constexpr double kMiss = std::numeric_limits<double>::infinity();
   RayHit best;
@@ -176,7 +178,8 @@ int Bvh::count_crossings(const Eigen::Vector3d& origin, const Eigen::Vector3d& d
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (ray_box(n.lo, n.hi, origin, inv, std::numeric_limits<double>::infinity()) == std::numeric_limits<double>::infinity())
+    if (ray_box(n.lo, n.hi, origin, inv, std::numeric_limits<double>::infinity()) ==
+        std::numeric_limits<double>::infinity())
       continue;
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
@@ -212,7 +215,8 @@ int Bvh::depth() const {
     const auto [node, d] = stack.back();
     stack.pop_back();
     deepest = std::max(deepest, d);
-    if (nodes_[node].count == 0) stack.push_back({nodes_[node].first, d + 1}), stack.push_back({nodes_[node].first + 1, d + 1});
+    if (nodes_[node].count == 0)
+      stack.push_back({nodes_[node].first, d + 1}), stack.push_back({nodes_[node].first + 1, d + 1});
   }
   return deepest;
 }

@@ -10,9 +10,7 @@ namespace lapis::geometry {
 AdjacencyLists vertex_face_lists(const Faces& F, int num_vertices) {
   AdjacencyLists lists;
   lists.offsets.assign(num_vertices + 1, 0);
-  auto repeated = [&](Eigen::Index f, int k) {
-    return (k > 0 && F(f, 0) == F(f, k)) || (k > 1 && F(f, 1) == F(f, k));
-  };
+  auto repeated = [&](Eigen::Index f, int k) { return (k > 0 && F(f, 0) == F(f, k)) || (k > 1 && F(f, 1) == F(f, k)); };
   for (Eigen::Index f = 0; f < F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (!repeated(f, k)) ++lists.offsets[F(f, k) + 1];
@@ -56,7 +54,8 @@ void Connectivity::build_edges() {
   edge_face_count_.reserve(halves.size() / 2 + 1);
   for (int v = 0; v < nv; ++v) {
     auto begin = halves.begin() + offsets[v], end = halves.begin() + offsets[v + 1];
-    std::sort(begin, end, [](const Half& x, const Half& y) { return x.hi < y.hi || (x.hi == y.hi && x.face < y.face); });
+    std::sort(begin, end,
+              [](const Half& x, const Half& y) { return x.hi < y.hi || (x.hi == y.hi && x.face < y.face); });
     for (auto it = begin; it != end; ++it) {
       if (it == begin || it->hi != (it - 1)->hi) {
         edges_.push_back({v, it->hi});

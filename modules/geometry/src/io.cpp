@@ -21,7 +21,8 @@ TriMesh read_mesh(const std::filesystem::path& path, Warnings* warnings) {
   if (ext == ".off") return read_off(path, warnings);
   if (ext == ".ply") return read_ply(path, warnings);
   if (ext == ".stl") return read_stl(path, warnings);
-  detail::io_fail("geometry::read_mesh()", path, "", "unknown extension '" + ext + "', expected .obj, .off, .ply or .stl");
+  detail::io_fail("geometry::read_mesh()", path, "",
+                  "unknown extension '" + ext + "', expected .obj, .off, .ply or .stl");
 }
 
 void write_mesh(const std::filesystem::path& path, const TriMesh& mesh) {
@@ -30,7 +31,8 @@ void write_mesh(const std::filesystem::path& path, const TriMesh& mesh) {
   if (ext == ".off") return write_off(path, mesh);
   if (ext == ".ply") return write_ply(path, mesh);
   if (ext == ".stl") return write_stl(path, mesh);
-  detail::io_fail("geometry::write_mesh()", path, "", "unknown extension '" + ext + "', expected .obj, .off, .ply or .stl");
+  detail::io_fail("geometry::write_mesh()", path, "",
+                  "unknown extension '" + ext + "', expected .obj, .off, .ply or .stl");
 }
 
 }  // namespace lapis::geometry

@@ -15,10 +15,10 @@ namespace lapis::geometry {
 namespace {
 
 constexpr std::array<std::string_view, 38> kSkipped = {
-    "vt", "vn", "vp", "p", "o", "g", "s", "mg", "usemtl", "mtllib", "cstype", "deg", "bmat",
-    "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con",
-    "call", "csh", "maplib", "usemap", "lod", "shadow_obj", "trace_obj", "ctech", "stech",
-    "bevel", "c_interp", "d_interp", "vc", "#"};
+    "vt",        "vn",    "vp",    "p",     "o",        "g",        "s",      "mg",     "usemtl", "mtllib",
+    "cstype",    "deg",   "bmat",  "step",  "curv",     "curv2",    "surf",   "parm",   "trim",   "hole",
+    "scrv",      "sp",    "end",   "con",   "call",     "csh",      "maplib", "usemap", "lod",    "shadow_obj",
+    "trace_obj", "ctech", "stech", "bevel", "c_interp", "d_interp", "vc",     "#"};
 
 struct ObjContent {
   detail::MeshBuilder mesh;

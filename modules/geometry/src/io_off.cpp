@@ -38,11 +38,13 @@ TriMesh read_off(const std::filesystem::path& path, Warnings* warnings) {
   const long long nf = in.integer("face count");
   // The edge count is unused and some writers leave it out: optional, but an integer if there.
   if (!in.at_line_end()) in.integer("edge count", true);
-  if (nv < 0 || nf < 0) in.fail("negative vertex or face count (" + std::to_string(nv) + ", " + std::to_string(nf) + ")");
+  if (nv < 0 || nf < 0)
+    in.fail("negative vertex or face count (" + std::to_string(nv) + ", " + std::to_string(nf) + ")");
   const size_t room = in.remaining();
   if (static_cast<unsigned long long>(nv) > room / kMinVertexBytes ||
       static_cast<unsigned long long>(nf) > room / kMinFaceBytes ||
-      static_cast<unsigned long long>(nv) * kMinVertexBytes + static_cast<unsigned long long>(nf) * kMinFaceBytes > room)
+      static_cast<unsigned long long>(nv) * kMinVertexBytes + static_cast<unsigned long long>(nf) * kMinFaceBytes >
+          room)
     in.fail("header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
             " faces, more than the remaining " + std::to_string(room) + " bytes can hold");
 
@@ -68,13 +70,15 @@ TriMesh read_off(const std::filesystem::path& path, Warnings* warnings) {
     for (long long k = 0; k < n; ++k) {
       const long long i = in.integer("vertex index", true);
       if (i < 0 || i >= nv)
-        in.fail("face " + std::to_string(f) + " index " + std::to_string(i) + " out of range [0, " + std::to_string(nv) + ")");
+        in.fail("face " + std::to_string(f) + " index " + std::to_string(i) + " out of range [0, " +
+                std::to_string(nv) + ")");
       corners[static_cast<size_t>(k)] = static_cast<int>(i);
     }
     mesh.add_polygon(corners);
     in.skip_line();  // face colour
   }
-  if (!in.at_end()) in.fail("unexpected data after " + std::to_string(nf) + " faces, counts in the header disagree with the data");
+  if (!in.at_end())
+    in.fail("unexpected data after " + std::to_string(nf) + " faces, counts in the header disagree with the data");
   return mesh.finish(kRead, path, warnings);
 }
 

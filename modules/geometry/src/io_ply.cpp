@@ -22,9 +22,9 @@ enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 
 bool parse_type(std::string_view s, Type& t) {
   static const std::pair<std::string_view, Type> names[] = {
-      {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},   {"uint8", Type::UInt8},
-      {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16}, {"uint16", Type::UInt16},
-      {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},   {"uint32", Type::UInt32},
+      {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
+      {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
+      {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},    {"uint32", Type::UInt32},
       {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
   for (const auto& [name, type] : names)
     if (s == name) return t = type, true;
@@ -33,17 +33,25 @@ bool parse_type(std::string_view s, Type& t) {
 
 size_t type_size(Type t) {
   switch (t) {
-    case Type::Int8: case Type::UInt8: return 1;
-    case Type::Int16: case Type::UInt16: return 2;
-    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
-    case Type::Float64: return 8;
+    case Type::Int8:
+    case Type::UInt8:
+      return 1;
+    case Type::Int16:
+    case Type::UInt16:
+      return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32:
+      return 4;
+    case Type::Float64:
+      return 8;
   }
   return 0;
 }
 
 struct Property {
   std::string name;
-  Type type = Type::Float32;       // the item type for lists
+  Type type = Type::Float32;  // the item type for lists
   bool is_list = false;
   Type count_type = Type::UInt8;
 };
@@ -67,7 +75,8 @@ Header parse_header(const std::string& text, const std::filesystem::path& path) 
   size_t end = text.find("end_header");
   if (text.compare(0, 3, "ply") != 0 || (text.size() > 3 && text[3] != '\n' && text[3] != '\r'))
     detail::io_fail(kRead, path, "line 1", "expected 'ply' magic, found " + detail::quote(text.substr(0, 8)));
-  if (end == std::string::npos) detail::io_fail(kRead, path, "", "no 'end_header' line, expected a complete PLY header");
+  if (end == std::string::npos)
+    detail::io_fail(kRead, path, "", "no 'end_header' line, expected a complete PLY header");
   Header h;
   const std::string_view header(text.data(), end);
   detail::TextCursor in(header, kRead, path, '\0');
@@ -81,10 +90,14 @@ Header parse_header(const std::string& text, const std::filesystem::path& path) 
     }
     if (keyword == "format") {
       const std::string_view f = in.token_on_line();
-      if (f == "ascii") h.encoding = Encoding::Ascii;
-      else if (f == "binary_little_endian") h.encoding = Encoding::Little;
-      else if (f == "binary_big_endian") h.encoding = Encoding::Big;
-      else in.fail("unknown format " + detail::quote(f) + ", expected ascii, binary_little_endian or binary_big_endian");
+      if (f == "ascii")
+        h.encoding = Encoding::Ascii;
+      else if (f == "binary_little_endian")
+        h.encoding = Encoding::Little;
+      else if (f == "binary_big_endian")
+        h.encoding = Encoding::Big;
+      else
+        in.fail("unknown format " + detail::quote(f) + ", expected ascii, binary_little_endian or binary_big_endian");
       if (in.token_on_line() != "1.0") in.fail("expected format version 1.0");
       have_format = true;
     } else if (keyword == "element") {
@@ -107,7 +120,8 @@ Header parse_header(const std::string& text, const std::filesystem::path& path) 
         t = in.token_on_line();
       }
       if (!parse_type(t, p.type))
-        in.fail("unknown property type " + detail::quote(t) + ", expected char, uchar, short, ushort, int, uint, float, double or their sized names");
+        in.fail("unknown property type " + detail::quote(t) +
+                ", expected char, uchar, short, ushort, int, uint, float, double or their sized names");
       p.name = std::string(in.token_on_line());
       if (p.name.empty()) in.fail("expected a property name");
       h.elements.back().properties.push_back(std::move(p));
@@ -126,9 +140,13 @@ Header parse_header(const std::string& text, const std::filesystem::path& path) 
 class Body {
  public:
   Body(const std::string& text, const Header& h, const std::filesystem::path& path)
-      : text_(text), path_(path), encoding_(h.encoding), pos_(h.body_offset),
+      : text_(text),
+        path_(path),
+        encoding_(h.encoding),
+        pos_(h.body_offset),
         ascii_(std::string_view(text).substr(h.body_offset), kRead, path, '\0',
-               1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(h.body_offset), '\n'))) {}
+               1 + static_cast<int>(
+                       std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(h.body_offset), '\n'))) {}
 
   size_t remaining() const { return encoding_ == Encoding::Ascii ? ascii_.remaining() : text_.size() - pos_; }
   bool ascii() const { return encoding_ == Encoding::Ascii; }
@@ -163,14 +181,40 @@ class Body {
  private:
   static double decode(Type t, const unsigned char* b) {
     switch (t) {
-      case Type::Int8: return static_cast<double>(static_cast<std::int8_t>(b[0]));
-      case Type::UInt8: return b[0];
-      case Type::Int16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::UInt16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::Int32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::UInt32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-      case Type::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+      case Type::Int8:
+        return static_cast<double>(static_cast<std::int8_t>(b[0]));
+      case Type::UInt8:
+        return b[0];
+      case Type::Int16: {
+        std::int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::UInt16: {
+        std::uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::Int32: {
+        std::int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::UInt32: {
+        std::uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::Float32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::Float64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -227,8 +271,8 @@ TriMesh read_ply(const std::filesystem::path& path, Warnings* warnings) {
     const size_t per = min_instance_bytes(e, body.ascii());
     if (static_cast<unsigned long long>(e.count) > body.remaining() / per ||
         (needed += static_cast<unsigned long long>(e.count) * per) > body.remaining())
-      body.fail("element '" + e.name + "' claims " + std::to_string(e.count) +
-                " instances, more than the remaining " + std::to_string(body.remaining()) + " bytes can hold");
+      body.fail("element '" + e.name + "' claims " + std::to_string(e.count) + " instances, more than the remaining " +
+                std::to_string(body.remaining()) + " bytes can hold");
   }
   if (!vertex) detail::io_fail(kRead, path, "", "no 'vertex' element in the header");
   int xyz[3] = {-1, -1, -1};
@@ -285,7 +329,8 @@ TriMesh read_ply(const std::filesystem::path& path, Warnings* warnings) {
     }
   }
   if (!body.at_end()) body.fail("unexpected data after the last element, counts in the header disagree with the data");
-  if (!have_faces && warnings) warnings->push_back(std::string(kRead) + ": " + path.string() + ": no faces (point cloud)");
+  if (!have_faces && warnings)
+    warnings->push_back(std::string(kRead) + ": " + path.string() + ": no faces (point cloud)");
   return mesh.finish(kRead, path, warnings);
 }
 
@@ -302,8 +347,9 @@ void put(std::string& s, T v, bool swap) {
 void write_ply(const std::filesystem::path& path, const TriMesh& mesh, PlyFormat format) {
   require_indices_in_range(mesh, "geometry::write_ply()");
   require_finite_vertices(mesh, "geometry::write_ply()");
-  const char* name = format == PlyFormat::Ascii ? "ascii"
-                     : format == PlyFormat::BinaryLittleEndian ? "binary_little_endian" : "binary_big_endian";
+  const char* name = format == PlyFormat::Ascii                ? "ascii"
+                     : format == PlyFormat::BinaryLittleEndian ? "binary_little_endian"
+                                                               : "binary_big_endian";
   const bool swap = format != PlyFormat::Ascii &&
                     ((format == PlyFormat::BinaryLittleEndian) != (std::endian::native == std::endian::little));
   write_file_atomically(path, [&](std::ostream& out) {

@@ -21,7 +21,10 @@ constexpr const char* kRead = "geometry::read_stl()";
 // Gives each distinct position one index.
 class Welder {
  public:
-  explicit Welder(size_t triangles) { index_.reserve(triangles / 2 + 1); mesh_.reserve(triangles / 2, triangles); }
+  explicit Welder(size_t triangles) {
+    index_.reserve(triangles / 2 + 1);
+    mesh_.reserve(triangles / 2, triangles);
+  }
   int corner(double x, double y, double z) {
     const Key k{x + 0.0, y + 0.0, z + 0.0};  // + 0.0 folds -0 into 0
     const auto [it, added] = index_.try_emplace(k, mesh_.num_vertices());
@@ -75,8 +78,8 @@ TriMesh read_binary(const std::string& data, const std::filesystem::path& path, 
 TriMesh read_ascii(const std::string& data, const std::filesystem::path& path, Warnings* warnings) {
   detail::require_text(data, kRead, path);
   detail::TextCursor in(data, kRead, path, '\0');
-  in.token();  // "solid"
-  in.rest_of_line();  // its name
+  in.token();                      // "solid"
+  in.rest_of_line();               // its name
   Welder weld(data.size() / 200);  // an ASCII facet takes ~250 bytes
   for (;;) {
     const std::string_view t = in.token();

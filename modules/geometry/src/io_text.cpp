@@ -126,9 +126,7 @@ double checked_number(const TextCursor& c, std::string_view t, std::string_view 
 
 double TextCursor::number(std::string_view what) { return checked_number(*this, token(), what); }
 
-double TextCursor::number_on_line(std::string_view what) {
-  return checked_number(*this, token_on_line(), what);
-}
+double TextCursor::number_on_line(std::string_view what) { return checked_number(*this, token_on_line(), what); }
 
 long long TextCursor::integer(std::string_view what, bool same_line) {
   const std::string_view t = same_line ? token_on_line() : token();

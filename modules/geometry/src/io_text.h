@@ -17,10 +17,9 @@ namespace lapis::geometry::detail {
 // Reads the whole file; IoError "<fn>: <path>: cannot open: <reason>" on failure.
 std::string read_file(const std::filesystem::path& path, std::string_view fn);
 
-[[noreturn]] inline void io_fail(std::string_view fn, const std::filesystem::path& path,
-                                 const std::string& where, const std::string& what) {
-  throw IoError(std::string(fn) + ": " + path.string() + (where.empty() ? "" : ":" + where) +
-                ": " + what);
+[[noreturn]] inline void io_fail(std::string_view fn, const std::filesystem::path& path, const std::string& where,
+                                 const std::string& what) {
+  throw IoError(std::string(fn) + ": " + path.string() + (where.empty() ? "" : ":" + where) + ": " + what);
 }
 
 // Quotes a token for an error message, cut to 20 characters and with non-printables escaped;
@@ -43,8 +42,8 @@ inline bool parse_int(std::string_view s, long long& out) {
 class TextCursor {
  public:
   // first_line: the file's line number of text's first line (a PLY body after its header).
-  TextCursor(std::string_view text, std::string_view fn, const std::filesystem::path& path,
-             char comment = '#', int first_line = 1)
+  TextCursor(std::string_view text, std::string_view fn, const std::filesystem::path& path, char comment = '#',
+             int first_line = 1)
       : text_(text), fn_(fn), path_(path), comment_(comment), line_(first_line) {}
 
   // Next whitespace-separated token, crossing line ends and skipping comments;
@@ -64,9 +63,7 @@ class TextCursor {
   size_t offset() const { return pos_; }
   size_t remaining() const { return text_.size() - pos_; }
 
-  [[noreturn]] void fail(const std::string& what) const {
-    io_fail(fn_, path_, "line " + std::to_string(line_), what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { io_fail(fn_, path_, "line " + std::to_string(line_), what); }
   // Token readers that fail with "expected <what>, found '<token>'".
   double number(std::string_view what);
   long long integer(std::string_view what, bool same_line = false);

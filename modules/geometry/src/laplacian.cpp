@@ -12,7 +12,8 @@
 
 namespace lapis::geometry {
 
-std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                          const Eigen::Vector3d& p2) {
   if (!(p0.allFinite() && p1.allFinite() && p2.allFinite()) || is_thin_triangle(p0, p1, p2, kDegenerateTriangleHeight))
     return {0, 0, 0};
   const Eigen::Vector3d p[3] = {p0, p1, p2};
@@ -66,7 +67,8 @@ Eigen::SparseMatrix<double> assemble(const TriMesh& m, const Weight& weight, boo
       col[out++] = {col[i].first, w};
       i = j;
     }
-    const int at = static_cast<int>(std::lower_bound(col, col + out, v, [](const Entry& e, int x) { return e.first < x; }) - col);
+    const int at =
+        static_cast<int>(std::lower_bound(col, col + out, v, [](const Entry& e, int x) { return e.first < x; }) - col);
     std::move_backward(col + at, col + out, col + out + 1);
     col[at] = {v, diag};
     used[v] = out + 1;
@@ -99,7 +101,8 @@ Eigen::SparseMatrix<double> cotan_laplacian(const TriMesh& mesh) {
 }
 
 Eigen::SparseMatrix<double> uniform_laplacian(const TriMesh& mesh) {
-  return assemble(mesh, [](int, int) { return 1.0; }, true, "geometry::uniform_laplacian()");
+  return assemble(
+      mesh, [](int, int) { return 1.0; }, true, "geometry::uniform_laplacian()");
 }
 
 Eigen::VectorXd vertex_areas(const TriMesh& mesh, MassType type) {

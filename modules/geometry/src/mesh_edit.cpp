@@ -114,8 +114,8 @@ int bridge_polylines(TriMesh& mesh, const std::vector<int>& a_in, const std::vec
   Faces strip(static_cast<Eigen::Index>(n + m - 2), 3);
   Eigen::Index t = 0;
   for (size_t i = 0, j = 0; i + 1 < n || j + 1 < m;) {
-    const bool advance_a =
-        j + 1 == m || (i + 1 < n && (pos(a[i + 1]) - pos(b[j])).squaredNorm() <= (pos(a[i]) - pos(b[j + 1])).squaredNorm());
+    const bool advance_a = j + 1 == m || (i + 1 < n && (pos(a[i + 1]) - pos(b[j])).squaredNorm() <=
+                                                           (pos(a[i]) - pos(b[j + 1])).squaredNorm());
     if (advance_a) {
       strip.row(t++) << a[i], a[i + 1], b[j];
       ++i;

@@ -54,7 +54,8 @@ TriMesh make_irregular_grid(int nx, int ny, double jitter, std::uint32_t seed, d
     throw InvalidArgument("geometry::make_irregular_grid(): jitter = " + std::to_string(jitter) +
                           ", expected [0, 0.25) (larger can fold triangles)");
   TriMesh m = make_plane_grid(nx, ny, width, height);
-  m.F = lattice_faces(nx, ny, [&](int i, int j) { return j * (nx + 1) + i; }, true);
+  m.F = lattice_faces(
+      nx, ny, [&](int i, int j) { return j * (nx + 1) + i; }, true);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-jitter, jitter);
   for (int j = 1; j < ny; ++j)
@@ -127,11 +128,11 @@ TriMesh make_icosphere(int subdivisions, double radius) {
   const double p = (1 + std::sqrt(5.0)) / 2;
   TriMesh m;
   m.V.resize(12, 3);
-  m.V << -1, p, 0, 1, p, 0, -1, -p, 0, 1, -p, 0, 0, -1, p, 0, 1, p, 0, -1, -p, 0, 1, -p, p, 0, -1, p, 0, 1,
-      -p, 0, -1, -p, 0, 1;
+  m.V << -1, p, 0, 1, p, 0, -1, -p, 0, 1, -p, 0, 0, -1, p, 0, 1, p, 0, -1, -p, 0, 1, -p, p, 0, -1, p, 0, 1, -p, 0, -1,
+      -p, 0, 1;
   m.F.resize(20, 3);
-  m.F << 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9,
-      4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1;
+  m.F << 0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3,
+      4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1;
   m = midpoint_subdivide(m, subdivisions);
   m.V.rowwise().normalize();
   m.V *= radius;
@@ -147,7 +148,8 @@ TriMesh make_double_torus(int n_major, int n_minor, double R, double r) {
   const double shift = R + r + 0.25 * r;
   std::vector<int> around_outer;  // the quads (i, j) with i in {n_major - 1, 0}, j in {n_minor - 1, 0}
   for (int j : {n_minor - 1, 0})
-    for (int i : {n_major - 1, 0}) around_outer.insert(around_outer.end(), {2 * (j * n_major + i), 2 * (j * n_major + i) + 1});
+    for (int i : {n_major - 1, 0})
+      around_outer.insert(around_outer.end(), {2 * (j * n_major + i), 2 * (j * n_major + i) + 1});
   TriMesh halves[2];
   std::vector<int> loops[2];
   for (int h = 0; h < 2; ++h) {

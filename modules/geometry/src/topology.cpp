@@ -47,7 +47,8 @@ Components connected_components(const Connectivity& conn) {
     c.vertex_component[v] = label[r];
   }
   c.face_component.resize(conn.num_faces());
-  for (int f = 0; f < conn.num_faces(); ++f) c.face_component[f] = c.vertex_component[conn.edges()[conn.face_edge(f, 0)][0]];
+  for (int f = 0; f < conn.num_faces(); ++f)
+    c.face_component[f] = c.vertex_component[conn.edges()[conn.face_edge(f, 0)][0]];
   return c;
 }
 

@@ -8,9 +8,9 @@
 
 #include <Eigen/Geometry>
 
-#include "lapis/geometry/connectivity.h"
 #include "lapis/core/error.h"
 #include "lapis/core/format.h"
+#include "lapis/geometry/connectivity.h"
 #include "parallel.h"
 
 namespace lapis::geometry {
@@ -28,8 +28,7 @@ bool is_degenerate(const TriMesh& m, Eigen::Index f, double tolerance) {
 }
 
 std::uint64_t pair_key(int a, int b) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-         static_cast<std::uint32_t>(b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
 
 void find_duplicates(const TriMesh& m, const std::vector<int>& faces, ValidationReport& r) {
@@ -180,8 +179,8 @@ void require_indices_in_range(const TriMesh& mesh, std::string_view context) {
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     if (!face_in_range(mesh, f)) {
       std::ostringstream out;
-      out << context << ": face " << f << " = (" << mesh.F(f, 0) << ", " << mesh.F(f, 1) << ", "
-          << mesh.F(f, 2) << ") has an index outside [0, " << mesh.num_vertices() << ")";
+      out << context << ": face " << f << " = (" << mesh.F(f, 0) << ", " << mesh.F(f, 1) << ", " << mesh.F(f, 2)
+          << ") has an index outside [0, " << mesh.num_vertices() << ")";
       throw InvalidArgument(out.str());
     }
 }

@@ -15,12 +15,10 @@ CholeskyFieldSolver::CholeskyFieldSolver(const Grid& grid, const FieldSolverOpti
     : grid_(grid), omega_(options.omega), modify_(modify) {
   const double bytes = estimate_cholesky_bytes(grid.num_nodes());
   if (bytes > options.memory_limit_bytes)
-    throw ResourceLimit("hair_field::CholeskyFieldSolver(): the factor of " +
-                        std::to_string(grid.num_nodes()) + " unknowns needs about " +
-                        std::to_string(static_cast<long long>(bytes / (1 << 20))) +
+    throw ResourceLimit("hair_field::CholeskyFieldSolver(): the factor of " + std::to_string(grid.num_nodes()) +
+                        " unknowns needs about " + std::to_string(static_cast<long long>(bytes / (1 << 20))) +
                         " MiB, more than the limit of " +
-                        std::to_string(static_cast<long long>(options.memory_limit_bytes / (1 << 20))) +
-                        " MiB");
+                        std::to_string(static_cast<long long>(options.memory_limit_bytes / (1 << 20))) + " MiB");
   const auto n = grid.num_nodes();
   weights_.setZero(n);
   DtD_ = normal_matrix(grid, weights_);
@@ -30,12 +28,10 @@ CholeskyFieldSolver::CholeskyFieldSolver(const Grid& grid, const FieldSolverOpti
 
 CholeskyFieldSolver::~CholeskyFieldSolver() = default;
 
-FieldSolveReport CholeskyFieldSolver::apply(const ConstraintDiff& diff,
-                                            const ConstraintSet& current) {
+FieldSolveReport CholeskyFieldSolver::apply(const ConstraintDiff& diff, const ConstraintSet& current) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = static_cast<int>(field_.rows());
-  FieldSolveReport rep = detail::start_report(method(), diff, current, n,
-                                              "hair_field::CholeskyFieldSolver::apply()");
+  FieldSolveReport rep = detail::start_report(method(), diff, current, n, "hair_field::CholeskyFieldSolver::apply()");
   // WᵀW has ω² per constrained node (§4.4.1).
   const double w = omega_ * omega_;
   std::vector<int> idx;

@@ -12,8 +12,7 @@ ConstraintSet ConstraintSet::merge(std::span<const std::vector<Constraint>> grou
   for (const auto& g : groups) {
     for (const auto& c : g) {
       if (c.node < 0)
-        throw InvalidArgument("hair_field::ConstraintSet::merge(): negative node " +
-                              std::to_string(c.node));
+        throw InvalidArgument("hair_field::ConstraintSet::merge(): negative node " + std::to_string(c.node));
       if (!c.direction.allFinite())
         throw InvalidArgument("hair_field::ConstraintSet::merge(): non-finite direction at node " +
                               std::to_string(c.node));
@@ -21,8 +20,7 @@ ConstraintSet ConstraintSet::merge(std::span<const std::vector<Constraint>> grou
     all.insert(all.end(), g.begin(), g.end());
   }
   // Stable so that the average is independent of nothing but the input order's grouping.
-  std::stable_sort(all.begin(), all.end(),
-                   [](const Constraint& a, const Constraint& b) { return a.node < b.node; });
+  std::stable_sort(all.begin(), all.end(), [](const Constraint& a, const Constraint& b) { return a.node < b.node; });
   ConstraintSet s;
   for (size_t i = 0; i < all.size();) {
     size_t j = i;
@@ -39,8 +37,7 @@ ConstraintSet ConstraintSet::from(const std::vector<Constraint>& constraints) {
 }
 
 const Eigen::Vector3d* ConstraintSet::find(int node) const {
-  auto it = std::lower_bound(items_.begin(), items_.end(), node,
-                             [](const Constraint& c, int n) { return c.node < n; });
+  auto it = std::lower_bound(items_.begin(), items_.end(), node, [](const Constraint& c, int n) { return c.node < n; });
   return it != items_.end() && it->node == node ? &it->direction : nullptr;
 }
 
@@ -55,8 +52,7 @@ ConstraintDiff diff(const ConstraintSet& before, const ConstraintSet& after, dou
     } else if (i == a.size() || b[j].node < a[i].node) {
       d.added.push_back(b[j++]);
     } else {
-      if ((a[i].direction - b[j].direction).cwiseAbs().maxCoeff() > tolerance)
-        d.changed.push_back(b[j]);
+      if ((a[i].direction - b[j].direction).cwiseAbs().maxCoeff() > tolerance) d.changed.push_back(b[j]);
       ++i, ++j;
     }
   }

@@ -15,12 +15,11 @@ inline double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 // Throws InvalidArgument "<who>: constraint node k outside the grid of n nodes".
-inline FieldSolveReport start_report(FieldMethod method, const ConstraintDiff& diff,
-                                     const ConstraintSet& current, int n, const char* who) {
+inline FieldSolveReport start_report(FieldMethod method, const ConstraintDiff& diff, const ConstraintSet& current,
+                                     int n, const char* who) {
   if (current.max_node() >= n)
-    throw InvalidArgument(std::string(who) + ": constraint node " +
-                          std::to_string(current.max_node()) + " outside the grid of " +
-                          std::to_string(n) + " nodes");
+    throw InvalidArgument(std::string(who) + ": constraint node " + std::to_string(current.max_node()) +
+                          " outside the grid of " + std::to_string(n) + " nodes");
   FieldSolveReport rep;
   rep.method = method;
   rep.added = static_cast<int>(diff.added.size());

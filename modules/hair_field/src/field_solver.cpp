@@ -8,18 +8,21 @@ namespace lapis::hair_field {
 
 const char* to_string(FieldMethod m) {
   switch (m) {
-    case FieldMethod::Auto: return "auto";
-    case FieldMethod::Thesis: return "thesis-updown";
-    case FieldMethod::Refactorize: return "refactorize";
-    case FieldMethod::Multigrid: return "multigrid";
+    case FieldMethod::Auto:
+      return "auto";
+    case FieldMethod::Thesis:
+      return "thesis-updown";
+    case FieldMethod::Refactorize:
+      return "refactorize";
+    case FieldMethod::Multigrid:
+      return "multigrid";
   }
   return "?";
 }
 
 FieldMethod choose_field_method(const Grid& grid, const FieldSolverOptions& options) {
-  return estimate_cholesky_bytes(grid.num_nodes()) <= options.thesis_max_factor_bytes
-             ? FieldMethod::Thesis
-             : FieldMethod::Multigrid;
+  return estimate_cholesky_bytes(grid.num_nodes()) <= options.thesis_max_factor_bytes ? FieldMethod::Thesis
+                                                                                      : FieldMethod::Multigrid;
 }
 
 std::unique_ptr<FieldSolver> make_field_solver(const Grid& grid, FieldMethod method,

@@ -34,9 +34,8 @@ Grid make_grid(const Eigen::AlignedBox3d& head_box, const GridOptions& options) 
   const double est = estimate_multigrid_bytes(static_cast<std::int64_t>(options.target_unknowns));
   if (est > options.memory_limit_bytes)
     throw ResourceLimit("hair_field::make_grid(): a grid of " +
-                        std::to_string(static_cast<long long>(options.target_unknowns)) +
-                        " unknowns needs about " + std::to_string(est / (1 << 20)) +
-                        " MiB, more than the limit of " +
+                        std::to_string(static_cast<long long>(options.target_unknowns)) + " unknowns needs about " +
+                        std::to_string(est / (1 << 20)) + " MiB, more than the limit of " +
                         std::to_string(options.memory_limit_bytes / (1 << 20)) + " MiB");
   const Eigen::Vector3d ext = head_box.max() - head_box.min();
   Eigen::Vector3d lo = head_box.min(), hi = head_box.max();

@@ -23,8 +23,7 @@ inline int for_neighbours(const Grid& g, int i, int j, int k, F&& f) {
 }
 
 inline int neighbour_count(const Grid& g, int i, int j, int k) {
-  return (i > 0) + (i + 1 < g.dims[0]) + (j > 0) + (j + 1 < g.dims[1]) + (k > 0) +
-         (k + 1 < g.dims[2]);
+  return (i > 0) + (i + 1 < g.dims[0]) + (j > 0) + (j + 1 < g.dims[1]) + (k > 0) + (k + 1 < g.dims[2]);
 }
 
 }  // namespace
@@ -54,8 +53,7 @@ SparseMatrix normal_matrix(const Grid& grid, const Eigen::VectorXd& weights) {
   return A;
 }
 
-void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const Field& X,
-                           Field& Y) {
+void apply_normal_operator(const Grid& g, const Eigen::VectorXd& weights, const Field& X, Field& Y) {
   Y.resize(X.rows(), 3);
   detail::StencilScratch<double> buffers;
   detail::normal_operator(g.dims, weights.data(), X.data(), Y.data(), false, buffers);

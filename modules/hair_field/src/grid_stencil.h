@@ -18,9 +18,7 @@
 namespace lapis::hair_field::detail {
 
 // |N(i)| for node i of an x-line, given the line's y/z neighbour count.
-inline int neighbour_count(int i, int nx, int yz_neighbours) {
-  return yz_neighbours + (i > 0) + (i + 1 < nx);
-}
+inline int neighbour_count(int i, int nx, int yz_neighbours) { return yz_neighbours + (i > 0) + (i + 1 < nx); }
 
 // Calls g(f, s) for the entries f = 3i + c of an x-line, s = Σ_{j∈N(i)} src[3j + c], given
 // the line c and its four y/z neighbour lines; a missing neighbour (outside the grid) is a
@@ -28,11 +26,10 @@ inline int neighbour_count(int i, int nx, int yz_neighbours) {
 // `end` instead, after the inner ones. The sums are formed where they are used, never
 // stored: one pass over the line.
 template <class T, class G, class E>
-inline void line_neighbour_visit(int nx, const T* c, const T* ym, const T* yp, const T* zm,
-                                 const T* zp, G&& inner, E&& end) {
+inline void line_neighbour_visit(int nx, const T* c, const T* ym, const T* yp, const T* zm, const T* zp, G&& inner,
+                                 E&& end) {
   const std::ptrdiff_t line = 3 * static_cast<std::ptrdiff_t>(nx);
-  for (std::ptrdiff_t f = 3; f < line - 3; ++f)
-    inner(f, ym[f] + yp[f] + zm[f] + zp[f] + c[f - 3] + c[f + 3]);
+  for (std::ptrdiff_t f = 3; f < line - 3; ++f) inner(f, ym[f] + yp[f] + zm[f] + zp[f] + c[f - 3] + c[f + 3]);
   for (std::ptrdiff_t f = 0; f < 3; ++f) {
     T s = ym[f] + yp[f] + zm[f] + zp[f];
     if (nx > 1) s += c[f + 3];
@@ -58,8 +55,7 @@ struct StencilScratch {
     threads = std::max(1, omp_get_max_threads());
     if (zero.size() != line) zero.assign(line, T(0));
     const size_t plane = line * static_cast<size_t>(dims[1]);
-    if (planes.size() < plane * planes_per_thread * threads)
-      planes.resize(plane * planes_per_thread * threads);
+    if (planes.size() < plane * planes_per_thread * threads) planes.resize(plane * planes_per_thread * threads);
     if (lines.size() < line * threads) lines.resize(line * threads);
   }
 };
@@ -82,14 +78,14 @@ struct StencilScratch {
 // forms the L' planes that read its neighbours' planes (k0 − 1, k0, k1 − 1, k1) before a
 // barrier, so no neighbour has written them yet.
 template <class T, class W, class Line>
-void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* x,
-                           StencilScratch<T>& buffers, Line&& line) {
+void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* x, StencilScratch<T>& buffers,
+                           Line&& line) {
   const int nx = dims[0], ny = dims[1], nz = dims[2];
   buffers.fit(dims);
   const T* zero = buffers.zero.data();
   const std::ptrdiff_t len = 3 * static_cast<std::ptrdiff_t>(nx);
   const std::ptrdiff_t plane = len * ny;
-#pragma omp parallel num_threads(buffers.threads) if (static_cast<std::ptrdiff_t>(nx) * ny * nz > 20000)
+#pragma omp parallel num_threads(buffers.threads) if (static_cast <std::ptrdiff_t>(nx) * ny * nz > 20000)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const int k0 = static_cast<int>(static_cast<long long>(nz) * t / nt);
@@ -111,9 +107,8 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
         T* sl = S + len * j;
         const T inv = T(1) / T(yz + 2), inv_end = T(1) / T(neighbour_count(0, nx, yz));
         line_neighbour_visit(
-            nx, xl, j > 0 ? xl - len : zero, j + 1 < ny ? xl + len : zero,
-            k > 0 ? xl - plane : zero, k + 1 < nz ? xl + plane : zero,
-            [&](std::ptrdiff_t f, T s) { sl[f] = inv * (inv * s - xl[f]); },
+            nx, xl, j > 0 ? xl - len : zero, j + 1 < ny ? xl + len : zero, k > 0 ? xl - plane : zero,
+            k + 1 < nz ? xl + plane : zero, [&](std::ptrdiff_t f, T s) { sl[f] = inv * (inv * s - xl[f]); },
             [&](std::ptrdiff_t f, T s) { sl[f] = inv_end * (inv_end * s - xl[f]); });
       }
     };
@@ -133,9 +128,8 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
         const T* sl = S + len * j;
         const T count = T(yz + 2), count_end = T(neighbour_count(0, nx, yz));
         line_neighbour_visit(
-            nx, sl, j > 0 ? sl - len : zero, j + 1 < ny ? sl + len : zero,
-            Sm ? Sm + len * j : zero, Sp ? Sp + len * j : zero,
-            [&](std::ptrdiff_t f, T s) { v[f] = s - count * sl[f]; },
+            nx, sl, j > 0 ? sl - len : zero, j + 1 < ny ? sl + len : zero, Sm ? Sm + len * j : zero,
+            Sp ? Sp + len * j : zero, [&](std::ptrdiff_t f, T s) { v[f] = s - count * sl[f]; },
             [&](std::ptrdiff_t f, T s) { v[f] = s - count_end * sl[f]; });
         // The weights are zero but at constrained nodes.
         const W* wl = w + static_cast<std::ptrdiff_t>(nx) * l;
@@ -152,16 +146,15 @@ void normal_operator_visit(const std::array<int, 3>& dims, const W* w, const T* 
 
 // y = (DᵀD + diag(w)) x, or r -= (DᵀD + diag(w)) x when `subtract` (y is then r).
 template <class T, class W>
-void normal_operator(const std::array<int, 3>& dims, const W* w, const T* x, T* y,
-                     bool subtract, StencilScratch<T>& buffers) {
-  normal_operator_visit(dims, w, x, buffers,
-                        [&](std::ptrdiff_t f0, std::ptrdiff_t len, const T* v) {
-                          T* yl = y + f0;
-                          if (subtract)
-                            for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] -= v[f];
-                          else
-                            for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] = v[f];
-                        });
+void normal_operator(const std::array<int, 3>& dims, const W* w, const T* x, T* y, bool subtract,
+                     StencilScratch<T>& buffers) {
+  normal_operator_visit(dims, w, x, buffers, [&](std::ptrdiff_t f0, std::ptrdiff_t len, const T* v) {
+    T* yl = y + f0;
+    if (subtract)
+      for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] -= v[f];
+    else
+      for (std::ptrdiff_t f = 0; f < len; ++f) yl[f] = v[f];
+  });
 }
 
 }  // namespace lapis::hair_field::detail

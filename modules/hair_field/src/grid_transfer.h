@@ -26,12 +26,11 @@ inline CoarseNeighbours coarse_neighbours(int f) {
 
 // xf += P xc, 3 values per node; pinned fine nodes are left unchanged (their row of P is 0).
 template <class T>
-void prolong_add(const std::array<int, 3>& fd, const std::array<int, 3>& cd, const char* pinned,
-                 const T* xc, T* xf) {
+void prolong_add(const std::array<int, 3>& fd, const std::array<int, 3>& cd, const char* pinned, const T* xc, T* xf) {
   const std::ptrdiff_t cline = 3 * static_cast<std::ptrdiff_t>(cd[0]);
   const std::ptrdiff_t fline = 3 * static_cast<std::ptrdiff_t>(fd[0]);
   const int lines = fd[1] * fd[2];
-#pragma omp parallel if (static_cast<std::ptrdiff_t>(lines) * fd[0] > 20000)
+#pragma omp parallel if (static_cast <std::ptrdiff_t>(lines) * fd[0] > 20000)
   {
     std::vector<T> t(static_cast<size_t>(cline));  // the coarse line interpolated in y and z
 #pragma omp for schedule(static)
@@ -63,12 +62,11 @@ void prolong_add(const std::array<int, 3>& fd, const std::array<int, 3>& cd, con
 // bc = Pᵀ rf with rf already zero at the pinned fine nodes (the finest level's residual is
 // written that way), so Pᵀ's zero columns need no test here.
 template <class T>
-void restrict_to_coarse(const std::array<int, 3>& fd, const std::array<int, 3>& cd, const T* rf,
-                        T* bc) {
+void restrict_to_coarse(const std::array<int, 3>& fd, const std::array<int, 3>& cd, const T* rf, T* bc) {
   const std::ptrdiff_t cline = 3 * static_cast<std::ptrdiff_t>(cd[0]);
   const std::ptrdiff_t fline = 3 * static_cast<std::ptrdiff_t>(fd[0]);
   const int lines = cd[1] * cd[2];
-#pragma omp parallel if (static_cast<std::ptrdiff_t>(lines) * cd[0] > 2500)
+#pragma omp parallel if (static_cast <std::ptrdiff_t>(lines) * cd[0] > 2500)
   {
     std::vector<T> s(static_cast<size_t>(fline));  // the fine lines summed in y and z
 #pragma omp for schedule(static)

@@ -9,8 +9,8 @@ namespace {
 // A node's grid position and its 6-neighbours (those inside the grid).
 struct Node {
   int i, j, k;
-  int count;              // |N(v)|
-  std::ptrdiff_t nb[6];   // neighbour indices
+  int count;             // |N(v)|
+  std::ptrdiff_t nb[6];  // neighbour indices
 };
 
 inline Node node_at(const std::array<int, 3>& d, std::ptrdiff_t v) {
@@ -45,8 +45,7 @@ inline bool interior(const std::array<int, 3>& d, const Node& n) {
 // Row v of DᵀD without its diagonal, applied to x, at an interior node: there DᵀD = L²/36
 // with L the 7-point Laplacian (centre −6), i.e. 42 at the centre, −12 at the faces, 2 at
 // the 12 edge neighbours and 1 two steps along an axis, all / 36. Returns (DᵀD)_vv.
-inline double off_diagonal_interior(const std::array<int, 3>& d, std::ptrdiff_t v, const double* x,
-                                    double sum[3]) {
+inline double off_diagonal_interior(const std::array<int, 3>& d, std::ptrdiff_t v, const double* x, double sum[3]) {
   const std::ptrdiff_t o[3] = {1, d[0], static_cast<std::ptrdiff_t>(d[0]) * d[1]};
   double faces[3] = {0, 0, 0}, edges[3] = {0, 0, 0}, axial[3] = {0, 0, 0};
   for (int a = 0; a < 3; ++a) {
@@ -56,8 +55,8 @@ inline double off_diagonal_interior(const std::array<int, 3>& d, std::ptrdiff_t 
     }
     for (int b = a + 1; b < 3; ++b)
       for (int c = 0; c < 3; ++c)
-        edges[c] += x[3 * (v + o[a] + o[b]) + c] + x[3 * (v + o[a] - o[b]) + c] +
-                    x[3 * (v - o[a] + o[b]) + c] + x[3 * (v - o[a] - o[b]) + c];
+        edges[c] += x[3 * (v + o[a] + o[b]) + c] + x[3 * (v + o[a] - o[b]) + c] + x[3 * (v - o[a] + o[b]) + c] +
+                    x[3 * (v - o[a] - o[b]) + c];
   }
   for (int c = 0; c < 3; ++c) sum[c] = (-12 * faces[c] + 2 * edges[c] + axial[c]) / 36;
   return 42.0 / 36;
@@ -103,8 +102,8 @@ std::vector<int> nodes_near(const std::array<int, 3>& d, std::span<const int> se
   return nodes;
 }
 
-void gauss_seidel(const std::array<int, 3>& d, const double* w, const double* c,
-                  std::span<const int> nodes, int sweeps, double* x) {
+void gauss_seidel(const std::array<int, 3>& d, const double* w, const double* c, std::span<const int> nodes, int sweeps,
+                  double* x) {
   // Which rows take the interior stencil, found once (the sweeps then divide nothing).
   std::vector<char> inner(nodes.size());
   for (size_t a = 0; a < nodes.size(); ++a) inner[a] = interior(d, node_at(d, nodes[a]));
@@ -112,8 +111,7 @@ void gauss_seidel(const std::array<int, 3>& d, const double* w, const double* c,
     for (size_t a = 0; a < nodes.size(); ++a) {
       const int v = nodes[a];
       double sum[3];
-      const double diag =
-          (inner[a] ? off_diagonal_interior(d, v, x, sum) : off_diagonal(d, v, x, sum)) + w[v];
+      const double diag = (inner[a] ? off_diagonal_interior(d, v, x, sum) : off_diagonal(d, v, x, sum)) + w[v];
       const std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(v);
       for (int k = 0; k < 3; ++k) x[f + k] = (w[v] * c[f + k] - sum[k]) / diag;
     }

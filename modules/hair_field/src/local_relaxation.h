@@ -33,7 +33,7 @@ std::vector<int> nodes_near(const std::array<int, 3>& dims, std::span<const int>
 // (DᵀD + diag(w)) x = diag(w) c, for the 3 columns of x and c (node-major, 3 per node);
 // w per node. Each node update minimizes the energy ½xᵀAx − bᵀx over that node, so the
 // energy never increases; nodes outside `nodes` are not written.
-void gauss_seidel(const std::array<int, 3>& dims, const double* w, const double* c,
-                  std::span<const int> nodes, int sweeps, double* x);
+void gauss_seidel(const std::array<int, 3>& dims, const double* w, const double* c, std::span<const int> nodes,
+                  int sweeps, double* x);
 
 }  // namespace lapis::hair_field::detail

@@ -106,9 +106,8 @@ void sparse_residual(const RowSparseF& A, const Real* x, const Real* b, Real* r)
 // that step may not write x while other rows still gather from it, so it passes
 // x = nullptr and the next step adds both corrections (add_d). d_new is a separate buffer
 // for the same reason. d may be nullptr when a = 0.
-void sparse_chebyshev_step(const RowSparseF& A, const Real* u, const Real* d, Real* d_new,
-                           Real* x, bool add_d, const Real* r_in, Real* r_out,
-                           const VectorR& inv_diag, Real a, Real c) {
+void sparse_chebyshev_step(const RowSparseF& A, const Real* u, const Real* d, Real* d_new, Real* x, bool add_d,
+                           const Real* r_in, Real* r_out, const VectorR& inv_diag, Real a, Real c) {
   const int n = static_cast<int>(A.rows());
 #pragma omp parallel for schedule(static) if (A.nonZeros() > parallel_nonzeros)
   for (int i = 0; i < n; ++i) {
@@ -147,8 +146,8 @@ void MultigridHierarchy::residual(Level& L) {
   }
 }
 
-void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in,
-                                        Real a, Real c, bool last, bool post) {
+void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c,
+                                        bool last, bool post) {
   Real* r = L.r.data();
   if (L.matrix_free) {
     // The matrix-free apply's second pass reads its operand only on the line it visits, so
@@ -175,8 +174,7 @@ void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, co
                                 const double* wl = dot_with_ + f0;
                                 double* acc = dot_partials_.data() + 8 * omp_get_thread_num();
                                 for (std::ptrdiff_t f = 0; f < len; f += 3)
-                                  for (int k = 0; k < 3; ++k)
-                                    acc[k] += wl[f + k] * static_cast<double>(xl[f + k]);
+                                  for (int k = 0; k < 3; ++k) acc[k] += wl[f + k] * static_cast<double>(xl[f + k]);
                               }
                             } else if (from_x) {
                               for (std::ptrdiff_t f = 0; f < len; ++f) {
@@ -195,13 +193,11 @@ void MultigridHierarchy::chebyshev_step(Level& L, bool from_x, bool& pending, co
     return;
   }
   if (from_x) {
-    sparse_chebyshev_step(L.Af, L.x.data(), nullptr, L.d.data(), nullptr, false, r_in, r,
-                          L.inv_diag, 0, c);
+    sparse_chebyshev_step(L.Af, L.x.data(), nullptr, L.d.data(), nullptr, false, r_in, r, L.inv_diag, 0, c);
     pending = true;
     return;
   }
-  sparse_chebyshev_step(L.Af, L.d.data(), L.d.data(), L.d2.data(), L.x.data(), pending, r_in, r,
-                        L.inv_diag, a, c);
+  sparse_chebyshev_step(L.Af, L.d.data(), L.d.data(), L.d2.data(), L.x.data(), pending, r_in, r, L.inv_diag, a, c);
   L.d.swap(L.d2);
   pending = false;
 }
@@ -226,8 +222,7 @@ void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
 #pragma omp parallel for schedule(static) if (n > parallel_nodes)
     for (int i = 0; i < n; ++i) {
       const Real ci = c * L.inv_diag[i];
-      for (std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i); f < 3 * i + 3; ++f)
-        x[f] = d[f] = ci * b[f];
+      for (std::ptrdiff_t f = 3 * static_cast<std::ptrdiff_t>(i); f < 3 * i + 3; ++f) x[f] = d[f] = ci * b[f];
     }
   } else {
     chebyshev_step(L, true, pending, r_in, 0, 1 / theta, opt_.smoothing_degree == 1, true);
@@ -235,8 +230,8 @@ void MultigridHierarchy::smooth(Level& L, bool zero_initial) {
   }
   for (int it = 1; it < opt_.smoothing_degree; ++it) {
     const Real rho_new = Real(1) / (Real(2) * sigma - rho);
-    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta,
-                   it + 1 == opt_.smoothing_degree, !zero_initial);
+    chebyshev_step(L, false, pending, r_in, rho_new * rho, Real(2) * rho_new / delta, it + 1 == opt_.smoothing_degree,
+                   !zero_initial);
     r_in = L.r.data();
     rho = rho_new;
   }

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "field_report.h"
-#include "lapis/core/error.h"
 #include "grid_stencil.h"
+#include "lapis/core/error.h"
 #include "local_relaxation.h"
 #include "multigrid_hierarchy.h"
 
@@ -21,8 +21,8 @@ using detail::parallel_nodes;  // element-wise passes run on one thread below th
 
 // Applies the diff to the weights (ω² at constrained nodes) and targets; returns the
 // changes of the normal matrix' diagonal it makes.
-std::vector<std::pair<int, double>> apply_to_weights(const ConstraintDiff& diff, double w,
-                                                     Eigen::VectorXd& weights, Field& targets) {
+std::vector<std::pair<int, double>> apply_to_weights(const ConstraintDiff& diff, double w, Eigen::VectorXd& weights,
+                                                     Field& targets) {
   std::vector<std::pair<int, double>> changes;
   changes.reserve(diff.added.size() + diff.removed.size());
   for (const Constraint& c : diff.added) {
@@ -51,8 +51,8 @@ std::string solve_detail(const detail::MultigridHierarchy& mg, int relaxed, int 
   }
   return "pcg+mg " + std::to_string(mg.levels()) + " levels" +
          (w_cycle ? " (corrections per coarse visit: " + corrections + ")" : "") + ", " +
-         (relaxed > 0 ? std::to_string(relaxed) + " nodes relaxed near the edit, " : "") +
-         std::to_string(iterations) + " iterations";
+         (relaxed > 0 ? std::to_string(relaxed) + " nodes relaxed near the edit, " : "") + std::to_string(iterations) +
+         " iterations";
 }
 
 }  // namespace
@@ -69,8 +69,7 @@ struct MultigridFieldSolver::Work {
   std::vector<double> line_dots;  // per thread: p·q's three column sums, 8 doubles apart
   std::vector<char> mark;         // nodes_near()'s scratch, one per node
 
-  explicit Work(int n)
-      : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3), mark(static_cast<size_t>(n), 0) {}
+  explicit Work(int n) : x(n, 3), r(n, 3), p(n, 3), q(n, 3), rf(n, 3), zf(n, 3), mark(static_cast<size_t>(n), 0) {}
 
   int nodes() const { return static_cast<int>(x.rows()); }
 
@@ -198,21 +197,17 @@ int MultigridFieldSolver::relax_near_edit(const ConstraintDiff& diff) {
   if (seeds.empty()) return 0;
   const std::vector<int> nodes = detail::nodes_near(grid_.dims, seeds, opt_.relax_radius, work_->mark);
   // Only where it costs a small part of one iteration (a whole new style relaxes nothing).
-  if (static_cast<double>(nodes.size()) * opt_.relax_sweeps > opt_.relax_budget * field_.rows())
-    return 0;
-  detail::gauss_seidel(grid_.dims, weights_.data(), targets_.data(), nodes, opt_.relax_sweeps,
-                       work_->x.data());
+  if (static_cast<double>(nodes.size()) * opt_.relax_sweeps > opt_.relax_budget * field_.rows()) return 0;
+  detail::gauss_seidel(grid_.dims, weights_.data(), targets_.data(), nodes, opt_.relax_sweeps, work_->x.data());
   return static_cast<int>(nodes.size());
 }
 
-FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
-                                             const ConstraintSet& current) {
+FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff, const ConstraintSet& current) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = static_cast<int>(field_.rows());
-  FieldSolveReport rep = detail::start_report(FieldMethod::Multigrid, diff, current, n,
-                                              "hair_field::MultigridFieldSolver::apply()");
-  const auto changes =
-      apply_to_weights(diff, opt_.field.omega * opt_.field.omega, weights_, targets_);
+  FieldSolveReport rep =
+      detail::start_report(FieldMethod::Multigrid, diff, current, n, "hair_field::MultigridFieldSolver::apply()");
+  const auto changes = apply_to_weights(diff, opt_.field.omega * opt_.field.omega, weights_, targets_);
   if (!changes.empty()) mg_->add_to_diagonal(changes);
   rep.update_ms = detail::ms_since(t0);
   const auto t1 = std::chrono::steady_clock::now();
@@ -243,14 +238,12 @@ FieldSolveReport MultigridFieldSolver::apply(const ConstraintDiff& diff,
   return rep;
 }
 
-MultigridFieldSolver::Pcg MultigridFieldSolver::solve_from_warm_start(
-    const ConstraintSet& current) {
+MultigridFieldSolver::Pcg MultigridFieldSolver::solve_from_warm_start(const ConstraintSet& current) {
   Work& wk = *work_;
   const double* wt = weights_.data();
   const double rnorm2 = wk.residual(grid_, wt, targets_.data());
   double bnorm2 = 0;  // b is zero off the constraints
-  for (const Constraint& c : current.items())
-    bnorm2 += wt[c.node] * wt[c.node] * targets_.row(c.node).squaredNorm();
+  for (const Constraint& c : current.items()) bnorm2 += wt[c.node] * wt[c.node] * targets_.row(c.node).squaredNorm();
   const double bnorm = std::sqrt(bnorm2);
   // The column dots r·z come from the cycle itself, formed as its last step writes z.
   double dots[3];

@@ -10,9 +10,9 @@
 #include <cstring>
 #include <unordered_map>
 
-#include "lapis/core/error.h"
 #include "grid_stencil.h"
 #include "grid_transfer.h"
+#include "lapis/core/error.h"
 #include "lapis/hair_field/grid_operators.h"
 
 namespace lapis::hair_field::detail {
@@ -76,8 +76,7 @@ inline std::ptrdiff_t value_index(const RowSparseD& A, int i, int j) {
 
 }  // namespace
 
-MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& weights,
-                                       MultigridOptions options)
+MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& weights, MultigridOptions options)
     : opt_(options) {
   opt_.smoothing_degree = std::max(1, opt_.smoothing_degree);
   opt_.cycle_index = std::max(1, opt_.cycle_index);
@@ -117,7 +116,7 @@ MultigridHierarchy::MultigridHierarchy(const Grid& grid, const Eigen::VectorXd& 
   corrections_.assign(levels_.size(), 1);
   for (size_t l = 0; l + 2 < levels_.size(); ++l) {
     const bool serial = levels_[l + 1].A.nonZeros() <= parallel_nonzeros;
-    corrections_[l] = l == 0 ? opt_.cycle_index
+    corrections_[l] = l == 0                ? opt_.cycle_index
                       : automatic && serial ? std::min(2, opt_.coarse_cycle_index)
                                             : opt_.coarse_cycle_index;
   }
@@ -164,9 +163,7 @@ void MultigridHierarchy::refresh_row(Level& L, int row) {
   L.gershgorin[row] = diag > 0 ? static_cast<Real>(sum / diag) : Real(0);
 }
 
-void MultigridHierarchy::factor_coarsest() {
-  coarsest_.compute(Eigen::MatrixXd(levels_.back().A));
-}
+void MultigridHierarchy::factor_coarsest() { coarsest_.compute(Eigen::MatrixXd(levels_.back().A)); }
 
 void MultigridHierarchy::add_to_diagonal(const std::vector<std::pair<int, double>>& changes) {
   // The fine level takes the weights on its diagonal; the nodes whose pinned state flips
@@ -204,8 +201,7 @@ void MultigridHierarchy::add_to_diagonal(const std::vector<std::pair<int, double
     acc.clear();
     for (const Entry& e : T)
       for (RowSparseD::InnerIterator a(L.Pd, e.i); a; ++a)
-        for (RowSparseD::InnerIterator b(L.Pd, e.j); b; ++b)
-          acc[a.col() * nc + b.col()] += a.value() * e.v * b.value();
+        for (RowSparseD::InnerIterator b(L.Pd, e.j); b; ++b) acc[a.col() * nc + b.col()] += a.value() * e.v * b.value();
   }
   factor_coarsest();
 }
@@ -217,9 +213,8 @@ void MultigridHierarchy::update_level(int l, const std::vector<Entry>& T) {
   for (const Entry& e : T) {
     const std::ptrdiff_t p = value_index(L.A, e.i, e.j);
     if (p < 0)
-      throw SolverFailure("hair_field::MultigridHierarchy::add_to_diagonal(): entry (" +
-                          std::to_string(e.i) + ", " + std::to_string(e.j) +
-                          ") outside the Galerkin pattern of level " + std::to_string(l));
+      throw SolverFailure("hair_field::MultigridHierarchy::add_to_diagonal(): entry (" + std::to_string(e.i) + ", " +
+                          std::to_string(e.j) + ") outside the Galerkin pattern of level " + std::to_string(l));
     L.A.valuePtr()[p] += e.v;
     rows.push_back(e.i);
   }
@@ -229,8 +224,7 @@ void MultigridHierarchy::update_level(int l, const std::vector<Entry>& T) {
   L.lambda_max = L.gershgorin.maxCoeff();
 }
 
-void MultigridHierarchy::free_set_change(int s, double sign,
-                                         std::unordered_map<long long, double>& acc) const {
+void MultigridHierarchy::free_set_change(int s, double sign, std::unordered_map<long long, double>& acc) const {
   // Level 1 is Σ_{i,j free} P_iᵀ A_ij P_j over the unweighted DᵀD (a pinned row of P is
   // zero). Node s joining (+) or leaving (−) the free set adds or removes the terms with
   // i = s or j = s, counted while s is free.

@@ -45,14 +45,14 @@ inline constexpr int parallel_nodes = 20000;
 // The cycle's parameters, as MultigridFieldOptions (multigrid_field_solver.h) gives them;
 // the defaults live there.
 struct MultigridOptions {
-  int smoothing_degree = 0;      // Chebyshev polynomial degree, pre and post
-  int cycle_index = 0;           // coarse-grid corrections per visit of the finest level
-  int coarse_cycle_index = 0;    // ... and per visit of each coarser level (1: V-cycle;
-                                 // 0: 4 on hierarchies of 5 or more levels, else 2, and
-                                 // at most 2 into a level whose products run on one thread)
-  double smoothing_range = 0;    // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
-  int coarsest_nodes = 0;        // dense LDLᵀ at or below this size
-  bool cubic = false;            // cubic (else linear) prolongation
+  int smoothing_degree = 0;    // Chebyshev polynomial degree, pre and post
+  int cycle_index = 0;         // coarse-grid corrections per visit of the finest level
+  int coarse_cycle_index = 0;  // ... and per visit of each coarser level (1: V-cycle;
+                               // 0: 4 on hierarchies of 5 or more levels, else 2, and
+                               // at most 2 into a level whose products run on one thread)
+  double smoothing_range = 0;  // smooth eigenvalues of D⁻¹A in [range·λmax, λmax]
+  int coarsest_nodes = 0;      // dense LDLᵀ at or below this size
+  bool cubic = false;          // cubic (else linear) prolongation
 };
 
 class MultigridHierarchy {
@@ -79,12 +79,12 @@ class MultigridHierarchy {
  private:
   struct Level {
     std::array<int, 3> dims{};
-    RowSparseD A;       // double master, accumulates edits exactly
-    RowSparseF Af;      // float copy used by the cycle (same pattern as A; empty if matrix_free)
-    RowSparseF P;       // prolongation from the next coarser level (n × n_coarse); empty
-                        // on the finest level unless cubic (grid_transfer.h applies it)
-    RowSparseF R;       // Pᵀ, row-major for a gather-style restriction
-    RowSparseD Pd;      // P in double, to push edits down
+    RowSparseD A;   // double master, accumulates edits exactly
+    RowSparseF Af;  // float copy used by the cycle (same pattern as A; empty if matrix_free)
+    RowSparseF P;   // prolongation from the next coarser level (n × n_coarse); empty
+                    // on the finest level unless cubic (grid_transfer.h applies it)
+    RowSparseF R;   // Pᵀ, row-major for a gather-style restriction
+    RowSparseD Pd;  // P in double, to push edits down
     VectorR inv_diag;
     VectorR gershgorin;  // per row Σ|a_ij| / a_ii: bounds λ(D⁻¹A)
     Real lambda_max = 0;
@@ -111,8 +111,7 @@ class MultigridHierarchy {
   void residual(Level& L);  // r = b − A x
   // One Chebyshev step of smooth(): from_x for the first step from a non-zero x.
   // last: the smoothing's last step; post: of a post-smoothing.
-  void chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c,
-                      bool last, bool post);
+  void chebyshev_step(Level& L, bool from_x, bool& pending, const Real* r_in, Real a, Real c, bool last, bool post);
   void smooth(Level& L, bool zero_initial);
   void refresh_row(Level& L, int row);
   void factor_coarsest();
@@ -121,9 +120,9 @@ class MultigridHierarchy {
   std::vector<Level> levels_;
   std::vector<int> corrections_;  // per level, see corrections()
   Eigen::LDLT<Eigen::MatrixXd> coarsest_;
-  Eigen::MatrixXd coarse_rhs_;  // the coarsest solve's right-hand side, solved in place
-  Eigen::VectorXd fine_weights_;  // the weights on the fine diagonal, exact
-  std::vector<char> pinned_;      // fine nodes with a weight: their prolongation row is zero
+  Eigen::MatrixXd coarse_rhs_;        // the coarsest solve's right-hand side, solved in place
+  Eigen::VectorXd fine_weights_;      // the weights on the fine diagonal, exact
+  std::vector<char> pinned_;          // fine nodes with a weight: their prolongation row is zero
   const double* dot_with_ = nullptr;  // apply()'s dot products, formed in the last step
   bool dot_done_ = false;
   std::vector<double> dot_partials_;  // per thread, 8 doubles apart

@@ -10,11 +10,9 @@ namespace lapis::hair_sketch::detail {
 using hair_field::Constraint;
 using hair_field::Grid;
 
-std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, double h,
-                                      const char* who) {
+std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, double h, const char* who) {
   if (poly.size() < 2)
-    throw InvalidArgument(std::string(who) + ": a curve needs at least 2 points, got " +
-                          std::to_string(poly.size()));
+    throw InvalidArgument(std::string(who) + ": a curve needs at least 2 points, got " + std::to_string(poly.size()));
   double length = 0;
   for (size_t i = 0; i < poly.size(); ++i) {
     if (!poly[i].allFinite())
@@ -22,7 +20,8 @@ std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, 
     if (i) length += (poly[i] - poly[i - 1]).norm();
   }
   if (!(length > 0)) throw InvalidArgument(std::string(who) + ": the curve has zero length");
-  if (!(std::isfinite(h) && h > 0)) throw InvalidArgument(std::string(who) + ": spacing " + format_number(h) + " is not positive");
+  if (!(std::isfinite(h) && h > 0))
+    throw InvalidArgument(std::string(who) + ": spacing " + format_number(h) + " is not positive");
   // The sample count before any sample: a point far from the others (-1e308) would otherwise
   // have the loop below allocate until memory runs out.
   const double samples = length / h + 2;
@@ -53,8 +52,7 @@ void constrain_cell(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vec
             k0 = static_cast<int>(std::floor(q.z()));
   for (int c = 0; c < 8; ++c) {
     const int i = i0 + (c & 1), j = j0 + ((c >> 1) & 1), k = k0 + (c >> 2);
-    if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2])
-      continue;
+    if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2]) continue;
     out.push_back({grid.index(i, j, k), dir});
   }
 }
@@ -64,8 +62,7 @@ void constrain_nearest(const Grid& grid, const Eigen::Vector3d& p, const Eigen::
   const Eigen::Vector3d q = grid.to_grid(p);
   const int i = static_cast<int>(std::lround(q.x())), j = static_cast<int>(std::lround(q.y())),
             k = static_cast<int>(std::lround(q.z()));
-  if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2])
-    return;
+  if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2]) return;
   out.push_back({grid.index(i, j, k), dir});
 }
 

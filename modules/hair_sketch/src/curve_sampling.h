@@ -19,17 +19,16 @@ constexpr double kMaxCurveSamples = 1 << 20;
 // Points at arc length 0, h, 2h, ... (and the end point if the remainder is > h/2).
 // Throws InvalidArgument (naming `who`) for fewer than 2 points, non-finite points, a
 // zero-length polyline or h <= 0, ResourceLimit when it needs more than kMaxCurveSamples.
-std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& polyline, double h,
-                                      const char* who);
+std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& polyline, double h, const char* who);
 
 // Appends a constraint on each of the 8 corners of the grid cell containing p (those inside
 // the grid): a segment's "neighbouring grid points".
-void constrain_cell(const hair_field::Grid& grid, const Eigen::Vector3d& p,
-                    const Eigen::Vector3d& dir, std::vector<hair_field::Constraint>& out);
+void constrain_cell(const hair_field::Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                    std::vector<hair_field::Constraint>& out);
 
 // Appends a constraint on the grid node nearest p, if p is inside the grid.
-void constrain_nearest(const hair_field::Grid& grid, const Eigen::Vector3d& p,
-                       const Eigen::Vector3d& dir, std::vector<hair_field::Constraint>& out);
+void constrain_nearest(const hair_field::Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
+                       std::vector<hair_field::Constraint>& out);
 
 // Unit vectors u, v completing t to an orthonormal frame.
 void orthonormal_frame(const Eigen::Vector3d& t, Eigen::Vector3d& u, Eigen::Vector3d& v);

@@ -15,8 +15,7 @@ struct Frame {
 };
 
 // Local frame at p with curve tangent t and tilt alpha (§4.5).
-Frame local_frame(const Head& head, const Eigen::Vector3d& p, const Eigen::Vector3d& t,
-                  double alpha) {
+Frame local_frame(const Head& head, const Eigen::Vector3d& p, const Eigen::Vector3d& t, double alpha) {
   Frame f;
   f.y = head.closest(p).first;
   Eigen::Vector3d z = (t - t.dot(f.y) * f.y);
@@ -46,12 +45,9 @@ std::vector<Constraint> DividingCurve::constraints(const Grid& grid, const Head&
   // rises to a crest at u = σ and falls beyond: hair lifts off the parting, then drops.
   const double e = std::exp(-0.5);
   auto slope = [&](double u) {
-    return -height * (u - sigma) / (sigma * sigma) *
-           std::exp(-(u - sigma) * (u - sigma) / (2 * sigma * sigma));
+    return -height * (u - sigma) / (sigma * sigma) * std::exp(-(u - sigma) * (u - sigma) / (2 * sigma * sigma));
   };
-  auto value = [&](double u) {
-    return height * (std::exp(-(u - sigma) * (u - sigma) / (2 * sigma * sigma)) - e);
-  };
+  auto value = [&](double u) { return height * (std::exp(-(u - sigma) * (u - sigma) / (2 * sigma * sigma)) - e); };
   for (size_t i = 0; i < p.size(); ++i) {
     const double s = p.size() > 1 ? static_cast<double>(i) / (p.size() - 1) : 0.0;
     const Frame f = local_frame(head, p[i], tangent_at(p, i), alpha0 + s * (alpha1 - alpha0));
@@ -63,8 +59,7 @@ std::vector<Constraint> DividingCurve::constraints(const Grid& grid, const Head&
         detail::constrain_nearest(grid, q, dir, out);
       }
       // Discontinuity vector half a spacing off the parting, pointing away from it.
-      detail::constrain_nearest(grid, p[i] + 0.5 * d * side * f.x, discontinuity * side * f.x,
-                                out);
+      detail::constrain_nearest(grid, p[i] + 0.5 * d * side * f.x, discontinuity * side * f.x, out);
     }
   }
   return out;
@@ -72,8 +67,7 @@ std::vector<Constraint> DividingCurve::constraints(const Grid& grid, const Head&
 
 Eigen::Vector3d dividing_side_axis(const DividingCurve& curve, const Head& head, double s) {
   double length = 0;
-  for (size_t i = 1; i < curve.points.size(); ++i)
-    length += (curve.points[i] - curve.points[i - 1]).norm();
+  for (size_t i = 1; i < curve.points.size(); ++i) length += (curve.points[i] - curve.points[i - 1]).norm();
   const auto p = detail::resample(curve.points, length / 64, "hair_sketch::dividing_side_axis()");
   const size_t i = std::min(p.size() - 1, static_cast<size_t>(std::lround(s * (p.size() - 1))));
   return local_frame(head, p[i], tangent_at(p, i), curve.alpha0 + s * (curve.alpha1 - curve.alpha0)).x;

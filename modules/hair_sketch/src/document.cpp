@@ -6,22 +6,19 @@
 namespace lapis::hair_sketch {
 namespace {
 
-bool same_points(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
-  return a == b;
-}
+bool same_points(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) { return a == b; }
 
 bool same_shape(const StreamCurve& a, const StreamCurve& b) {
   return same_points(a.points, b.points) && a.tail_segments == b.tail_segments;
 }
 bool same_shape(const DividingCurve& a, const DividingCurve& b) {
-  return same_points(a.points, b.points) && a.alpha0 == b.alpha0 && a.alpha1 == b.alpha1 &&
-         a.sigma == b.sigma && a.height == b.height && a.discontinuity == b.discontinuity &&
-         a.samples_per_side == b.samples_per_side;
+  return same_points(a.points, b.points) && a.alpha0 == b.alpha0 && a.alpha1 == b.alpha1 && a.sigma == b.sigma &&
+         a.height == b.height && a.discontinuity == b.discontinuity && a.samples_per_side == b.samples_per_side;
 }
 bool same_shape(const Ponytail& a, const Ponytail& b) {
   return same_points(a.spine, b.spine) && same_points(a.cross_section, b.cross_section) &&
-         same_points(a.profile_a, b.profile_a) && same_points(a.profile_b, b.profile_b) &&
-         a.tightness == b.tightness && a.inner_ratio == b.inner_ratio && a.outer_ratio == b.outer_ratio;
+         same_points(a.profile_a, b.profile_a) && same_points(a.profile_b, b.profile_b) && a.tightness == b.tightness &&
+         a.inner_ratio == b.inner_ratio && a.outer_ratio == b.outer_ratio;
 }
 
 bool same_camera(const geometry::CameraMatrices& a, const geometry::CameraMatrices& b) {
@@ -30,8 +27,8 @@ bool same_camera(const geometry::CameraMatrices& a, const geometry::CameraMatric
 
 void check_index(int index, int size, const char* what) {
   if (index < 0 || index >= size)
-    throw InvalidArgument(std::string("hair_sketch::Document::execute(): ") + what + " index " +
-                          std::to_string(index) + " out of range [0, " + std::to_string(size) + ")");
+    throw InvalidArgument(std::string("hair_sketch::Document::execute(): ") + what + " index " + std::to_string(index) +
+                          " out of range [0, " + std::to_string(size) + ")");
 }
 
 }  // namespace
@@ -42,20 +39,18 @@ const char* primitive_type(const StylePrimitive& p) {
 }
 
 bool same_primitive(const StylePrimitive& a, const StylePrimitive& b) {
-  if (a.shape.index() != b.shape.index() || a.viewpoint != b.viewpoint || a.support != b.support)
-    return false;
-  return std::visit(
-      [&](const auto& x) { return same_shape(x, std::get<std::decay_t<decltype(x)>>(b.shape)); },
-      a.shape);
+  if (a.shape.index() != b.shape.index() || a.viewpoint != b.viewpoint || a.support != b.support) return false;
+  return std::visit([&](const auto& x) { return same_shape(x, std::get<std::decay_t<decltype(x)>>(b.shape)); },
+                    a.shape);
 }
 
 bool operator==(const HairstyleSettings& a, const HairstyleSettings& b) {
   return a.head_mesh == b.head_mesh && a.scalp_mask == b.scalp_mask &&
          a.grid.target_unknowns == b.grid.target_unknowns && a.field_method == b.field_method &&
-         a.field.omega == b.field.omega && a.roots.count == b.roots.count &&
-         a.roots.seed == b.roots.seed && a.growth.step == b.growth.step &&
-         a.growth.max_length == b.growth.max_length && a.scalp_avoidance == b.scalp_avoidance &&
-         a.support == b.support && a.sketch.tail_segments == b.sketch.tail_segments;
+         a.field.omega == b.field.omega && a.roots.count == b.roots.count && a.roots.seed == b.roots.seed &&
+         a.growth.step == b.growth.step && a.growth.max_length == b.growth.max_length &&
+         a.scalp_avoidance == b.scalp_avoidance && a.support == b.support &&
+         a.sketch.tail_segments == b.sketch.tail_segments;
 }
 
 const char* to_string(StrokeAction a) {
@@ -64,8 +59,7 @@ const char* to_string(StrokeAction a) {
 }
 
 bool operator==(const RecordedStroke& a, const RecordedStroke& b) {
-  return a.action == b.action && a.target == b.target && same_camera(a.camera, b.camera) &&
-         a.strokes == b.strokes;
+  return a.action == b.action && a.target == b.target && same_camera(a.camera, b.camera) && a.strokes == b.strokes;
 }
 
 bool same_hairstyle(const Hairstyle& a, const Hairstyle& b) {

@@ -18,8 +18,8 @@ namespace {
 
 void check_field(const Grid& grid, const Field& field, const char* fn) {
   if (field.rows() != grid.num_nodes())
-    throw InvalidArgument(std::string(fn) + ": field has " + std::to_string(field.rows()) +
-                          " rows, the grid has " + std::to_string(grid.num_nodes()) + " nodes");
+    throw InvalidArgument(std::string(fn) + ": field has " + std::to_string(field.rows()) + " rows, the grid has " +
+                          std::to_string(grid.num_nodes()) + " nodes");
 }
 
 }  // namespace
@@ -30,8 +30,7 @@ void write_strands_obj(const std::filesystem::path& path, const Strands& strands
   for (int s = 0; s < strands.count(); ++s) {
     if (strands.offsets[s + 1] - strands.offsets[s] < 2) continue;
     auto& line = lines.emplace_back();
-    for (int i = strands.offsets[s]; i < strands.offsets[s + 1]; ++i)
-      line.push_back(strands.points[i].cast<double>());
+    for (int i = strands.offsets[s]; i < strands.offsets[s + 1]; ++i) line.push_back(strands.points[i].cast<double>());
   }
   geometry::write_obj_polylines(path, lines);
 }
@@ -42,8 +41,8 @@ void write_field_vtk(const std::filesystem::path& path, const Grid& grid, const 
     char line[512];
     out << "# vtk DataFile Version 3.0\nLapis hair vector field\nASCII\nDATASET STRUCTURED_POINTS\n";
     std::snprintf(line, sizeof line, "DIMENSIONS %d %d %d\nORIGIN %.17g %.17g %.17g\nSPACING %.17g %.17g %.17g\n",
-                  grid.dims[0], grid.dims[1], grid.dims[2], grid.origin.x(), grid.origin.y(),
-                  grid.origin.z(), grid.spacing, grid.spacing, grid.spacing);
+                  grid.dims[0], grid.dims[1], grid.dims[2], grid.origin.x(), grid.origin.y(), grid.origin.z(),
+                  grid.spacing, grid.spacing, grid.spacing);
     out << line << "POINT_DATA " << grid.num_nodes() << "\nVECTORS direction float\n";
     for (Eigen::Index i = 0; i < field.rows(); ++i) {
       std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", field(i, 0), field(i, 1), field(i, 2));

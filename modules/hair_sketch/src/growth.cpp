@@ -51,8 +51,7 @@ struct Lookup {
 Lookup lookup_of(const SampledField& field) {
   const std::array<int, 3>& d = field.grid().dims;
   const std::ptrdiff_t sy = 3 * static_cast<std::ptrdiff_t>(d[0]);
-  return {field.data(), sy, sy * d[1],
-          Float4{float(d[0] - 1), float(d[1] - 1), float(d[2] - 1), 0.f},
+  return {field.data(), sy, sy * d[1], Float4{float(d[0] - 1), float(d[1] - 1), float(d[2] - 1), 0.f},
           Float4{float(d[0] - 2), float(d[1] - 2), float(d[2] - 2), 0.f}};
 }
 
@@ -74,18 +73,15 @@ inline bool inside(const Lookup& f, Float4 q) {
 inline Float4 interpolate(const Lookup& f, Float4 q) {
   const Int4 cell = __builtin_convertvector(q < f.last_cell ? q : f.last_cell, Int4);
   const Float4 t = q - __builtin_convertvector(cell, Float4);
-  const float* e00 =
-      f.data + 3 * static_cast<std::ptrdiff_t>(cell[0]) + f.sy * cell[1] + f.sz * cell[2];
+  const float* e00 = f.data + 3 * static_cast<std::ptrdiff_t>(cell[0]) + f.sy * cell[1] + f.sz * cell[2];
   const Float4 tx = splat(t[0]), ty = splat(t[1]), tz = splat(t[2]);
   auto lerp = [](Float4 a, Float4 b, Float4 w) { return a + w * (b - a); };
   auto edge = [&](const float* e) { return lerp(load4(e), load4(e + 3), tx); };
-  return lerp(lerp(edge(e00), edge(e00 + f.sy), ty),
-              lerp(edge(e00 + f.sz), edge(e00 + f.sz + f.sy), ty), tz);
+  return lerp(lerp(edge(e00), edge(e00 + f.sy), ty), lerp(edge(e00 + f.sz), edge(e00 + f.sz + f.sy), ty), tz);
 }
 
 inline Float4 to_grid(const SampledField& field, const Eigen::Vector3f& p) {
-  const Eigen::Vector3f q = (p - field.grid().origin.cast<float>()) *
-                            static_cast<float>(1.0 / field.grid().spacing);
+  const Eigen::Vector3f q = (p - field.grid().origin.cast<float>()) * static_cast<float>(1.0 / field.grid().spacing);
   return Float4{q.x(), q.y(), q.z(), 0.f};
 }
 
@@ -114,9 +110,8 @@ constexpr int kLanes = 8;
 // Strands [first, last) grown into one block, kLanes at a time: each lane appends its points
 // to its own buffer, and finished groups go to the block in strand order.
 // `step` is the segment length per unit of field in grid spacings.
-void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first,
-                int last, float step, int max_steps, float vmin, std::vector<Eigen::Vector3f>& points,
-                std::vector<int>& counts) {
+void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first, int last, float step,
+                int max_steps, float vmin, std::vector<Eigen::Vector3f>& points, std::vector<int>& counts) {
   const float vmin2 = vmin * vmin;
   const Lookup f = lookup_of(field);
   const Eigen::Vector3f origin = field.grid().origin.cast<float>();
@@ -191,7 +186,8 @@ void check_growth(double roots, const GrowthOptions& o, const std::string& fn) {
     throw InvalidArgument(fn + ": " + format_number(roots) + " roots are too many");
   const double points = roots * (max_steps_of(o) + 1), bytes = estimate_strand_bytes(roots, o);
   const std::string what = fn + ": " + format_number(roots) + " strands of up to " + format_number(max_steps_of(o)) +
-                           " steps (max_length " + format_number(o.max_length) + " / step " + format_number(o.step) + ")";
+                           " steps (max_length " + format_number(o.max_length) + " / step " + format_number(o.step) +
+                           ")";
   if (points > std::numeric_limits<int>::max())
     throw ResourceLimit(what + " may have " + format_number(points) + " points, more than the " +
                         std::to_string(std::numeric_limits<int>::max()) + " strands can index");
@@ -200,8 +196,7 @@ void check_growth(double roots, const GrowthOptions& o, const std::string& fn) {
                         format_number(o.memory_limit_bytes / (1 << 20)) + " MiB");
 }
 
-void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots,
-                        Strands& out) {
+void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, Strands& out) {
   constexpr const char* fn = "hair_sketch::StrandGrower::grow()";
   const GrowthOptions& o = options_;
   check_growth(static_cast<double>(roots.size()), o, fn);
@@ -217,8 +212,8 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   if (static_cast<int>(blocks_.size()) < blocks) blocks_.resize(blocks);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int b = 0; b < blocks; ++b)
-    grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin,
-               blocks_[b].points, blocks_[b].counts);
+    grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin, blocks_[b].points,
+               blocks_[b].counts);
   // Blocks in strand order, so the result does not depend on which thread grew what.
   std::vector<size_t> block_start(blocks + 1, 0);
   for (int b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + blocks_[b].points.size();

@@ -17,8 +17,7 @@ static_assert(std::endian::native == std::endian::little, "the .hair format is l
 
 constexpr std::size_t kHeaderBytes = 128;
 constexpr std::size_t kInfoBytes = 88;
-constexpr std::uint32_t kKnownArrays =
-    kHairSegments | kHairPoints | kHairThickness | kHairTransparency | kHairColors;
+constexpr std::uint32_t kKnownArrays = kHairSegments | kHairPoints | kHairThickness | kHairTransparency | kHairColors;
 
 struct Header {
   char signature[4];
@@ -34,18 +33,15 @@ void write_array(std::ostream& out, const std::vector<T>& v) {
 }
 
 void check_sizes(const HairFile& f, const char* fn) {
-  const auto fail = [&](const std::string& what) {
-    throw InvalidArgument(std::string(fn) + ": " + what);
-  };
+  const auto fail = [&](const std::string& what) { throw InvalidArgument(std::string(fn) + ": " + what); };
   if (f.points.size() != 3ull * f.point_count)
-    fail("points has " + std::to_string(f.points.size()) + " floats, expected 3 * point_count = " +
-         std::to_string(3ull * f.point_count));
+    fail("points has " + std::to_string(f.points.size()) +
+         " floats, expected 3 * point_count = " + std::to_string(3ull * f.point_count));
   if (!f.segments.empty() && f.segments.size() != f.hair_count)
-    fail("segments has " + std::to_string(f.segments.size()) + " entries, expected hair_count = " +
-         std::to_string(f.hair_count));
+    fail("segments has " + std::to_string(f.segments.size()) +
+         " entries, expected hair_count = " + std::to_string(f.hair_count));
   if (!f.thickness.empty() && f.thickness.size() != f.point_count) fail("thickness is not per point");
-  if (!f.transparency.empty() && f.transparency.size() != f.point_count)
-    fail("transparency is not per point");
+  if (!f.transparency.empty() && f.transparency.size() != f.point_count) fail("transparency is not per point");
   if (!f.colors.empty() && f.colors.size() != 3ull * f.point_count) fail("colors is not 3 per point");
   std::uint64_t expected = 0;
   if (f.segments.empty())
@@ -53,8 +49,7 @@ void check_sizes(const HairFile& f, const char* fn) {
   else
     for (auto s : f.segments) expected += std::uint64_t(s) + 1;
   if (expected != f.point_count)
-    fail("strands need " + std::to_string(expected) + " points, point_count is " +
-         std::to_string(f.point_count));
+    fail("strands need " + std::to_string(expected) + " points, point_count is " + std::to_string(f.point_count));
 }
 
 }  // namespace
@@ -98,8 +93,7 @@ HairFile read_hair_file(const std::filesystem::path& path) {
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(path, ec);
   if (ec) throw IoError(where + "cannot stat: " + ec.message());
-  if (size < kHeaderBytes)
-    throw IoError(where + "truncated header: " + std::to_string(size) + " bytes, expected 128");
+  if (size < kHeaderBytes) throw IoError(where + "truncated header: " + std::to_string(size) + " bytes, expected 128");
   Header h{};
   in.read(reinterpret_cast<char*>(&h), sizeof h);
   if (!in) throw IoError(where + "cannot read the header");
@@ -121,8 +115,8 @@ HairFile read_hair_file(const std::filesystem::path& path) {
   if (h.arrays & kHairColors) need += 12 * n;
   if (need != size)
     throw IoError(where + (need > size ? "truncated: " : "trailing bytes: ") + "the header's counts (" +
-                  std::to_string(m) + " strands, " + std::to_string(n) + " points) need " +
-                  std::to_string(need) + " bytes, the file has " + std::to_string(size));
+                  std::to_string(m) + " strands, " + std::to_string(n) + " points) need " + std::to_string(need) +
+                  " bytes, the file has " + std::to_string(size));
   if (!(h.arrays & kHairPoints)) throw IoError(where + "no points array");
 
   HairFile f;
@@ -149,8 +143,7 @@ HairFile read_hair_file(const std::filesystem::path& path) {
     throw IoError(where + std::string(e.what()).substr(2));
   }
   for (std::uint64_t i = 0; i < f.points.size(); ++i)
-    if (!std::isfinite(f.points[i]))
-      throw IoError(where + "point " + std::to_string(i / 3) + " is not finite");
+    if (!std::isfinite(f.points[i])) throw IoError(where + "point " + std::to_string(i / 3) + " is not finite");
   return f;
 }
 

@@ -33,13 +33,12 @@ Head make_head(geometry::TriMesh mesh, const std::vector<int>& scalp_vertices) {
   std::vector<char> in(mesh.num_vertices(), 0);
   for (int v : scalp_vertices) {
     if (v < 0 || v >= mesh.num_vertices())
-      throw InvalidArgument("hair_sketch::make_head(): scalp vertex " + std::to_string(v) +
-                            " outside [0, " + std::to_string(mesh.num_vertices()) + ")");
+      throw InvalidArgument("hair_sketch::make_head(): scalp vertex " + std::to_string(v) + " outside [0, " +
+                            std::to_string(mesh.num_vertices()) + ")");
     in[v] = 1;
   }
   h.scalp_face.assign(mesh.num_faces(), 0);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    h.scalp_face[f] = in[mesh.F(f, 0)] && in[mesh.F(f, 1)] && in[mesh.F(f, 2)];
+  for (int f = 0; f < mesh.num_faces(); ++f) h.scalp_face[f] = in[mesh.F(f, 0)] && in[mesh.F(f, 1)] && in[mesh.F(f, 2)];
   for (int i = 0; i < mesh.num_vertices(); ++i) h.box.extend(mesh.V.row(i).transpose());
   // The box spans neck to crown, so its centre can sit in the jaw; the cranium's centre is
   // better found from the scalp's height range.
@@ -75,12 +74,11 @@ std::vector<int> read_scalp_mask(const std::filesystem::path& path, int num_vert
     long long v;
     std::string rest;
     if (!(ss >> v) || (ss >> rest))
-      throw IoError("hair_sketch::read_scalp_mask(): " + path.string() + ":" +
-                    std::to_string(lineno) + ": expected one vertex index, got '" + line + "'");
+      throw IoError("hair_sketch::read_scalp_mask(): " + path.string() + ":" + std::to_string(lineno) +
+                    ": expected one vertex index, got '" + line + "'");
     if (v < 0 || v >= num_vertices)
-      throw IoError("hair_sketch::read_scalp_mask(): " + path.string() + ":" +
-                    std::to_string(lineno) + ": vertex " + std::to_string(v) + " outside [0, " +
-                    std::to_string(num_vertices) + ")");
+      throw IoError("hair_sketch::read_scalp_mask(): " + path.string() + ":" + std::to_string(lineno) + ": vertex " +
+                    std::to_string(v) + " outside [0, " + std::to_string(num_vertices) + ")");
     out.push_back(static_cast<int>(v));
   }
   return out;
@@ -88,8 +86,7 @@ std::vector<int> read_scalp_mask(const std::filesystem::path& path, int num_vert
 
 Head load_head(const std::filesystem::path& mesh_path, const std::filesystem::path& mask_path) {
   geometry::TriMesh mesh = geometry::read_mesh(mesh_path);
-  if (mesh.num_faces() == 0)
-    throw IoError("hair_sketch::load_head(): " + mesh_path.string() + " has no faces");
+  if (mesh.num_faces() == 0) throw IoError("hair_sketch::load_head(): " + mesh_path.string() + " has no faces");
   std::vector<int> scalp;
   if (!mask_path.empty()) {
     scalp = read_scalp_mask(mask_path, mesh.num_vertices());
@@ -108,15 +105,13 @@ Head load_bundled_head(const std::filesystem::path& source_dir) {
 
 std::vector<Eigen::Vector3d> sample_roots(const Head& head, const RootOptions& options) {
   if (options.count <= 0)
-    throw InvalidArgument("hair_sketch::sample_roots(): count must be positive, got " +
-                          std::to_string(options.count));
+    throw InvalidArgument("hair_sketch::sample_roots(): count must be positive, got " + std::to_string(options.count));
   const double pi = std::numbers::pi;
   const double size = head.box.sizes().maxCoeff();
   // Ray from the centre in direction (θ from +y, φ about y); the last crossing is the
   // outer surface even where a ray grazes an ear.
   auto cast = [&](double theta, double phi, Eigen::Vector3d& root) {
-    const Eigen::Vector3d d(std::sin(theta) * std::cos(phi), std::cos(theta),
-                            std::sin(theta) * std::sin(phi));
+    const Eigen::Vector3d d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
     const auto hit = head.bvh->intersect(head.center, d, 10 * size);
     if (!hit || !head.scalp_face[hit->face]) return false;
     root = hit->point + options.lift * size * head.face_normals.row(hit->face).transpose();

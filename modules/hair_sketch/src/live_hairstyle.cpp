@@ -27,8 +27,7 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, 
   out.solves.push_back(field_.update(primitives));
   // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
   if (settings_.scalp_avoidance && !primitives.empty())
-    out.solves.push_back(
-        field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
+    out.solves.push_back(field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
   out.solve_ms = ms_since(t0);
   out.constraints = field_.constraints().size();
   const auto t1 = std::chrono::steady_clock::now();

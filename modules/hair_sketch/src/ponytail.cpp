@@ -51,8 +51,7 @@ Spine make_spine(const std::vector<Eigen::Vector3d>& spine, double h) {
 }
 
 // Radius along the spine from a profile curve: (arc length, distance) pairs sorted by s.
-std::vector<std::pair<double, double>> profile_radii(const Spine& sp,
-                                                     const std::vector<Eigen::Vector3d>& prof) {
+std::vector<std::pair<double, double>> profile_radii(const Spine& sp, const std::vector<Eigen::Vector3d>& prof) {
   std::vector<std::pair<double, double>> r;
   for (const auto& q : prof) r.push_back(sp.project(q));
   std::sort(r.begin(), r.end());
@@ -134,15 +133,17 @@ std::vector<Constraint> Ponytail::constraints(const Grid& grid) const {
   const double r2 = outer_ratio * c1.radius, r1 = inner_ratio * c1.radius;
   const Eigen::Vector3d lo = grid.to_grid(c1.center - Eigen::Vector3d::Constant(r2 + d));
   const Eigen::Vector3d hi = grid.to_grid(c1.center + Eigen::Vector3d::Constant(r2 + d));
-  for (int k = std::max(0, static_cast<int>(lo.z())); k <= std::min(grid.dims[2] - 1, static_cast<int>(hi.z()) + 1); ++k)
-    for (int j = std::max(0, static_cast<int>(lo.y())); j <= std::min(grid.dims[1] - 1, static_cast<int>(hi.y()) + 1); ++j)
-      for (int i = std::max(0, static_cast<int>(lo.x())); i <= std::min(grid.dims[0] - 1, static_cast<int>(hi.x()) + 1); ++i) {
+  for (int k = std::max(0, static_cast<int>(lo.z())); k <= std::min(grid.dims[2] - 1, static_cast<int>(hi.z()) + 1);
+       ++k)
+    for (int j = std::max(0, static_cast<int>(lo.y())); j <= std::min(grid.dims[1] - 1, static_cast<int>(hi.y()) + 1);
+         ++j)
+      for (int i = std::max(0, static_cast<int>(lo.x())); i <= std::min(grid.dims[0] - 1, static_cast<int>(hi.x()) + 1);
+           ++i) {
         const int node = grid.index(i, j, k);
         const Eigen::Vector3d q = grid.position(node) - c1.center;
         const double h = q.dot(c1.normal);
         const double rho = (q - h * c1.normal).norm();
-        if (std::abs(h) <= 0.5 * d && rho >= r1 && rho <= r2)
-          out.push_back({node, -tightness * q.normalized()});
+        if (std::abs(h) <= 0.5 * d && rho >= r1 && rho <= r2) out.push_back({node, -tightness * q.normalized()});
       }
   return out;
 }

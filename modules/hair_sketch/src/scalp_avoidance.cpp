@@ -10,20 +10,19 @@ using hair_field::Constraint;
 using hair_field::Field;
 using hair_field::Grid;
 
-std::vector<Constraint> scalp_avoidance_constraints(const Grid& grid, const Field& field,
-                                                    const Head& head,
+std::vector<Constraint> scalp_avoidance_constraints(const Grid& grid, const Field& field, const Head& head,
                                                     const ScalpAvoidanceOptions& options) {
   if (field.rows() != grid.num_nodes())
-    throw InvalidArgument("hair_sketch::scalp_avoidance_constraints(): field has " +
-                          std::to_string(field.rows()) + " rows, grid " +
-                          std::to_string(grid.num_nodes()) + " nodes");
+    throw InvalidArgument("hair_sketch::scalp_avoidance_constraints(): field has " + std::to_string(field.rows()) +
+                          " rows, grid " + std::to_string(grid.num_nodes()) + " nodes");
   const double band = options.band * grid.spacing;
   const Eigen::Vector3d lo = grid.to_grid(head.box.min()).array() - options.band - 1;
   const Eigen::Vector3d hi = grid.to_grid(head.box.max()).array() + options.band + 1;
   std::vector<int> nodes;
   for (int k = std::max(0, static_cast<int>(lo.z())); k <= std::min(grid.dims[2] - 1, static_cast<int>(hi.z())); ++k)
     for (int j = std::max(0, static_cast<int>(lo.y())); j <= std::min(grid.dims[1] - 1, static_cast<int>(hi.y())); ++j)
-      for (int i = std::max(0, static_cast<int>(lo.x())); i <= std::min(grid.dims[0] - 1, static_cast<int>(hi.x())); ++i)
+      for (int i = std::max(0, static_cast<int>(lo.x())); i <= std::min(grid.dims[0] - 1, static_cast<int>(hi.x()));
+           ++i)
         nodes.push_back(grid.index(i, j, k));
   std::vector<char> keep(nodes.size(), 0);
   std::vector<Eigen::Vector3d> dirs(nodes.size());

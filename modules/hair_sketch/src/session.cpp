@@ -38,7 +38,8 @@ json to_json(const geometry::CameraMatrices& c) {
   json view = json::array(), proj = json::array();
   for (int r = 0; r < 4; ++r)
     for (int k = 0; k < 4; ++k) view.push_back(c.view(r, k)), proj.push_back(c.projection(r, k));
-  return {{"view", view}, {"projection", proj},
+  return {{"view", view},
+          {"projection", proj},
           {"viewport", json::array({c.viewport[0], c.viewport[1], c.viewport[2], c.viewport[3]})}};
 }
 
@@ -70,10 +71,14 @@ json to_json(const StylePrimitive& p) {
 
 const char* method_name(FieldMethod m) {
   switch (m) {
-    case FieldMethod::Auto: return "auto";
-    case FieldMethod::Thesis: return "thesis";
-    case FieldMethod::Refactorize: return "refactorize";
-    case FieldMethod::Multigrid: return "multigrid";
+    case FieldMethod::Auto:
+      return "auto";
+    case FieldMethod::Thesis:
+      return "thesis";
+    case FieldMethod::Refactorize:
+      return "refactorize";
+    case FieldMethod::Multigrid:
+      return "multigrid";
   }
   return "?";
 }
@@ -84,8 +89,12 @@ class Reader {
  public:
   Reader(std::string source, const SessionLimits& limits) : source_(std::move(source)), lim_(limits) {}
 
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const { throw IoError(where(path) + ": " + what); }
-  std::string where(const std::string& path) const { return "hair_sketch::session_from_json(): " + source_ + ": " + path; }
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw IoError(where(path) + ": " + what);
+  }
+  std::string where(const std::string& path) const {
+    return "hair_sketch::session_from_json(): " + source_ + ": " + path;
+  }
   static const char* type_name(const json& j) { return j.type_name(); }
 
   const json& key(const json& obj, const std::string& path, const char* k) const {
@@ -120,8 +129,7 @@ class Reader {
     if (!j.is_array()) fail(path, std::string("expected an array, got ") + type_name(j));
     if (exact && j.size() != exact)
       fail(path, "expected " + std::to_string(exact) + " elements, got " + std::to_string(j.size()));
-    if (j.size() > max)
-      fail(path, std::to_string(j.size()) + " elements, at most " + std::to_string(max) + " allowed");
+    if (j.size() > max) fail(path, std::to_string(j.size()) + " elements, at most " + std::to_string(max) + " allowed");
     return j;
   }
   template <int N>
@@ -269,8 +277,8 @@ std::string session_to_json(const Hairstyle& style) {
   for (const auto& r : style.strokes) {
     json strokes = json::array();
     for (const auto& st : r.strokes) strokes.push_back(to_json(st));
-    j["strokes"].push_back({{"action", to_string(r.action)}, {"target", r.target},
-                            {"camera", to_json(r.camera)}, {"strokes", strokes}});
+    j["strokes"].push_back(
+        {{"action", to_string(r.action)}, {"target", r.target}, {"camera", to_json(r.camera)}, {"strokes", strokes}});
   }
   return j.dump(1);
 }
@@ -283,8 +291,7 @@ Hairstyle session_from_json(std::string_view text, const std::string& source, co
   } catch (const json::exception& e) {  // syntax errors, and numbers beyond double (1e999)
     rd.fail("$", std::string("malformed JSON: ") + e.what());
   }
-  if (rd.string(j, "$", "format") != "lapis-hair-session")
-    rd.fail("$.format", "expected \"lapis-hair-session\"");
+  if (rd.string(j, "$", "format") != "lapis-hair-session") rd.fail("$.format", "expected \"lapis-hair-session\"");
   if (rd.integer(j, "$", "version", 1, 1000) != 1) rd.fail("$.version", "unsupported version, expected 1");
   Hairstyle h;
   h.settings = rd.settings(rd.key(j, "$", "settings"), "$.settings");

@@ -12,8 +12,7 @@ namespace lapis::hair_sketch {
 namespace detail {
 
 void check_stroke(const Stroke& stroke, const SketchOptions& options, const char* fn) {
-  if (stroke.size() < 2)
-    reject(fn, "stroke has " + std::to_string(stroke.size()) + " points, expected at least 2");
+  if (stroke.size() < 2) reject(fn, "stroke has " + std::to_string(stroke.size()) + " points, expected at least 2");
   double length = 0;
   for (size_t i = 0; i < stroke.size(); ++i) {
     if (!stroke[i].allFinite()) reject(fn, "stroke point " + std::to_string(i) + " is not finite");
@@ -55,8 +54,7 @@ Eigen::Vector3d keep_above(const Head& head, const Eigen::Vector3d& p, double li
 }
 
 // Resampling at d can fail on a curve that collapsed to a point; that is the stroke's fault.
-std::vector<Eigen::Vector3d> resample_curve(const std::vector<Eigen::Vector3d>& p, double d,
-                                            const char* fn) {
+std::vector<Eigen::Vector3d> resample_curve(const std::vector<Eigen::Vector3d>& p, double d, const char* fn) {
   if (detail::polyline_length(p) < d)
     detail::reject(fn, "degenerate stroke: its 3D curve is shorter than one grid spacing");
   return detail::resample(p, d, fn);
@@ -64,8 +62,8 @@ std::vector<Eigen::Vector3d> resample_curve(const std::vector<Eigen::Vector3d>& 
 
 }  // namespace
 
-StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera,
-                                     const Head& head, const SketchOptions& options) {
+StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera, const Head& head,
+                                     const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::stream_curve_from_stroke()";
   detail::check_stroke(stroke, options, fn);
   const ScalpHit first = cast(camera, head, stroke[0]);
@@ -91,17 +89,15 @@ StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::Camer
   return curve;
 }
 
-DividingCurve dividing_curve_from_stroke(const Stroke& stroke,
-                                         const geometry::CameraMatrices& camera,
-                                         const Head& head, const SketchOptions& options) {
+DividingCurve dividing_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera, const Head& head,
+                                         const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::dividing_curve_from_stroke()";
   detail::check_stroke(stroke, options, fn);
   std::vector<Eigen::Vector3d> points;
   for (size_t i = 0; i < stroke.size(); ++i) {
     const ScalpHit h = cast(camera, head, stroke[i]);
     if (!h.head) detail::reject(fn, "stroke point " + std::to_string(i) + " misses the head");
-    if (!h.scalp)
-      detail::reject(fn, "stroke point " + std::to_string(i) + " is off the scalp (a parting lies on it)");
+    if (!h.scalp) detail::reject(fn, "stroke point " + std::to_string(i) + " is off the scalp (a parting lies on it)");
     points.push_back(keep_above(head, h.point, options.lift * options.spacing));
   }
   DividingCurve curve;
@@ -109,9 +105,8 @@ DividingCurve dividing_curve_from_stroke(const Stroke& stroke,
   return curve;
 }
 
-TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke,
-                        const geometry::CameraMatrices& camera, const Head& head,
-                        const SketchOptions& options) {
+TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke, const geometry::CameraMatrices& camera,
+                        const Head& head, const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::interpret_tilt()";
   detail::check_stroke(stroke, options, fn);
   if (curve.points.size() < 2) detail::reject(fn, "the dividing curve has fewer than 2 points");
@@ -135,8 +130,7 @@ TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke,
   const double reach = options.surface_width * options.spacing;
   if (best > reach)
     detail::reject(fn, "stroke starts " + format_number(best / options.spacing) +
-                           " grid spacings from the parting, expected within " +
-                           format_number(options.surface_width));
+                           " grid spacings from the parting, expected within " + format_number(options.surface_width));
   const double s = total > 0 ? s_best / total : 0.0;
   const int end = s < 0.5 ? 0 : 1;
   // The side axis and scalp normal of the untilted frame at s.

@@ -14,18 +14,20 @@ const char* to_string(SupportMode m) { return m == SupportMode::Ruled ? "ruled" 
 
 const char* to_string(HintKind k) {
   switch (k) {
-    case HintKind::Cut: return "cut";
-    case HintKind::Concatenate: return "concatenate";
-    case HintKind::Insert: return "insert";
+    case HintKind::Cut:
+      return "cut";
+    case HintKind::Concatenate:
+      return "concatenate";
+    case HintKind::Insert:
+      return "insert";
   }
   return "?";
 }
 
 double SupportingSurface::length() const { return detail::polyline_length(points); }
 
-SupportingSurface make_supporting_surface(const std::vector<Eigen::Vector3d>& curve,
-                                          const Eigen::Vector3d& viewpoint, SupportMode mode,
-                                          const SketchOptions& options) {
+SupportingSurface make_supporting_surface(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint,
+                                          SupportMode mode, const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::make_supporting_surface()";
   if (curve.size() < 2)
     throw InvalidArgument(std::string(fn) + ": curve has " + std::to_string(curve.size()) +
@@ -78,8 +80,7 @@ std::optional<SupportingSurface::Hit> SupportingSurface::intersect(const geometr
       const double det = ee * rr - er * er;
       const double a = (xe * rr - xr * er) / det, w = (ee * xr - er * xe) / det;
       if (t > 0 && a >= -1e-9 && a <= 1 + 1e-9) {
-        Hit h{ray.origin + t * ray.direction, run + std::clamp(a, 0.0, 1.0) * elen, w, t,
-              std::abs(w) <= half_width};
+        Hit h{ray.origin + t * ray.direction, run + std::clamp(a, 0.0, 1.0) * elen, w, t, std::abs(w) <= half_width};
         auto& best = h.on ? best_on : best_off;
         if (!best || (h.on ? h.t < best->t : std::abs(h.w) < std::abs(best->w))) best = h;
       }
@@ -100,8 +101,8 @@ struct Lifted {
   std::vector<SupportingSurface::Hit> hit;  // hit[i].on false when extrapolated
 };
 
-Lifted lift_onto(const SupportingSurface& surf, const Stroke& stroke,
-                 const geometry::CameraMatrices& camera, bool hint, const char* fn) {
+Lifted lift_onto(const SupportingSurface& surf, const Stroke& stroke, const geometry::CameraMatrices& camera, bool hint,
+                 const char* fn) {
   Lifted out;
   std::vector<double> arc(stroke.size(), 0.0);
   for (size_t i = 1; i < stroke.size(); ++i) arc[i] = arc[i - 1] + (stroke[i] - stroke[i - 1]).norm();
@@ -109,8 +110,7 @@ Lifted lift_onto(const SupportingSurface& surf, const Stroke& stroke,
   for (size_t i = 0; i < stroke.size(); ++i) {
     const geometry::Ray ray = geometry::unproject_ray(camera, stroke[i].x(), stroke[i].y());
     auto h = surf.intersect(ray);
-    if (i == 0 && hint && !(h && h->on))
-      detail::reject(fn, "stroke does not start on the curve's supporting surface");
+    if (i == 0 && hint && !(h && h->on)) detail::reject(fn, "stroke does not start on the curve's supporting surface");
     if (h && (h->on || !hint || last < 0)) {
       out.p.push_back(h->point);
       out.hit.push_back(*h);
@@ -161,9 +161,8 @@ void append(std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>&
 
 }  // namespace
 
-HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint,
-                        SupportMode mode, const Stroke& stroke,
-                        const geometry::CameraMatrices& camera, const SketchOptions& options) {
+HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint, SupportMode mode,
+                        const Stroke& stroke, const geometry::CameraMatrices& camera, const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::interpret_hint()";
   detail::check_stroke(stroke, options, fn);
   const SupportingSurface surf = make_supporting_surface(curve, viewpoint, mode, options);
@@ -192,25 +191,24 @@ HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::
     std::optional<double> cut;
     for (size_t i = 0; i + 1 < l.hit.size() && !cut; ++i) {
       const auto &h0 = l.hit[i], &h1 = l.hit[i + 1];
-      if (h0.on && h1.on && (h0.w > 0) != (h1.w > 0))
-        cut = h0.s + (h1.s - h0.s) * h0.w / (h0.w - h1.w);
+      if (h0.on && h1.on && (h0.w > 0) != (h1.w > 0)) cut = h0.s + (h1.s - h0.s) * h0.w / (h0.w - h1.w);
     }
     if (!cut || is_near(b))
-      detail::reject(fn, "hint stroke starts away from the curve and does not run across it "
-                         "(cut), nor starts near it (concatenate, insert)");
+      detail::reject(fn,
+                     "hint stroke starts away from the curve and does not run across it "
+                     "(cut), nor starts near it (concatenate, insert)");
     edit.kind = HintKind::Cut;
     edit.points = curve_until(curve, *cut);
   }
   if (detail::polyline_length(edit.points) < options.spacing)
-    detail::reject(fn, std::string("the ") + to_string(edit.kind) +
-                           " would leave a curve shorter than one grid spacing");
+    detail::reject(fn,
+                   std::string("the ") + to_string(edit.kind) + " would leave a curve shorter than one grid spacing");
   edit.points = detail::resample(edit.points, options.spacing, fn);
   return edit;
 }
 
-Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes,
-                               const geometry::CameraMatrices& camera, const Head& head,
-                               const SketchOptions& options) {
+Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes, const geometry::CameraMatrices& camera,
+                               const Head& head, const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::ponytail_from_strokes()";
   Ponytail tail;
   try {
@@ -218,8 +216,8 @@ Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes,
   } catch (const StrokeRejected& e) {
     detail::reject(fn, std::string("spine: ") + e.what());
   }
-  const SupportingSurface surf = make_supporting_surface(tail.spine, geometry::eye_position(camera),
-                                                         SupportMode::Strip, options);
+  const SupportingSurface surf =
+      make_supporting_surface(tail.spine, geometry::eye_position(camera), SupportMode::Strip, options);
   const char* names[] = {"spine", "cross section", "profile a", "profile b"};
   std::vector<Eigen::Vector3d>* outs[] = {nullptr, &tail.cross_section, &tail.profile_a, &tail.profile_b};
   for (int k = 1; k < 4; ++k) {

@@ -10,9 +10,7 @@ namespace {
 
 constexpr const char* kFn = "hair_sketch::command_from_stroke()";
 
-[[noreturn]] void reject(const std::string& reason) {
-  throw StrokeRejected(std::string(kFn) + ": " + reason);
-}
+[[noreturn]] void reject(const std::string& reason) { throw StrokeRejected(std::string(kFn) + ": " + reason); }
 
 template <class T>
 const T& target_shape(const Hairstyle& style, const RecordedStroke& s, const char* kind) {
@@ -28,8 +26,7 @@ const T& target_shape(const Hairstyle& style, const RecordedStroke& s, const cha
 
 }  // namespace
 
-Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, const Head& head,
-                            const Grid& grid) {
+Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, const Head& head, const Grid& grid) {
   const size_t expected = s.action == StrokeAction::Ponytail ? 4 : 1;
   if (s.strokes.size() != expected)
     reject(std::string(to_string(s.action)) + " needs " + std::to_string(expected) + " stroke(s), got " +
@@ -42,19 +39,18 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, con
   switch (s.action) {
     case StrokeAction::StreamCurve:
       c.name = "add stream curve";
-      c.change = InsertPrimitive{end, {stream_curve_from_stroke(s.strokes[0], s.camera, head, opt),
-                                       eye, style.settings.support}};
+      c.change = InsertPrimitive{
+          end, {stream_curve_from_stroke(s.strokes[0], s.camera, head, opt), eye, style.settings.support}};
       break;
     case StrokeAction::DividingCurve:
       c.name = "add dividing curve";
-      c.change = InsertPrimitive{end, {dividing_curve_from_stroke(s.strokes[0], s.camera, head, opt),
-                                       eye, style.settings.support}};
+      c.change = InsertPrimitive{
+          end, {dividing_curve_from_stroke(s.strokes[0], s.camera, head, opt), eye, style.settings.support}};
       break;
     case StrokeAction::Ponytail: {
       c.name = "add ponytail";
       const std::array<Stroke, 4> four{s.strokes[0], s.strokes[1], s.strokes[2], s.strokes[3]};
-      c.change = InsertPrimitive{end, {ponytail_from_strokes(four, s.camera, head, opt), eye,
-                                       SupportMode::Strip}};
+      c.change = InsertPrimitive{end, {ponytail_from_strokes(four, s.camera, head, opt), eye, SupportMode::Strip}};
       break;
     }
     case StrokeAction::Hint: {
@@ -63,9 +59,12 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, con
       if (s.target < 0 || s.target >= end) target_shape<StreamCurve>(style, s, "stream curve");
       StylePrimitive p = style.primitives[s.target];
       std::vector<Eigen::Vector3d>* curve = nullptr;
-      if (auto* sc = std::get_if<StreamCurve>(&p.shape)) curve = &sc->points;
-      else if (auto* pt = std::get_if<Ponytail>(&p.shape)) curve = &pt->spine;
-      else target_shape<StreamCurve>(style, s, "stream curve or ponytail");
+      if (auto* sc = std::get_if<StreamCurve>(&p.shape))
+        curve = &sc->points;
+      else if (auto* pt = std::get_if<Ponytail>(&p.shape))
+        curve = &pt->spine;
+      else
+        target_shape<StreamCurve>(style, s, "stream curve or ponytail");
       const HintEdit edit = interpret_hint(*curve, p.viewpoint, p.support, s.strokes[0], s.camera, opt);
       *curve = edit.points;
       c.name = std::string(to_string(edit.kind)) + " curve";

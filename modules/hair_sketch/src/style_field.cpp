@@ -47,15 +47,13 @@ std::vector<Constraint> primitive_constraints(const StylePrimitive& p, const Gri
       p.shape);
 }
 
-ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const Grid& grid,
-                                const Head& head) {
+ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const Grid& grid, const Head& head) {
   std::vector<std::vector<Constraint>> groups;
   for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid, head));
   return ConstraintSet::merge(groups);
 }
 
-StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method,
-                       const FieldSolverOptions& options)
+StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, const FieldSolverOptions& options)
     : head_(&head), grid_(grid), solver_(make_field_solver(grid, method, options)) {}
 
 FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitives,
@@ -79,8 +77,7 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   t0 = std::chrono::steady_clock::now();
   r.solves.push_back(field.update(style.primitives));
   if (s.scalp_avoidance && !style.primitives.empty())
-    r.solves.push_back(field.update(style.primitives,
-                                    scalp_avoidance_constraints(r.grid, field.field(), head)));
+    r.solves.push_back(field.update(style.primitives, scalp_avoidance_constraints(r.grid, field.field(), head)));
   r.solve_ms = ms_since(t0);
   r.field = field.field();
   r.constraints = field.constraints().size();

@@ -25,19 +25,19 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // loops gather neighbours' positions and rotations, and in the mesh's own order (a
 // Loop-subdivided one's above all) those gathers miss the cache and cost as much as the fits.
 struct ArapDeformer::Impl {
-  std::vector<int> order;            // internal index -> mesh vertex
-  Vertices rest;                     // rest positions, internal order
-  detail::Stencil s;                 // cotangent weights, neighbour lists in contiguous arrays
-  std::vector<int> free;             // ascending internal indices
-  std::vector<int> local;            // vertex -> index among free, -1 for constrained
-  std::vector<int> fitted;           // vertices whose rotation a free vertex's row reads
+  std::vector<int> order;   // internal index -> mesh vertex
+  Vertices rest;            // rest positions, internal order
+  detail::Stencil s;        // cotangent weights, neighbour lists in contiguous arrays
+  std::vector<int> free;    // ascending internal indices
+  std::vector<int> local;   // vertex -> index among free, -1 for constrained
+  std::vector<int> fitted;  // vertices whose rotation a free vertex's row reads
   solver::Cholesky chol;
-  std::vector<Eigen::Vector3d> we;   // per stencil entry: w_ij (v_i − v_j), contiguous
-  std::vector<double> rest_sq;       // per vertex: Σ_j w_ij ‖v_i − v_j‖²
-  std::vector<Eigen::Matrix3d> R;    // #V rotations
-  std::vector<Eigen::Quaterniond> q; // the same rotations, each fit's start in the next iteration
-  Vertices X, targets;               // this frame's iterate and handle targets, internal order
-  bool have_previous = false;        // R holds the rotations of the last frame's result
+  std::vector<Eigen::Vector3d> we;    // per stencil entry: w_ij (v_i − v_j), contiguous
+  std::vector<double> rest_sq;        // per vertex: Σ_j w_ij ‖v_i − v_j‖²
+  std::vector<Eigen::Matrix3d> R;     // #V rotations
+  std::vector<Eigen::Quaterniond> q;  // the same rotations, each fit's start in the next iteration
+  Vertices X, targets;                // this frame's iterate and handle targets, internal order
+  bool have_previous = false;         // R holds the rotations of the last frame's result
   // Per frame, over the free vertices: (L V)_i = Σ_j w_ij e_ij, and the right-hand side's part
   // that stays fixed over the frame, Σ_j w_ij d_j over constrained j minus (L V)_i.
   Vertices lap, frame_rhs;
@@ -84,7 +84,8 @@ void ArapDeformer::Impl::blend_handle_rotations(const HandleTransforms& transfor
   const Eigen::Index nh = handle_fields.cols();
   std::vector<Eigen::Vector3d> r(static_cast<size_t>(nh));
   for (Eigen::Index h = 0; h < nh; ++h) {
-    const Eigen::AngleAxisd aa(geometry::polar_rotation(transforms.regions[static_cast<size_t>(h)].topLeftCorner<3, 3>()));
+    const Eigen::AngleAxisd aa(
+        geometry::polar_rotation(transforms.regions[static_cast<size_t>(h)].topLeftCorner<3, 3>()));
     r[static_cast<size_t>(h)] = aa.angle() * aa.axis();
   }
   detail::for_vertices(fitted.size(), [&](std::ptrdiff_t k) {
@@ -145,8 +146,7 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
       return *this;
     }
   };
-  const Sums sums = core::parallel_sum<Sums>(0, static_cast<std::ptrdiff_t>(fitted.size()), detail::kVertexChunk,
-                                             [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+  auto fit_range = [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
     Sums part;
     for (std::ptrdiff_t r = lo; r < hi; ++r) {
       const int i = fitted[static_cast<size_t>(r)];
@@ -164,7 +164,9 @@ double ArapDeformer::Impl::fit_rotations(int& fallbacks) {
       part.energy += sq - 2 * (R[i].transpose() * A).trace();
     }
     return part;
-  });
+  };
+  const Sums sums =
+      core::parallel_sum<Sums>(0, static_cast<std::ptrdiff_t>(fitted.size()), detail::kVertexChunk, fit_range);
   fallbacks += sums.fell;
   return sums.energy;
 }
@@ -237,7 +239,8 @@ void ArapDeformer::setup(const Layout& layout) {
   } catch (const NotPositiveDefinite& e) {
     throw NotPositiveDefinite(std::string("mesh_deform::ArapDeformer::precompute(): the cotangent Laplacian of the "
                                           "free vertices is not positive definite (is some part of the ROI not "
-                                          "connected to a handle or the fixed region?): ") + e.what(),
+                                          "connected to a handle or the fixed region?): ") +
+                                  e.what(),
                               e.column() >= 0 ? m->order[m->free[static_cast<size_t>(e.column())]] : -1);
   }
   m->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
@@ -269,8 +272,10 @@ void ArapDeformer::solve(const HandleTransforms& transforms, const Vertices& tar
   int it = 0, fallbacks = 0;
   auto t0 = std::chrono::steady_clock::now();
   if (cold) {
-    if (options_.cold_start == ArapStart::HandleRotations) m.blend_handle_rotations(transforms);
-    else m.identity_rotations();
+    if (options_.cold_start == ArapStart::HandleRotations)
+      m.blend_handle_rotations(transforms);
+    else
+      m.identity_rotations();
   }
   rot_ms += ms_since(t0);
   while (it < options_.max_iterations) {

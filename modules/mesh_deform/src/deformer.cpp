@@ -69,8 +69,7 @@ Layout make_layout(const Selection& s, int n, const char* context) {
   };
   for (size_t h = 0; h < s.region_handles.size(); ++h) {
     if (s.region_handles[h].empty()) fail(context, "region handle " + str(long(h)) + " is empty");
-    for (int v : s.region_handles[h])
-      claim(v, VertexRole::RegionHandle, int(h), "region handle " + str(long(h)));
+    for (int v : s.region_handles[h]) claim(v, VertexRole::RegionHandle, int(h), "region handle " + str(long(h)));
   }
   for (size_t h = 0; h < s.point_handles.size(); ++h)
     claim(s.point_handles[h], VertexRole::PointHandle, int(h), "point handle " + str(long(h)));

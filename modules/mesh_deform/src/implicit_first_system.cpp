@@ -76,7 +76,7 @@ void coherence_rows(const WorkMesh& w, const Stencil& s, const GradientStencils&
   const int n = w.mesh.num_vertices();
   SparseRows ER(n);
   std::vector<int> slot(static_cast<size_t>(n), -1);  // vertex → its three rows / 3
-  std::vector<std::pair<int, int>> pairs;              // slots of the vertices of each pair
+  std::vector<std::pair<int, int>> pairs;             // slots of the vertices of each pair
   auto slot_of = [&](int i) {
     if (slot[i] < 0) {
       slot[i] = ER.rows() / 3;
@@ -146,9 +146,9 @@ solver::SparseMatrix blend_rows(const GradientStencils& G, const Vertices& delta
 
 }  // namespace
 
-FirstSystemRows first_system_rows(const WorkMesh& w, const Stencil& s, const GradientStencils& G, const Vertices& deltaP,
-                                  const std::vector<int>& free, const std::vector<int>& constrained,
-                                  const std::vector<LaplacianBlend>& blends) {
+FirstSystemRows first_system_rows(const WorkMesh& w, const Stencil& s, const GradientStencils& G,
+                                  const Vertices& deltaP, const std::vector<int>& free,
+                                  const std::vector<int>& constrained, const std::vector<LaplacianBlend>& blends) {
   const int n = w.mesh.num_vertices();
   const std::vector<char> touches = touching_free(w, G);
   FirstSystemRows out;

@@ -24,8 +24,8 @@ struct FirstSystemRows {
 
 // s  the work mesh's Laplacian on the displaced positions, deltaP its δ_i (#V' by 3), G the
 // gradient stencils there; free and constrained partition the work mesh's vertices.
-FirstSystemRows first_system_rows(const WorkMesh& w, const Stencil& s, const GradientStencils& G, const Vertices& deltaP,
-                                  const std::vector<int>& free, const std::vector<int>& constrained,
-                                  const std::vector<LaplacianBlend>& blends);
+FirstSystemRows first_system_rows(const WorkMesh& w, const Stencil& s, const GradientStencils& G,
+                                  const Vertices& deltaP, const std::vector<int>& free,
+                                  const std::vector<int>& constrained, const std::vector<LaplacianBlend>& blends);
 
 }  // namespace lapis::mesh_deform::detail

@@ -71,9 +71,9 @@ struct ImplicitLaplacianDeformer::Impl {
   std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
   std::vector<int> guided_for;               // handles the guide system was built for
   std::unique_ptr<solver::LeastSquares> guided;
-  std::vector<int> guide_rows;                     // vertex of each guide constraint
-  solver::DenseMatrix guide_weights;               // φ_k at each guide vertex (rows) per handle
-  solver::DenseMatrix guide_rest;                  // M_c(v') of the guide rows
+  std::vector<int> guide_rows;                  // vertex of each guide constraint
+  solver::DenseMatrix guide_weights;            // φ_k at each guide vertex (rows) per handle
+  solver::DenseMatrix guide_rest;               // M_c(v') of the guide rows
   solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
   solver::DenseMatrix blend_rest;               // E_T rows (§3.3.3) at the rest state
   solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
@@ -97,7 +97,8 @@ struct ImplicitLaplacianDeformer::Impl {
     in.fixed.resize(static_cast<Eigen::Index>(constrained.size()), 3);
     for (size_t k = 0; k < constrained.size(); ++k) {
       const int v = constrained[k];
-      in.fixed.row(static_cast<Eigen::Index>(k)) = (place(transforms, v, P.row(v).transpose()) - P.row(v).transpose()).transpose();
+      in.fixed.row(static_cast<Eigen::Index>(k)) =
+          (place(transforms, v, P.row(v).transpose()) - P.row(v).transpose()).transpose();
     }
     // E_L and E_R vanish at the rest state (M_i = I), so their right-hand sides are zero
     // (empty: the solver skips them); only the transformation constraints carry W_c − M_c(v').
@@ -107,7 +108,8 @@ struct ImplicitLaplacianDeformer::Impl {
       solver::DenseMatrix r = -transform_rest;
       for (size_t t = 0; t < transform_vertex.size(); ++t) {
         const int h = transform_handle[t];
-        const Eigen::Matrix3d W = h < 0 ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(transforms.regions[h].topLeftCorner<3, 3>());
+        const Eigen::Matrix3d W =
+            h < 0 ? Eigen::Matrix3d::Identity() : Eigen::Matrix3d(transforms.regions[h].topLeftCorner<3, 3>());
         // Row a of M_c against coordinate a: block rows 3t + b hold M_c(a, b) in column a.
         r.middleRows(static_cast<Eigen::Index>(3 * t), 3) += W.transpose();
       }
@@ -120,7 +122,8 @@ struct ImplicitLaplacianDeformer::Impl {
   }
 
   // Eq. 2.8's blocks (first_system_rows), assembled and factorized.
-  void build_first_system(const ImplicitOptions& options, const std::vector<LaplacianBlend>& blends, double blend_weight) {
+  void build_first_system(const ImplicitOptions& options, const std::vector<LaplacianBlend>& blends,
+                          double blend_weight) {
     const Vertices& P = w.displaced;
     const int n = w.mesh.num_vertices();
     // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
@@ -141,14 +144,16 @@ struct ImplicitLaplacianDeformer::Impl {
     first.add_block(std::move(rows.laplacian), 1.0, "E_L (Eq. 2.6)");
     if (rows.coherence.rows() > 0)
       block_R = first.add_block(std::move(rows.coherence), weight_R, "E_R (Eq. 2.7)", std::move(rows.coherence_metric));
-    if (rows.transform.rows() > 0) block_T = first.add_block(std::move(rows.transform), weight_T, "M_c = W_c (Eq. 2.8)");
+    if (rows.transform.rows() > 0)
+      block_T = first.add_block(std::move(rows.transform), weight_T, "M_c = W_c (Eq. 2.8)");
     if (rows.blend.rows() > 0) block_B = first.add_block(std::move(rows.blend), blend_weight, "E_T (§3.3.3)");
     first.set_fixed(constrained);
     first.set_ordering_skeleton(edge_graph(stencil));
     has_coherence = block_R >= 0;
     // M_c(v') and E_T's rows at the rest state; no rows when the block is absent.
     const auto at_rest = [&](int block) {
-      return block >= 0 ? solver::DenseMatrix(first.block_matrix(block) * solver::DenseMatrix(P)) : solver::DenseMatrix(0, 3);
+      return block >= 0 ? solver::DenseMatrix(first.block_matrix(block) * solver::DenseMatrix(P))
+                        : solver::DenseMatrix(0, 3);
     };
     transform_rest = at_rest(block_T);
     blend_rest = at_rest(block_B);
@@ -214,11 +219,11 @@ struct ImplicitLaplacianDeformer::Impl {
       change.leftCols<3>() -= Eigen::Matrix3d::Identity();
       C.middleRows(4 * h, 4) = change.transpose();
     }
-    for (int p = 0; p < point_handles; ++p) C.row(4 * region_handles + p) = transforms.points[static_cast<size_t>(p)].transpose();
+    for (int p = 0; p < point_handles; ++p)
+      C.row(4 * region_handles + p) = transforms.points[static_cast<size_t>(p)].transpose();
     return C;
   }
 };
-
 
 ImplicitLaplacianDeformer::ImplicitLaplacianDeformer(TriMesh mesh, ImplicitOptions options)
     : Deformer(std::move(mesh)), options_(options) {}
@@ -227,24 +232,28 @@ ImplicitLaplacianDeformer::~ImplicitLaplacianDeformer() = default;
 
 void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
   constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_options()";
-  if (!(options.degenerate_condition > 1)) throw InvalidArgument(std::string(fn) + ": degenerate_condition must be > 1");
+  if (!(options.degenerate_condition > 1))
+    throw InvalidArgument(std::string(fn) + ": degenerate_condition must be > 1");
   if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0) ||
       !(options.guide_weight > 0))
-    throw InvalidArgument(std::string(fn) + ": s_disp, coherence_weight, transform_weight and guide_weight must be > 0");
+    throw InvalidArgument(std::string(fn) +
+                          ": s_disp, coherence_weight, transform_weight and guide_weight must be > 0");
   options_ = options;
   mark_dirty();
 }
 
 void ImplicitLaplacianDeformer::set_laplacian_blends(std::vector<LaplacianBlend> blends, double weight) {
   constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_laplacian_blends()";
-  if (!(weight > 0) || !std::isfinite(weight)) throw InvalidArgument(std::string(fn) + ": weight must be finite and > 0");
+  if (!(weight > 0) || !std::isfinite(weight))
+    throw InvalidArgument(std::string(fn) + ": weight must be finite and > 0");
   const int n = mesh_.num_vertices();
   auto in_range = [n](int v) { return v >= 0 && v < n; };
   for (const LaplacianBlend& b : blends) {
     bool ok = in_range(b.vertex);
     for (int k = 0; k < 3; ++k) ok = ok && in_range(b.others[k]) && std::isfinite(b.weights[k]);
-    if (!ok) throw InvalidArgument(std::string(fn) + ": term at vertex " + std::to_string(b.vertex) +
-                                   " has a vertex out of range or a weight that is not finite");
+    if (!ok)
+      throw InvalidArgument(std::string(fn) + ": term at vertex " + std::to_string(b.vertex) +
+                            " has a vertex out of range or a weight that is not finite");
   }
   blends_ = std::move(blends);
   blend_weight_ = weight;
@@ -265,7 +274,8 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   auto m = std::make_unique<Impl>();
   m->w = detail::build_work_mesh(mesh_, layout, options_);
   const detail::WorkMesh& w = m->w;
-  for (int v = 0; v < w.mesh.num_vertices(); ++v) (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
+  for (int v = 0; v < w.mesh.num_vertices(); ++v)
+    (w.role[v] == VertexRole::Free ? m->free : m->constrained).push_back(v);
   m->polar_start.assign(m->free.size(), Eigen::Quaterniond::Identity());
   m->accumulated.assign(static_cast<size_t>(layout.num_region_handles), Eigen::Vector3d::Zero());
 
@@ -273,8 +283,10 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   // ordering (nested dissection, CAMD) runs on one core and would leave the other idle. The
   // second reads w, free and constrained and writes only second and delta.
   const auto first = [&] { m->build_first_system(options_, blends_, blend_weight_); };
-  if (options_.shearing == ShearingRemoval::None) first();
-  else solver::side_by_side(first, [&m = *m, weights = options_.weights] { m.build_second_system(weights); });
+  if (options_.shearing == ShearingRemoval::None)
+    first();
+  else
+    solver::side_by_side(first, [&m = *m, weights = options_.weights] { m.build_second_system(weights); });
 
   m->region_handles = layout.num_region_handles;
   m->point_handles = layout.num_point_handles;
@@ -321,7 +333,8 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
       m.guide_rows.push_back(row.first);
     }
   m.guide_weights.resize(static_cast<Eigen::Index>(m.guide_rows.size()), nh);
-  for (size_t t = 0; t < m.guide_rows.size(); ++t) m.guide_weights.row(static_cast<Eigen::Index>(t)) = fields.row(m.guide_rows[t]);
+  for (size_t t = 0; t < m.guide_rows.size(); ++t)
+    m.guide_weights.row(static_cast<Eigen::Index>(t)) = fields.row(m.guide_rows[t]);
   SparseRows Gr(n);
   for (int c : m.guide_rows)
     for (int a = 0; a < 3; ++a) {
@@ -414,21 +427,22 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   const int nf = static_cast<int>(m.free.size());
   solver::DenseMatrix rhs2(nf, 3);
   const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
-  stats_.polar_fallbacks = core::parallel_sum<int>(0, nf, detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
-    int fallbacks = 0;
-    for (std::ptrdiff_t k = lo; k < hi; ++k) {
-      const int v = m.free[static_cast<size_t>(k)];
-      const Eigen::Matrix3d M = m.G.gradient(v, Xv);
-      bool fell_back = false;
-      // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
-      const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[static_cast<size_t>(k)], &fell_back);
-      fallbacks += fell_back;
-      const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
-      const Eigen::Vector3d d = m.delta.row(k).transpose();
-      rhs2.row(k) = (s_i * (R * d) - d).transpose();
-    }
-    return fallbacks;
-  });
+  stats_.polar_fallbacks =
+      core::parallel_sum<int>(0, nf, detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+        int fallbacks = 0;
+        for (std::ptrdiff_t k = lo; k < hi; ++k) {
+          const int v = m.free[static_cast<size_t>(k)];
+          const Eigen::Matrix3d M = m.G.gradient(v, Xv);
+          bool fell_back = false;
+          // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
+          const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[static_cast<size_t>(k)], &fell_back);
+          fallbacks += fell_back;
+          const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
+          const Eigen::Vector3d d = m.delta.row(k).transpose();
+          rhs2.row(k) = (s_i * (R * d) - d).transpose();
+        }
+        return fallbacks;
+      });
   stats_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

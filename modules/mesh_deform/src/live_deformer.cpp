@@ -21,7 +21,8 @@ std::string timing_of(const Deformer& d) {
                   s.second_solve_ms, s.guided ? ", guided" : "");
   } else if (const auto* a = dynamic_cast<const ArapDeformer*>(&d)) {
     const ArapStats& s = a->stats();
-    std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms, s.solves_ms);
+    std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms,
+                  s.solves_ms);
   }
   return buf;
 }

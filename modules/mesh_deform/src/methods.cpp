@@ -32,7 +32,8 @@ Method method_from_name(const std::string& name) {
 
 std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
   switch (s.method) {
-    case Method::Naive: return std::make_unique<NaiveLaplacianDeformer>(std::move(mesh), NaiveOptions{s.weights});
+    case Method::Naive:
+      return std::make_unique<NaiveLaplacianDeformer>(std::move(mesh), NaiveOptions{s.weights});
     case Method::Implicit: {
       ImplicitOptions o;
       o.weights = s.weights;

@@ -69,13 +69,15 @@ Distortion distortion(const geometry::TriMesh& rest, const geometry::Vertices& X
   for (int f = 0; f < rest.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       const int o = rest.F(f, c), a = rest.F(f, (c + 1) % 3), b = rest.F(f, (c + 2) % 3);
-      angles.push_back(std::abs(corner_angle(X.row(o), X.row(a), X.row(b)) - corner_angle(V.row(o), V.row(a), V.row(b))));
+      angles.push_back(
+          std::abs(corner_angle(X.row(o), X.row(a), X.row(b)) - corner_angle(V.row(o), V.row(a), V.row(b))));
     }
   d.angle = summarize(std::move(angles));
 
   // The energy ArapDeformer minimizes: cotangent weights with obtuse angles clamped to zero,
   // without which the sum has no lower bound (stencil.h, ObtuseAngles).
-  const detail::Stencil sa = detail::make_stencil(V, rest.F, LaplacianWeights::Cotangent, detail::ObtuseAngles::ClampToZero);
+  const detail::Stencil sa =
+      detail::make_stencil(V, rest.F, LaplacianWeights::Cotangent, detail::ObtuseAngles::ClampToZero);
   double energy = 0, norm = 0;
   for (int i = 0; i < sa.size(); ++i) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();

@@ -12,8 +12,8 @@ namespace lapis::mesh_deform {
 // exactly zero and only the handles drive the solution.
 struct NaiveLaplacianDeformer::Impl {
   solver::LeastSquares ls{1};
-  std::vector<int> fixed;         // eliminated: outside the ROI (+ handles when hard)
-  std::vector<int> soft;          // soft handle vertices, one position row each
+  std::vector<int> fixed;  // eliminated: outside the ROI (+ handles when hard)
+  std::vector<int> soft;   // soft handle vertices, one position row each
   int rows_laplacian = 0;
 };
 

@@ -36,7 +36,8 @@ bool newton_step(const Eigen::Matrix3d& A, const Eigen::Matrix3d& R, Eigen::Vect
   const double inv = 1 / det;
   error_gain = t * (a00 + a11 + a22) * inv;
   w = Eigen::Vector3d(a00 * g[0] + a01 * g[1] + a02 * g[2], a01 * g[0] + a11 * g[1] + a12 * g[2],
-                      a02 * g[0] + a12 * g[1] + a22 * g[2]) * inv;
+                      a02 * g[0] + a12 * g[1] + a22 * g[2]) *
+      inv;
   return true;
 }
 

@@ -32,7 +32,8 @@ Eigen::Matrix4d matrix4(const json& m, const std::string& where) {
 }
 
 std::vector<int> indices(const json& a, const std::string& where) {
-  if (!a.is_array()) throw IoError(where + ": expected an array of vertex indices, found " + std::string(a.type_name()));
+  if (!a.is_array())
+    throw IoError(where + ": expected an array of vertex indices, found " + std::string(a.type_name()));
   std::vector<int> out;
   out.reserve(a.size());
   for (size_t k = 0; k < a.size(); ++k) out.push_back(json_index<IoError>(a[k], where + "[" + std::to_string(k) + "]"));
@@ -131,12 +132,12 @@ void write_handles(const std::filesystem::path& path, const Selection& selection
   constexpr const char* fn = "mesh_deform::write_handles()";
   if (frames.empty()) throw InvalidArgument(std::string(fn) + ": no frames");
   for (size_t k = 0; k < frames.size(); ++k)
-    if (frames[k].regions.size() != selection.region_handles.size() || frames[k].points.size() != selection.point_handles.size())
-      throw InvalidArgument(std::string(fn) + ": frame " + std::to_string(k) + " has " +
-                            std::to_string(frames[k].regions.size()) + " region and " +
-                            std::to_string(frames[k].points.size()) + " point transforms, expected " +
-                            std::to_string(selection.region_handles.size()) + " and " +
-                            std::to_string(selection.point_handles.size()));
+    if (frames[k].regions.size() != selection.region_handles.size() ||
+        frames[k].points.size() != selection.point_handles.size())
+      throw InvalidArgument(
+          std::string(fn) + ": frame " + std::to_string(k) + " has " + std::to_string(frames[k].regions.size()) +
+          " region and " + std::to_string(frames[k].points.size()) + " point transforms, expected " +
+          std::to_string(selection.region_handles.size()) + " and " + std::to_string(selection.point_handles.size()));
   json j = {{"regions", json::array()}, {"points", json::array()}};
   for (size_t h = 0; h < selection.region_handles.size(); ++h) {
     json transforms = json::array();

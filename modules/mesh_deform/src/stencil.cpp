@@ -95,7 +95,8 @@ Stencil make_stencil(const Vertices& P, const geometry::Faces& F, LaplacianWeigh
   s.boundary.assign(static_cast<size_t>(n), 0);
   s.nbr.reserve(ends.size() / 2 + static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
-    const auto first = ends.begin() + start[static_cast<size_t>(i)], last = ends.begin() + start[static_cast<size_t>(i) + 1];
+    const auto first = ends.begin() + start[static_cast<size_t>(i)],
+               last = ends.begin() + start[static_cast<size_t>(i) + 1];
     std::sort(first, last);
     for (auto k = first; k != last;) {
       auto e = k;

@@ -20,9 +20,12 @@ double corner_angle(const Eigen::RowVector3d& o, const Eigen::RowVector3d& a, co
 
 const char* to_string(DistortionField f) {
   switch (f) {
-    case DistortionField::EdgeLength: return "edge length";
-    case DistortionField::Angle: return "angle";
-    case DistortionField::LaplacianLength: return "Laplacian magnitude";
+    case DistortionField::EdgeLength:
+      return "edge length";
+    case DistortionField::Angle:
+      return "angle";
+    case DistortionField::LaplacianLength:
+      return "Laplacian magnitude";
   }
   return "?";
 }

@@ -8,7 +8,8 @@ namespace {
 
 void check(int v, int n, const char* fn) {
   if (v < 0 || v >= n)
-    throw InvalidArgument(std::string(fn) + ": vertex " + std::to_string(v) + " out of range [0, " + std::to_string(n) + ")");
+    throw InvalidArgument(std::string(fn) + ": vertex " + std::to_string(v) + " out of range [0, " + std::to_string(n) +
+                          ")");
 }
 
 }  // namespace
@@ -63,8 +64,8 @@ void VertexLabels::make_act_as(const std::vector<int>& vertices, int value) {
 void grow_labels(VertexLabels& labels, const geometry::Connectivity& conn, int value, int rings) {
   constexpr const char* fn = "mesh_deform::grow_labels()";
   if (conn.num_vertices() != static_cast<int>(labels.label.size()))
-    throw InvalidArgument(std::string(fn) + ": connectivity has " + std::to_string(conn.num_vertices()) + " vertices, labels " +
-                          std::to_string(labels.label.size()));
+    throw InvalidArgument(std::string(fn) + ": connectivity has " + std::to_string(conn.num_vertices()) +
+                          " vertices, labels " + std::to_string(labels.label.size()));
   if (rings == 0) return;
   const std::vector<int> set = labels.acting_as(value);
   std::vector<char> in(labels.label.size(), 0);
@@ -73,7 +74,8 @@ void grow_labels(VertexLabels& labels, const geometry::Connectivity& conn, int v
     if (set.empty()) return;
     std::vector<int> grown;
     for (int v : geometry::k_ring(conn, set, rings))
-      if (!in[static_cast<size_t>(v)] && (labels.label[static_cast<size_t>(v)] < 0 || labels.label[static_cast<size_t>(v)] == value))
+      if (!in[static_cast<size_t>(v)] &&
+          (labels.label[static_cast<size_t>(v)] < 0 || labels.label[static_cast<size_t>(v)] == value))
         grown.push_back(v);
     labels.make_act_as(grown, value);
     return;

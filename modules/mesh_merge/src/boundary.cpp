@@ -58,7 +58,8 @@ std::vector<double> cumulative_length(const Vertices& V, const std::vector<int>&
 }  // namespace
 
 void check_merge_source(const TriMesh& source, const Connectivity& source_conn) {
-  if (source_conn.boundary_loops().empty()) fail("the source is closed (no boundary loop), expected an open merging boundary");
+  if (source_conn.boundary_loops().empty())
+    fail("the source is closed (no boundary loop), expected an open merging boundary");
   require_manifold(source, "the source");
 }
 
@@ -114,8 +115,9 @@ void check_merge_pairs(const TriMesh& source, const Connectivity& source_conn, c
       if (offs[k].first == offs[k - 1].first || offs[k].second == offs[k - 1].second)
         fail(pair + " repeats a key vertex");
       if (offs[k].second < offs[k - 1].second)
-        fail(pair + ": key vertices are not in the same cyclic order on both loops (the target loop runs "
-                    "against the source loop at the seam)");
+        fail(pair +
+             ": key vertices are not in the same cyclic order on both loops (the target loop runs "
+             "against the source loop at the seam)");
     }
   }
 }
@@ -129,8 +131,10 @@ std::vector<BoundaryCorrespondence> correspond_boundaries(const TriMesh& source,
 
 namespace detail {
 
-std::vector<BoundaryCorrespondence> correspond_checked_boundaries(const TriMesh& source, const Connectivity& source_conn,
-                                                                  const TriMesh& target, const Connectivity& target_conn,
+std::vector<BoundaryCorrespondence> correspond_checked_boundaries(const TriMesh& source,
+                                                                  const Connectivity& source_conn,
+                                                                  const TriMesh& target,
+                                                                  const Connectivity& target_conn,
                                                                   const std::vector<LoopPair>& pairs) {
   const LoopIndex sidx(source_conn), tidx(target_conn);
   std::vector<BoundaryCorrespondence> out;

@@ -10,8 +10,10 @@
 namespace lapis::mesh_merge::detail {
 
 // The input must have passed check_merge_input() (or its two parts).
-std::vector<BoundaryCorrespondence> correspond_checked_boundaries(const TriMesh& source, const Connectivity& source_conn,
-                                                                  const TriMesh& target, const Connectivity& target_conn,
+std::vector<BoundaryCorrespondence> correspond_checked_boundaries(const TriMesh& source,
+                                                                  const Connectivity& source_conn,
+                                                                  const TriMesh& target,
+                                                                  const Connectivity& target_conn,
                                                                   const std::vector<LoopPair>& pairs);
 
 }  // namespace lapis::mesh_merge::detail

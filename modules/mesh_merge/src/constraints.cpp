@@ -37,7 +37,8 @@ std::vector<BoundaryConstraint> boundary_constraints(const TriMesh& source, cons
     for (int i = 0; i < n; ++i) {
       const int prev = (i + n - 1) % n, next = (i + 1) % n;
       const int v = c.source_loop[i];
-      const Eigen::Vector3d ts = 0.5 * (source.V.row(c.source_loop[next]) - source.V.row(c.source_loop[prev])).transpose();
+      const Eigen::Vector3d ts =
+          0.5 * (source.V.row(c.source_loop[next]) - source.V.row(c.source_loop[prev])).transpose();
       const Eigen::Vector3d tt = 0.5 * (c.target_points.row(next) - c.target_points.row(prev)).transpose();
       BoundaryConstraint k;
       k.vertex = v;

@@ -12,7 +12,8 @@ namespace lapis::mesh_merge {
 namespace {
 
 // The largest face component of mesh's `faces`, as a mesh with its map back to mesh.
-geometry::TriMesh largest_part(const geometry::TriMesh& mesh, const std::vector<int>& faces, std::vector<int>& to_mesh) {
+geometry::TriMesh largest_part(const geometry::TriMesh& mesh, const std::vector<int>& faces,
+                               std::vector<int>& to_mesh) {
   geometry::TriMesh part{mesh.V, geometry::Faces(static_cast<Eigen::Index>(faces.size()), 3)};
   for (size_t k = 0; k < faces.size(); ++k) part.F.row(static_cast<Eigen::Index>(k)) = mesh.F.row(faces[k]);
   const geometry::Components comp = geometry::connected_components(part);
@@ -41,7 +42,8 @@ void close_pinches(const geometry::TriMesh& mesh, std::vector<char>& inside) {
       int borders = 0;  // edges at v with inside on one side only
       for (int e : conn.vertex_edges(v)) {
         const auto f = conn.edge_faces(e);
-        const bool a = f[0] >= 0 && inside[static_cast<size_t>(f[0])], b = f[1] >= 0 && inside[static_cast<size_t>(f[1])];
+        const bool a = f[0] >= 0 && inside[static_cast<size_t>(f[0])],
+                   b = f[1] >= 0 && inside[static_cast<size_t>(f[1])];
         borders += a != b;
       }
       if (borders <= 2) continue;
@@ -110,7 +112,8 @@ RegionCut cut_by_region(const geometry::TriMesh& mesh, const std::vector<int>& r
   }
   std::vector<int> in, out;
   for (int f = 0; f < mesh.num_faces(); ++f) (inside[static_cast<size_t>(f)] ? in : out).push_back(f);
-  if (in.empty()) throw InvalidArgument(std::string(fn) + ": no face has all three corners in the region, expected a painted area");
+  if (in.empty())
+    throw InvalidArgument(std::string(fn) + ": no face has all three corners in the region, expected a painted area");
   if (out.empty()) throw InvalidArgument(std::string(fn) + ": the region covers the whole mesh, expected a part of it");
   RegionCut cut;
   cut.inside = largest_part(mesh, in, cut.inside_to_mesh);

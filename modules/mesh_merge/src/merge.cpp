@@ -35,7 +35,8 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
   if (o.mode == MergeMode::Transition) {
     const TransitionOptions& t = o.transition;
     // §3.3.3: the user specifies the widths; there is no width that suits every mesh.
-    if (!(t.source_width > 0) || !(t.target_width > 0) || !std::isfinite(t.source_width) || !std::isfinite(t.target_width))
+    if (!(t.source_width > 0) || !(t.target_width > 0) || !std::isfinite(t.source_width) ||
+        !std::isfinite(t.target_width))
       fail("transition source_width and target_width must be finite and > 0 (thesis §3.3.3: one width per mesh), got " +
            format_number(t.source_width) + " and " + format_number(t.target_width));
     if (!(t.weight > 0) || !std::isfinite(t.weight)) fail("transition weight w_T must be finite and > 0");
@@ -61,7 +62,9 @@ std::vector<int> dependent_roi(const TriMesh& source, const Connectivity& conn, 
   std::vector<char> keep(static_cast<size_t>(source.num_vertices()), 0);
   for (int h : o.handles) keep[h] = 1;
   for (int v : boundary)
-    if (keep[v]) throw InvalidArgument(std::string(kFn) + ": handle vertex " + std::to_string(v) + " lies on the merging boundary");
+    if (keep[v])
+      throw InvalidArgument(std::string(kFn) + ": handle vertex " + std::to_string(v) +
+                            " lies on the merging boundary");
   std::vector<int> roi;
   for (int v = 0; v < source.num_vertices(); ++v)
     if (sp.distance[v] <= width && !keep[v]) roi.push_back(v);
@@ -71,8 +74,8 @@ std::vector<int> dependent_roi(const TriMesh& source, const Connectivity& conn, 
 }  // namespace
 
 struct Merger::Impl {
-  Connectivity conn_in;   // of the source as given: pairs are checked against it
-  TriMesh rest;           // the refined source the deformer works on
+  Connectivity conn_in;  // of the source as given: pairs are checked against it
+  TriMesh rest;          // the refined source the deformer works on
   Connectivity conn;
   int refine_levels = 0;
   int roi_vertices = 0;
@@ -80,7 +83,9 @@ struct Merger::Impl {
   std::unique_ptr<mesh_deform::ImplicitLaplacianDeformer> deformer;
   // Refinement (levels > 0) changes the connectivity; otherwise the source's is the rest's.
   Impl(Connectivity source_conn, TriMesh refined, int levels)
-      : conn_in(std::move(source_conn)), rest(std::move(refined)), conn(levels > 0 ? Connectivity(rest) : conn_in),
+      : conn_in(std::move(source_conn)),
+        rest(std::move(refined)),
+        conn(levels > 0 ? Connectivity(rest) : conn_in),
         refine_levels(levels) {}
 };
 
@@ -194,11 +199,13 @@ double suggested_transition_width(const TriMesh& target, const std::vector<LoopP
     if (p.keys.empty()) continue;
     const int t = p.keys[0].target;
     if (t < 0 || t >= target.num_vertices())
-      throw InvalidArgument("mesh_merge::suggested_transition_width(): target key vertex " + std::to_string(t) + " out of range");
+      throw InvalidArgument("mesh_merge::suggested_transition_width(): target key vertex " + std::to_string(t) +
+                            " out of range");
     for (const auto& loop : conn.boundary_loops())
       if (std::find(loop.begin(), loop.end(), t) != loop.end()) {
         double perimeter = 0;
-        for (size_t i = 0; i < loop.size(); ++i) perimeter += (target.V.row(loop[(i + 1) % loop.size()]) - target.V.row(loop[i])).norm();
+        for (size_t i = 0; i < loop.size(); ++i)
+          perimeter += (target.V.row(loop[(i + 1) % loop.size()]) - target.V.row(loop[i])).norm();
         diameters += perimeter / std::numbers::pi;
         ++loops;
       }

@@ -24,7 +24,8 @@ int pair_loops(MergeSetup& setup, int source_loop, int target_loop) {
   if (source_loop < 0 || target_loop < 0)
     throw InvalidArgument("mesh_merge::pair_loops(): loop indices must be >= 0, got " + std::to_string(source_loop) +
                           " and " + std::to_string(target_loop));
-  std::erase_if(setup.pairs, [&](const PickedPair& p) { return p.source_loop == source_loop || p.target_loop == target_loop; });
+  std::erase_if(setup.pairs,
+                [&](const PickedPair& p) { return p.source_loop == source_loop || p.target_loop == target_loop; });
   setup.pairs.push_back(PickedPair{source_loop, target_loop, {}});
   return static_cast<int>(setup.pairs.size()) - 1;
 }
@@ -35,18 +36,22 @@ void add_key(MergeSetup& setup, int pair, KeyCorrespondence key, const std::vect
     throw InvalidArgument(std::string(fn) + ": pair " + std::to_string(pair) + " out of range");
   auto position = [&](int v) { return std::find(source_loop.begin(), source_loop.end(), v) - source_loop.begin(); };
   if (position(key.source) == static_cast<long>(source_loop.size()))
-    throw InvalidArgument(std::string(fn) + ": source vertex " + std::to_string(key.source) + " is not on the pair's source loop");
+    throw InvalidArgument(std::string(fn) + ": source vertex " + std::to_string(key.source) +
+                          " is not on the pair's source loop");
   auto& keys = setup.pairs[static_cast<size_t>(pair)].keys;
   std::erase_if(keys, [&](const KeyCorrespondence& k) { return k.source == key.source || k.target == key.target; });
   keys.push_back(key);
-  std::sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) { return position(a.source) < position(b.source); });
+  std::sort(keys.begin(), keys.end(),
+            [&](const auto& a, const auto& b) { return position(a.source) < position(b.source); });
 }
 
 void toggle_handle(MergeSetup& setup, int vertex) {
   auto& h = setup.options.handles;
   const auto it = std::find(h.begin(), h.end(), vertex);
-  if (it != h.end()) h.erase(it);
-  else h.push_back(vertex);
+  if (it != h.end())
+    h.erase(it);
+  else
+    h.push_back(vertex);
 }
 
 namespace {

@@ -48,7 +48,8 @@ std::vector<LoopPair> read_pairs_file(const std::filesystem::path& path) {
       const std::string kw = where + ".keys[" + std::to_string(k) + "]";
       if (!jk.is_object() || !jk.contains("source") || !jk.contains("target"))
         throw InvalidArgument(fn + ": " + kw + " needs \"source\" and \"target\"");
-      pair.keys.push_back({vertex_index(jk["source"], fn, kw + ".source"), vertex_index(jk["target"], fn, kw + ".target")});
+      pair.keys.push_back(
+          {vertex_index(jk["source"], fn, kw + ".source"), vertex_index(jk["target"], fn, kw + ".target")});
     }
     pairs.push_back(std::move(pair));
   }

@@ -53,7 +53,8 @@ std::vector<char> upper_side(const Connectivity& sc, const geometry::Faces& F, c
     }
   }
   if (groups != 2 || left < 0)
-    fail(which, "transition band cannot be cut open at vertex " + std::to_string(c) + " (its faces do not form one fan)");
+    fail(which,
+         "transition band cannot be cut open at vertex " + std::to_string(c) + " (its faces do not form one fan)");
   std::vector<char> upper(fan.size());
   for (size_t i = 0; i < fan.size(); ++i) upper[i] = (find_root(parent, static_cast<int>(i)) == left) != reversed;
   return upper;
@@ -87,8 +88,8 @@ namespace {
 
 // §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
 // shorter than the width; its faces are those touching such a vertex.
-std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
-                            double width, const std::string& w, const char* which) {
+std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop, double width,
+                            const std::string& w, const char* which) {
   const int nv = mesh.num_vertices();
   geometry::DijkstraOptions d;
   d.max_distance = width;
@@ -109,8 +110,8 @@ std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const
 
 // The band's inner rim: its boundary loop other than the merging loop, in the seam's
 // direction. Throws unless the band is an annulus between the two.
-std::vector<int> band_rim(const Connectivity& conn, const Connectivity& sc, const std::vector<int>& loop,
-                          bool reversed, const std::string& w, const char* which) {
+std::vector<int> band_rim(const Connectivity& conn, const Connectivity& sc, const std::vector<int>& loop, bool reversed,
+                          const std::string& w, const char* which) {
   const auto& borders = sc.boundary_loops();
   const std::string not_annulus = "transition band " + w +
                                   " is not an annulus between the merging loop and one inner rim (it reaches another "
@@ -145,14 +146,15 @@ std::vector<int> band_cut(const TriMesh& mesh, const Connectivity& sc, const std
   int end = -1;
   for (int v : rim)
     if (std::isfinite(cp.distance[v]) && (end < 0 || cp.distance[v] < cp.distance[end])) end = v;
-  if (end < 0) fail(which, "transition band " + w + " cannot be cut from key vertex " + std::to_string(loop[0]) + " to its rim");
+  if (end < 0)
+    fail(which, "transition band " + w + " cannot be cut from key vertex " + std::to_string(loop[0]) + " to its rim");
   return geometry::extract_path(cp, end);
 }
 
 // Parameter-domain vertices: one per band and rim vertex, a second (u = 1) per cut vertex,
 // and the band's faces on them, cut open. Returns the u = 1 copies, one per cut vertex.
-std::vector<int> cut_open_domain(TransitionBand& b, const Connectivity& sc, const geometry::Faces& F,
-                                 bool reversed, const char* which) {
+std::vector<int> cut_open_domain(TransitionBand& b, const Connectivity& sc, const geometry::Faces& F, bool reversed,
+                                 const char* which) {
   const int nv = static_cast<int>(b.param_of.size());
   for (int v = 0; v < nv; ++v)
     if (!sc.is_isolated_vertex(v)) {
@@ -191,8 +193,7 @@ void embed_in_square(TransitionBand& b, const Vertices& V, const std::vector<dou
   for (size_t i = 0; i < b.rim.size(); ++i) set(b.param_of[b.rim[i]], rim_u[i], 1.0);
   double cut_length = 0;
   std::vector<double> along(b.cut.size(), 0.0);
-  for (size_t k = 1; k < b.cut.size(); ++k)
-    along[k] = cut_length += (V.row(b.cut[k]) - V.row(b.cut[k - 1])).norm();
+  for (size_t k = 1; k < b.cut.size(); ++k) along[k] = cut_length += (V.row(b.cut[k]) - V.row(b.cut[k - 1])).norm();
   for (size_t k = 0; k < b.cut.size(); ++k) {
     const double v = k + 1 == b.cut.size() ? 1.0 : along[k] / cut_length;
     set(b.param_of[b.cut[k]], 0.0, v);
@@ -264,7 +265,8 @@ std::vector<BandPoint> overlap_points(const TransitionBand& from, const Transiti
   std::vector<std::vector<int>> cells(static_cast<size_t>(g * g));
   for (int f = 0; f < nf; ++f) {
     Eigen::Vector2d lo = to.uv.row(F(f, 0)), hi = lo;
-    for (int j = 1; j < 3; ++j) lo = lo.cwiseMin(to.uv.row(F(f, j)).transpose()), hi = hi.cwiseMax(to.uv.row(F(f, j)).transpose());
+    for (int j = 1; j < 3; ++j)
+      lo = lo.cwiseMin(to.uv.row(F(f, j)).transpose()), hi = hi.cwiseMax(to.uv.row(F(f, j)).transpose());
     for (int y = cell(lo.y()); y <= cell(hi.y()); ++y)
       for (int x = cell(lo.x()); x <= cell(hi.x()); ++x) cells[static_cast<size_t>(y * g + x)].push_back(f);
   }
@@ -294,7 +296,8 @@ std::vector<BandPoint> overlap_points(const TransitionBand& from, const Transiti
     if (best_min < -1e-9)
       for (int f = 0; f < nf; ++f) consider(f);
     if (best < 0)
-      throw InvalidArgument("mesh_merge::overlap_points(): the band's parameterization has no triangle of positive area");
+      throw InvalidArgument(
+          "mesh_merge::overlap_points(): the band's parameterization has no triangle of positive area");
     BandPoint bp;
     best_w = best_w.cwiseMax(0.0);
     best_w /= best_w.sum();

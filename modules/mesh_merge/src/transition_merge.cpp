@@ -49,7 +49,8 @@ Vertices deformed_curvature(const TriMesh& rest, const Connectivity& conn, const
     Eigen::MatrixX3d from(static_cast<Eigen::Index>(ring.size()) + 1, 3), to(from.rows(), 3);
     from.row(0) = rest.V.row(v), to.row(0) = deformed.row(v);
     for (size_t k = 0; k < ring.size(); ++k)
-      from.row(static_cast<Eigen::Index>(k) + 1) = rest.V.row(ring[k]), to.row(static_cast<Eigen::Index>(k) + 1) = deformed.row(ring[k]);
+      from.row(static_cast<Eigen::Index>(k) + 1) = rest.V.row(ring[k]),
+                                              to.row(static_cast<Eigen::Index>(k) + 1) = deformed.row(ring[k]);
     const geometry::Similarity3 S = geometry::fit_similarity(from, to);
     K.row(v) = (S.R * delta.row(v).transpose() / (S.s * area(v))).transpose();
     done[v] = 1;
@@ -87,7 +88,8 @@ void reconstruct_band(TriMesh& mesh, const std::vector<int>& unknown, const Vert
   ls.add_block(rows, 1.0, "L x = interpolated δ (§3.3.3)");
   ls.set_fixed(fixed);
   ls.precompute();
-  solver::DenseMatrix rhs(static_cast<Eigen::Index>(unknown.size()), 3), values(static_cast<Eigen::Index>(fixed.size()), 3);
+  solver::DenseMatrix rhs(static_cast<Eigen::Index>(unknown.size()), 3),
+      values(static_cast<Eigen::Index>(fixed.size()), 3);
   for (size_t r = 0; r < unknown.size(); ++r) rhs.row(static_cast<Eigen::Index>(r)) = target_delta.row(unknown[r]);
   for (size_t k = 0; k < fixed.size(); ++k) values.row(static_cast<Eigen::Index>(k)) = positions.row(fixed[k]);
   const solver::DenseMatrix x = ls.solve({rhs}, values);
@@ -174,8 +176,8 @@ std::vector<double> source_loop_params(const BoundaryCorrespondence& c, const st
 
 // The boundary condition of §3.3.1, moved to where the bands overlap: the source loop goes
 // onto the target band's rim (kept, fixed), at the same u.
-BoundaryCorrespondence onto_rim(const BoundaryCorrespondence& c, const std::vector<double>& su,
-                                const TriMesh& target, const std::vector<int>& rim) {
+BoundaryCorrespondence onto_rim(const BoundaryCorrespondence& c, const std::vector<double>& su, const TriMesh& target,
+                                const std::vector<int>& rim) {
   BoundaryCorrespondence rc;
   rc.source_loop = c.source_loop;
   rc.target_loop = rim;
@@ -223,7 +225,8 @@ std::vector<PairBands> make_bands(const TriMesh& src, const Connectivity& sconn,
   for (size_t p = 0; p < bands.size(); ++p)
     for (const auto& [list, offset] : {std::pair{&bands[p].source.rim, 0}, std::pair{&bands[p].target.rim, ns}})
       for (int v : *list)
-        if (band_of[v + offset] >= 0 && band_of[v + offset] != static_cast<int>(p)) bands_overlap(band_of[v + offset], p);
+        if (band_of[v + offset] >= 0 && band_of[v + offset] != static_cast<int>(p))
+          bands_overlap(band_of[v + offset], p);
   return bands;
 }
 
@@ -284,8 +287,9 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
     const TransitionBand& gone = keep_source ? b.target : b.source;
     removed.insert(removed.end(), gone.faces.begin(), gone.faces.end());
   }
-  const TriMesh rest_of_other = keep_source ? geometry::remove_faces(target, removed, &cut_map)
-                                            : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
+  const TriMesh rest_of_other = keep_source
+                                    ? geometry::remove_faces(target, removed, &cut_map)
+                                    : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
   for (size_t p = 0; p < bands.size(); ++p) {
     const PairBands& b = bands[p];
     if (keep_source) {
@@ -316,9 +320,9 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
 // deformed curvature normals, τ the target's share (v on the target band, 1 − v on the
 // source band's: 1 next to the kept target, 0 next to the rest of the source). Reconstructs
 // the kept bands in z.mesh and lists their vertices and shares in r.
-void blend_kept_band(const TriMesh& src, const Connectivity& sconn, const TriMesh& target,
-                     const Connectivity& tconn, const Vertices& Xt, const std::vector<PairBands>& bands,
-                     bool keep_source, ZipResult& z, MergeResult& r) {
+void blend_kept_band(const TriMesh& src, const Connectivity& sconn, const TriMesh& target, const Connectivity& tconn,
+                     const Vertices& Xt, const std::vector<PairBands>& bands, bool keep_source, ZipResult& z,
+                     MergeResult& r) {
   std::vector<int> src_listed, tgt_listed;
   for (const PairBands& b : bands) {
     src_listed.insert(src_listed.end(), b.source.param_vertex.begin(), b.source.param_vertex.end());
@@ -354,7 +358,8 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   auto t0 = std::chrono::steady_clock::now();
   MergeResult r;
   const Connectivity tconn(target);
-  const std::vector<BoundaryCorrespondence> corr = correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
+  const std::vector<BoundaryCorrespondence> corr =
+      correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
   const TriMesh src = source_at_target_scale(source, target, corr);
   const Connectivity sconn(src);
   const int ns = src.num_vertices(), nt = target.num_vertices();

@@ -99,8 +99,9 @@ void umbrella_smooth(TriMesh& mesh, const std::vector<int>& vertices, int iterat
       const auto nb = conn.vertex_neighbors(v);
       Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
       for (int u : nb) mean += mesh.V.row(u);
-      next.row(k) = nb.empty() ? Eigen::RowVector3d(mesh.V.row(v))
-                               : Eigen::RowVector3d(mesh.V.row(v) + lambda * (mean / double(nb.size()) - mesh.V.row(v)));
+      next.row(k) = nb.empty()
+                        ? Eigen::RowVector3d(mesh.V.row(v))
+                        : Eigen::RowVector3d(mesh.V.row(v) + lambda * (mean / double(nb.size()) - mesh.V.row(v)));
     }
     for (size_t k = 0; k < vertices.size(); ++k) mesh.V.row(vertices[k]) = next.row(static_cast<Eigen::Index>(k));
   }

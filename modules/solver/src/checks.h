@@ -32,8 +32,8 @@ inline void require_finite(const SparseMatrix& A, const char* function) {
 inline void require_rows(const DenseMatrix& B, Eigen::Index n, const char* function,
                          const char* what = "right-hand side") {
   if (B.rows() != n)
-    throw InvalidArgument(std::string(function) + ": " + what + " is " + dims(B.rows(), B.cols()) +
-                          ", expected " + std::to_string(n) + " rows");
+    throw InvalidArgument(std::string(function) + ": " + what + " is " + dims(B.rows(), B.cols()) + ", expected " +
+                          std::to_string(n) + " rows");
   if (!B.allFinite())
     throw InvalidArgument(std::string(function) + ": " + what + " has a non-finite entry (NaN or Inf)");
 }
@@ -41,8 +41,8 @@ inline void require_rows(const DenseMatrix& B, Eigen::Index n, const char* funct
 // `p` holds each of 0..n-1 once.
 inline void require_permutation(const std::vector<int>& p, int n, const char* function) {
   if (static_cast<int>(p.size()) != n)
-    throw InvalidArgument(std::string(function) + ": ordering has " + std::to_string(p.size()) +
-                          " entries, expected " + std::to_string(n));
+    throw InvalidArgument(std::string(function) + ": ordering has " + std::to_string(p.size()) + " entries, expected " +
+                          std::to_string(n));
   std::vector<char> seen(static_cast<size_t>(n), 0);
   for (int v : p) {
     if (v < 0 || v >= n || seen[static_cast<size_t>(v)])
@@ -53,10 +53,8 @@ inline void require_permutation(const std::vector<int>& p, int n, const char* fu
 }
 
 // True when A's sparsity pattern equals the stored one.
-inline bool same_pattern(const SparseMatrix& A, const std::vector<int>& outer,
-                         const std::vector<int>& inner) {
-  if (static_cast<size_t>(A.outerSize() + 1) != outer.size() ||
-      static_cast<size_t>(A.nonZeros()) != inner.size())
+inline bool same_pattern(const SparseMatrix& A, const std::vector<int>& outer, const std::vector<int>& inner) {
+  if (static_cast<size_t>(A.outerSize() + 1) != outer.size() || static_cast<size_t>(A.nonZeros()) != inner.size())
     return false;
   return std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
          std::equal(inner.begin(), inner.end(), A.innerIndexPtr());

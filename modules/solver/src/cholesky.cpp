@@ -75,16 +75,15 @@ DenseMatrix Cholesky::solve(const DenseMatrix& B) const {
   if (!factorized()) throw InvalidArgument(std::string(fn) + ": no factorization (call factorize() first)");
   detail::require_rows(B, impl_->n, fn);
   const auto t0 = std::chrono::steady_clock::now();
-  DenseMatrix X = impl_->options.backend == Backend::Cholmod ? impl_->cholmod.solve(B, fn, impl_->options.threads, impl_->options.cholmod_solve)
-                                                              : impl_->eigen.solve(B);
-  impl_->stats.solve_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  DenseMatrix X = impl_->options.backend == Backend::Cholmod
+                      ? impl_->cholmod.solve(B, fn, impl_->options.threads, impl_->options.cholmod_solve)
+                      : impl_->eigen.solve(B);
+  impl_->stats.solve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return X;
 }
 
 bool Cholesky::factorized() const {
-  return impl_->options.backend == Backend::Cholmod ? impl_->cholmod.factorized()
-                                                     : impl_->eigen.factorized();
+  return impl_->options.backend == Backend::Cholmod ? impl_->cholmod.factorized() : impl_->eigen.factorized();
 }
 
 int Cholesky::rows() const { return impl_->n; }

@@ -10,9 +10,8 @@ namespace {
 thread_local std::string last_cholmod_message;
 
 void record_error(int status, const char* file, int line, const char* message) {
-  last_cholmod_message = std::string(message ? message : "unknown error") + " (status " +
-                         std::to_string(status) + ", " + (file ? file : "?") + ":" +
-                         std::to_string(line) + ")";
+  last_cholmod_message = std::string(message ? message : "unknown error") + " (status " + std::to_string(status) +
+                         ", " + (file ? file : "?") + ":" + std::to_string(line) + ")";
 }
 
 }  // namespace
@@ -29,8 +28,7 @@ void CholmodContext::check(const char* function, const char* cholmod_call) const
   const int status = common_.status;
   if (status >= CHOLMOD_OK) return;  // OK, or a warning the caller interprets
   std::string what = std::string(function) + ": " + cholmod_call + " failed: " +
-                     (last_cholmod_message.empty() ? "status " + std::to_string(status)
-                                                   : last_cholmod_message);
+                     (last_cholmod_message.empty() ? "status " + std::to_string(status) : last_cholmod_message);
   last_cholmod_message.clear();
   if (status == CHOLMOD_OUT_OF_MEMORY || status == CHOLMOD_TOO_LARGE) throw ResourceLimit(what);
   throw SolverFailure(what);
@@ -78,14 +76,22 @@ DenseMatrix to_eigen(const cholmod_dense& X) {
 
 const char* ordering_name(int ordering) {
   switch (ordering) {
-    case CHOLMOD_NATURAL: return "natural";
-    case CHOLMOD_GIVEN: return "given";
-    case CHOLMOD_AMD: return "AMD";
-    case CHOLMOD_METIS: return "METIS";
-    case CHOLMOD_NESDIS: return "NESDIS";
-    case CHOLMOD_COLAMD: return "COLAMD";
-    case CHOLMOD_POSTORDERED: return "postordered";
-    default: return "unknown";
+    case CHOLMOD_NATURAL:
+      return "natural";
+    case CHOLMOD_GIVEN:
+      return "given";
+    case CHOLMOD_AMD:
+      return "AMD";
+    case CHOLMOD_METIS:
+      return "METIS";
+    case CHOLMOD_NESDIS:
+      return "NESDIS";
+    case CHOLMOD_COLAMD:
+      return "COLAMD";
+    case CHOLMOD_POSTORDERED:
+      return "postordered";
+    default:
+      return "unknown";
   }
 }
 

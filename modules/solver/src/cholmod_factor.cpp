@@ -47,8 +47,8 @@ void CholmodFactor::free_factor() {
   factorized_ = false;
 }
 
-void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats,
-                            const char* function, int solve_threads, const std::vector<int>* ordering) {
+void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function,
+                            int solve_threads, const std::vector<int>* ordering) {
   free_factor();
   if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
   cholmod_common* c = context_.get();
@@ -189,8 +189,7 @@ bool CholmodFactor::can_update_diagonal() const {
   return diagonal_updown_available() && L_ && !L_->is_super && !L_->is_ll;
 }
 
-std::ptrdiff_t CholmodFactor::update_diagonal(const std::vector<std::pair<int, double>>& deltas,
-                                              int threads) {
+std::ptrdiff_t CholmodFactor::update_diagonal(const std::vector<std::pair<int, double>>& deltas, int threads) {
   std::vector<std::pair<int, double>> permuted_deltas;
   permuted_deltas.reserve(deltas.size());
   for (const auto& [i, d] : deltas)

@@ -38,8 +38,7 @@ struct Terms {
 
 // Four rows l[0..3] at consecutive workspace rows `first`..`first` + 3: for each term k in
 // order, w_k(i) −= p_k l_i, then l_i += β_k w_k(i) (Method C1's inner loop).
-__attribute__((target("avx2,fma"))) inline void four_consecutive(double* l, int first,
-                                                                 const Terms& t) {
+__attribute__((target("avx2,fma"))) inline void four_consecutive(double* l, int first, const Terms& t) {
   __m256d lv = _mm256_loadu_pd(l);
   for (int k = 0; k < t.count; ++k) {
     double* wk = t.w[k] + first;
@@ -62,8 +61,7 @@ __attribute__((target("avx2,fma"))) inline void one_row(double* l, int row, cons
 
 // Eight consecutive rows: two independent chains of four, interleaved so that one's
 // multiply-adds wait out the other's latency.
-__attribute__((target("avx2,fma"))) inline void eight_consecutive(double* l, int first,
-                                                                  const Terms& t) {
+__attribute__((target("avx2,fma"))) inline void eight_consecutive(double* l, int first, const Terms& t) {
   __m256d l0 = _mm256_loadu_pd(l), l1 = _mm256_loadu_pd(l + 4);
   for (int k = 0; k < t.count; ++k) {
     double* wk = t.w[k] + first;
@@ -81,13 +79,11 @@ __attribute__((target("avx2,fma"))) inline void eight_consecutive(double* l, int
 
 // (The masked form: the plain one starts from an undefined register, which GCC warns about.)
 __attribute__((target("avx2,fma"))) inline __m256d gather(const double* base, __m128i index) {
-  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index,
-                                  _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
 }
 
 // Four rows anywhere: the workspace gathered, and stored lane by lane (AVX2 has no scatter).
-__attribute__((target("avx2,fma"))) inline void four_scattered(double* l, const int* rows,
-                                                               const Terms& t) {
+__attribute__((target("avx2,fma"))) inline void four_scattered(double* l, const int* rows, const Terms& t) {
   __m256d lv = _mm256_loadu_pd(l);
   const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows));
   alignas(32) double lanes[4];
@@ -104,8 +100,7 @@ __attribute__((target("avx2,fma"))) inline void four_scattered(double* l, const 
 // time; consecutive row indices (the rule near the top of a nested-dissection tree: the
 // separators' own rows) read and write the workspace directly. Rows are ascending and
 // distinct, so rows[r + 7] − rows[r] = 7 means eight consecutive ones.
-__attribute__((target("avx2,fma"))) void update_rows(const int* rows, double* l, int count,
-                                                     const Terms& t) {
+__attribute__((target("avx2,fma"))) void update_rows(const int* rows, double* l, int count, const Terms& t) {
   int r = 0;
   while (r + 4 <= count) {
     if (r + 8 <= count && rows[r + 7] - rows[r] == 7) {
@@ -125,8 +120,8 @@ __attribute__((target("avx2,fma"))) void update_rows(const int* rows, double* l,
 // Column j's pivot, term after term (d̄ = d + α p², β = α p / d̄, α ← α d / d̄): updates the
 // α of the terms that pass column j, fills `slot` (active = −1 if a pivot would not stay
 // positive) and returns the new D(j) (not written to the factor).
-double pivot(const Factor& f, int j, unsigned term_bits, double* alpha, const double* w_all,
-             size_t n, PivotSlot& slot) {
+double pivot(const Factor& f, int j, unsigned term_bits, double* alpha, const double* w_all, size_t n,
+             PivotSlot& slot) {
   double d = f.x[f.p[j]];
   int active = 0;
   for (unsigned bits = term_bits; bits != 0; bits &= bits - 1) {
@@ -156,8 +151,7 @@ Terms terms_of(const PivotSlot& slot, double* w_all, size_t n) {
 }
 
 // One sweep for up to kTermsPerSweep terms (permuted column, δ).
-std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
-                     DiagonalUpdownWork& work) {
+std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m, DiagonalUpdownWork& work) {
   const size_t n = static_cast<size_t>(f.n);
   // The union of the terms' elimination-tree paths, and which terms pass each column.
   std::vector<int> columns;
@@ -169,8 +163,7 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
   std::sort(columns.begin(), columns.end());
   double alpha[kTermsPerSweep] = {};
   for (int t = 0; t < m; ++t) {
-    work.w[static_cast<size_t>(t) * n + static_cast<size_t>(terms[t].first)] =
-        std::sqrt(std::abs(terms[t].second));
+    work.w[static_cast<size_t>(t) * n + static_cast<size_t>(terms[t].first)] = std::sqrt(std::abs(terms[t].second));
     alpha[t] = terms[t].second > 0 ? 1.0 : -1.0;  // σ: update or downdate
   }
 
@@ -186,12 +179,10 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
       unit_work[static_cast<size_t>(u)] +=
           static_cast<double>(f.nz[j]) * __builtin_popcount(work.terms_at[static_cast<size_t>(j)]);
   }
-  std::vector<int> order(static_cast<size_t>(work.units)),
-      thread_of(static_cast<size_t>(work.units), 0);
+  std::vector<int> order(static_cast<size_t>(work.units)), thread_of(static_cast<size_t>(work.units), 0);
   for (int u = 0; u < work.units; ++u) order[static_cast<size_t>(u)] = u;
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return unit_work[static_cast<size_t>(a)] > unit_work[static_cast<size_t>(b)];
-  });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return unit_work[static_cast<size_t>(a)] > unit_work[static_cast<size_t>(b)]; });
   std::vector<double> load(static_cast<size_t>(work.threads), 0.0);
   for (int u : order) {
     const auto lightest = std::min_element(load.begin(), load.end()) - load.begin();
@@ -217,8 +208,7 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
         break;
       }
       f.x[f.p[j]] = d;
-      if (slot.active > 0)
-        update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, f.nz[j] - 1, terms_of(slot, w_all, n));
+      if (slot.active > 0) update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, f.nz[j] - 1, terms_of(slot, w_all, n));
     }
 #pragma omp barrier
     // The shared ancestors in order. A long column's rows are split over the threads: every
@@ -238,8 +228,7 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
           if (me == 0) {
             for (; k < end; ++k) {
               const int j = top[k];
-              const double d =
-                  pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
+              const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
               if (slot.active < 0) {
                 failed = j;
                 break;
@@ -257,8 +246,7 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
           continue;
         }
         const int j = top[k++];
-        const double d =
-            pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
+        const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
         if (slot.active < 0) {  // the same on every thread
           if (me == 0) failed = j;
           break;
@@ -267,9 +255,7 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m,
           const int count = rows_of(j);
           const int share = ((count + threads - 1) / threads + 7) & ~7;  // groups of eight rows
           const int r0 = std::min(count, me * share), r1 = std::min(count, r0 + share);
-          if (r1 > r0)
-            update_rows(f.i + f.p[j] + 1 + r0, f.x + f.p[j] + 1 + r0, r1 - r0,
-                        terms_of(slot, w_all, n));
+          if (r1 > r0) update_rows(f.i + f.p[j] + 1 + r0, f.x + f.p[j] + 1 + r0, r1 - r0, terms_of(slot, w_all, n));
         }
 #pragma omp barrier
         if (me == 0) f.x[f.p[j]] = d;
@@ -299,8 +285,7 @@ std::ptrdiff_t diagonal_updown(cholmod_factor& L, const std::vector<std::pair<in
   // A general update (cholmod_updown) may have added fill and changed the elimination tree
   // since the split was made: rebuild it then.
   const long long entries_of_L = f.entries();
-  if (work.w.size() != kTermsPerSweep * n || work.threads != threads ||
-      work.pattern_entries != entries_of_L) {
+  if (work.w.size() != kTermsPerSweep * n || work.threads != threads || work.pattern_entries != entries_of_L) {
     work.pattern_entries = entries_of_L;
     work.w.assign(kTermsPerSweep * n, 0.0);
     work.terms_at.assign(n, 0u);
@@ -310,8 +295,7 @@ std::ptrdiff_t diagonal_updown(cholmod_factor& L, const std::vector<std::pair<in
       work.parent[j] = f.parent(static_cast<int>(j));
       entries[j] = f.nz[j];
     }
-    const TreeSplit split =
-        split_tree(work.parent, entries, threads > 1 ? kUnitsPerThread * threads : 1);
+    const TreeSplit split = split_tree(work.parent, entries, threads > 1 ? kUnitsPerThread * threads : 1);
     work.threads = threads;
     work.units = 0;
     work.owner.assign(n, -1);

@@ -36,9 +36,7 @@ class EigenFactor {
     const Eigen::VectorXd& d = ldlt_.vectorD();
     for (Eigen::Index k = 0; k < d.size(); ++k) {
       if (!(std::isfinite(d[k]) && d[k] > 0)) {
-        const std::ptrdiff_t column = ldlt_.permutationP().indices().size()
-                                          ? ldlt_.permutationPinv().indices()[k]
-                                          : k;
+        const std::ptrdiff_t column = ldlt_.permutationP().indices().size() ? ldlt_.permutationPinv().indices()[k] : k;
         throw NotPositiveDefinite(std::string(function) + ": matrix is not positive definite (pivot " +
                                       std::to_string(column) + " is not positive)",
                                   column);

@@ -26,7 +26,7 @@ struct LeastSquares::Impl {
   std::vector<int> fixed, free;
   SparseMatrix skeleton;  // empty: CHOLMOD orders
   Cholesky chol;
-  SparseMatrix free_fixed;                    // Σ w_b A_b(:, free)' A_b(:, fixed)
+  SparseMatrix free_fixed;  // Σ w_b A_b(:, free)' A_b(:, fixed)
   bool precomputed = false;
 
   explicit Impl(CholeskyOptions o) : chol(o) {}
@@ -70,8 +70,8 @@ namespace {
 
 void check_block(const SparseMatrix& A, double weight, int n, const char* fn) {
   if (A.cols() != n)
-    throw InvalidArgument(std::string(fn) + ": block is " + detail::dims(A.rows(), A.cols()) +
-                          ", expected " + std::to_string(n) + " columns");
+    throw InvalidArgument(std::string(fn) + ": block is " + detail::dims(A.rows(), A.cols()) + ", expected " +
+                          std::to_string(n) + " columns");
   if (!(std::isfinite(weight) && weight > 0))
     throw InvalidArgument(std::string(fn) + ": weight " + format_number(weight) + " is not finite and > 0");
   detail::require_finite(A, fn);
@@ -171,7 +171,8 @@ void LeastSquares::precompute() {
   } catch (const NotPositiveDefinite& e) {
     throw NotPositiveDefinite(std::string(fn) +
                                   ": the free unknowns are not determined by the blocks "
-                                  "(normal matrix not positive definite): " + e.what(),
+                                  "(normal matrix not positive definite): " +
+                                  e.what(),
                               e.column() >= 0 ? m.free[static_cast<size_t>(e.column())] : -1);
   }
   m.precomputed = true;
@@ -189,7 +190,8 @@ DenseMatrix transpose_times(const SparseMatrix& A, const DenseMatrix& R) {
   core::parallel_for(0, A.cols(), 2048, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
     for (std::ptrdiff_t j = lo; j < hi; ++j) {
       g.row(j).setZero();
-      for (SparseMatrix::InnerIterator e(A, static_cast<Eigen::Index>(j)); e; ++e) g.row(j) += e.value() * R.row(e.row());
+      for (SparseMatrix::InnerIterator e(A, static_cast<Eigen::Index>(j)); e; ++e)
+        g.row(j) += e.value() * R.row(e.row());
     }
   });
   return g;
@@ -197,15 +199,13 @@ DenseMatrix transpose_times(const SparseMatrix& A, const DenseMatrix& R) {
 
 }  // namespace
 
-DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
-                                     const DenseMatrix& fixed_values) const {
+DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs, const DenseMatrix& fixed_values) const {
   constexpr const char* fn = "solver::LeastSquares::solve()";
   const Impl& m = *impl_;
   if (!m.precomputed) throw InvalidArgument(std::string(fn) + ": call precompute() first");
   if (rhs.size() != m.blocks.size())
     throw InvalidArgument(std::string(fn) + ": " + std::to_string(rhs.size()) +
-                          " right-hand sides, expected one per block (" +
-                          std::to_string(m.blocks.size()) + ")");
+                          " right-hand sides, expected one per block (" + std::to_string(m.blocks.size()) + ")");
   Eigen::Index k = -1;
   for (const auto& r : rhs)
     if (r.size() > 0) k = r.cols();
@@ -217,8 +217,7 @@ DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
     if (rhs[i].rows() != rows || rhs[i].cols() != k)
       throw InvalidArgument(std::string(fn) + ": right-hand side of block " + std::to_string(i) +
                             (m.blocks[i].name.empty() ? "" : " ('" + m.blocks[i].name + "')") + " is " +
-                            detail::dims(rhs[i].rows(), rhs[i].cols()) + ", expected " +
-                            detail::dims(rows, k));
+                            detail::dims(rhs[i].rows(), rhs[i].cols()) + ", expected " + detail::dims(rows, k));
     if (!rhs[i].allFinite())
       throw InvalidArgument(std::string(fn) + ": right-hand side of block " + std::to_string(i) +
                             " has a non-finite entry");
@@ -226,7 +225,8 @@ DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
     // multiply-adds than a precomputed (W_b A_b(:, free))ᵀ has entries (millions at a 50K-vertex
     // E_R, whose assembly was a serial pass of the setup).
     const Impl::Block& B = m.blocks[i];
-    const DenseMatrix g = B.has_metric ? transpose_times(B.A, DenseMatrix(B.metric * rhs[i])) : transpose_times(B.A, rhs[i]);
+    const DenseMatrix g =
+        B.has_metric ? transpose_times(B.A, DenseMatrix(B.metric * rhs[i])) : transpose_times(B.A, rhs[i]);
     for (size_t j = 0; j < m.free.size(); ++j) b.row(static_cast<Eigen::Index>(j)) += B.weight * g.row(m.free[j]);
   }
   if (!m.fixed.empty()) {
@@ -234,8 +234,7 @@ DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs,
       throw InvalidArgument(std::string(fn) + ": fixed values are " +
                             detail::dims(fixed_values.rows(), fixed_values.cols()) + ", expected " +
                             detail::dims(static_cast<Eigen::Index>(m.fixed.size()), k));
-    if (!fixed_values.allFinite())
-      throw InvalidArgument(std::string(fn) + ": fixed values have a non-finite entry");
+    if (!fixed_values.allFinite()) throw InvalidArgument(std::string(fn) + ": fixed values have a non-finite entry");
     b -= m.free_fixed * fixed_values;
   }
   return b;
@@ -247,8 +246,7 @@ DenseMatrix LeastSquares::solve(const std::vector<DenseMatrix>& rhs, const Dense
   const DenseMatrix x_free = m.chol.solve(b);
   DenseMatrix x(m.n, b.cols());
   for (size_t j = 0; j < m.free.size(); ++j) x.row(m.free[j]) = x_free.row(static_cast<Eigen::Index>(j));
-  for (size_t j = 0; j < m.fixed.size(); ++j)
-    x.row(m.fixed[j]) = fixed_values.row(static_cast<Eigen::Index>(j));
+  for (size_t j = 0; j < m.fixed.size(); ++j) x.row(m.fixed[j]) = fixed_values.row(static_cast<Eigen::Index>(j));
   return x;
 }
 

@@ -149,8 +149,8 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
   }
   std::vector<int> begin(static_cast<size_t>(pieces) + 1, nf);
   for (int t = 0; t < pieces; ++t)
-    begin[static_cast<size_t>(t)] = static_cast<int>(
-        std::lower_bound(work.begin(), work.end(), work.back() * t / pieces) - work.begin());
+    begin[static_cast<size_t>(t)] =
+        static_cast<int>(std::lower_bound(work.begin(), work.end(), work.back() * t / pieces) - work.begin());
   begin[0] = 0;
   std::vector<ColumnRun> runs(static_cast<size_t>(pieces));
 
@@ -160,7 +160,8 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < pieces; ++t) {
       ColumnRun& run = runs[static_cast<size_t>(t)];
-      for (int j = begin[static_cast<size_t>(t)]; j < std::max(begin[static_cast<size_t>(t)], begin[static_cast<size_t>(t) + 1]); ++j) {
+      for (int j = begin[static_cast<size_t>(t)];
+           j < std::max(begin[static_cast<size_t>(t)], begin[static_cast<size_t>(t) + 1]); ++j) {
         const int c = free[static_cast<size_t>(j)];
         for (size_t b = 0; b < blocks.size(); ++b) {
           const RowMajor& R = rows[b];

@@ -28,7 +28,7 @@ Adjacency symmetric_adjacency(const SparseMatrix& S) {
     for (SparseMatrix::InnerIterator e(S, j); e; ++e)
       if (const int i = static_cast<int>(e.row()); i != j)
         g.neighbours[static_cast<size_t>(fill[static_cast<size_t>(j)]++)] = i,
-            g.neighbours[static_cast<size_t>(fill[static_cast<size_t>(i)]++)] = j;
+        g.neighbours[static_cast<size_t>(fill[static_cast<size_t>(i)]++)] = j;
   for (int v = 0; v < n; ++v) {
     auto first = g.neighbours.begin() + g.start[static_cast<size_t>(v)];
     auto last = g.neighbours.begin() + g.start[static_cast<size_t>(v) + 1];
@@ -55,8 +55,8 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
   detail::require_square(skeleton_in, fn);
   if (skeleton_in.rows() != A_in.rows())
     throw InvalidArgument(std::string(fn) + ": skeleton is " + std::to_string(skeleton_in.rows()) + " by " +
-                          std::to_string(skeleton_in.cols()) + ", the matrix " + std::to_string(A_in.rows()) +
-                          " by " + std::to_string(A_in.cols()));
+                          std::to_string(skeleton_in.cols()) + ", the matrix " + std::to_string(A_in.rows()) + " by " +
+                          std::to_string(A_in.cols()));
   const SparseMatrix A = A_in.isCompressed() ? SparseMatrix() : SparseMatrix(A_in);
   const SparseMatrix& a = A_in.isCompressed() ? A_in : A;
   const int n = static_cast<int>(a.rows());
@@ -124,7 +124,8 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
       cholmod_bisect(&S, nullptr, 0, /*compress=*/0, partition.data(), c);
     }
     context.check(fn, "cholmod_bisect");
-    for (int k = 0; k < m; ++k) side[static_cast<size_t>(part[static_cast<size_t>(k)])] = partition[static_cast<size_t>(k)];
+    for (int k = 0; k < m; ++k)
+      side[static_cast<size_t>(part[static_cast<size_t>(k)])] = partition[static_cast<size_t>(k)];
     // Widen: unknowns of side s coupled in A to side 1 − s join the separator, for the side
     // that gives the smaller separator. The skeleton's separator is only as wide as its own
     // edges; A's couplings reach further.

@@ -23,11 +23,21 @@ DenseMatrix solve_permuted_rows(const int* perm, const DenseMatrix& B, SolveInPl
     for (int c = 0; c < m; ++c) Y[static_cast<size_t>(j) * w + static_cast<size_t>(c)] = B(row, c);
   }
   switch (m) {
-    case 1: solve_in_place(Y.data(), std::integral_constant<int, 1>{}); break;
-    case 2: solve_in_place(Y.data(), std::integral_constant<int, 2>{}); break;
-    case 3: solve_in_place(Y.data(), std::integral_constant<int, 3>{}); break;
-    case 4: solve_in_place(Y.data(), std::integral_constant<int, 4>{}); break;
-    default: solve_in_place(Y.data(), std::integral_constant<int, 0>{}); break;
+    case 1:
+      solve_in_place(Y.data(), std::integral_constant<int, 1>{});
+      break;
+    case 2:
+      solve_in_place(Y.data(), std::integral_constant<int, 2>{});
+      break;
+    case 3:
+      solve_in_place(Y.data(), std::integral_constant<int, 3>{});
+      break;
+    case 4:
+      solve_in_place(Y.data(), std::integral_constant<int, 4>{});
+      break;
+    default:
+      solve_in_place(Y.data(), std::integral_constant<int, 0>{});
+      break;
   }
   DenseMatrix X(n, m);
   for (int j = 0; j < n; ++j) {
@@ -44,10 +54,17 @@ void for_column_groups(int j0, int j1, F f) {
   int j = j0;
   for (; j + 4 <= j1; j += 4) f(std::integral_constant<int, 4>{}, j);
   switch (j1 - j) {
-    case 3: f(std::integral_constant<int, 3>{}, j); break;
-    case 2: f(std::integral_constant<int, 2>{}, j); break;
-    case 1: f(std::integral_constant<int, 1>{}, j); break;
-    default: break;
+    case 3:
+      f(std::integral_constant<int, 3>{}, j);
+      break;
+    case 2:
+      f(std::integral_constant<int, 2>{}, j);
+      break;
+    case 1:
+      f(std::integral_constant<int, 1>{}, j);
+      break;
+    default:
+      break;
   }
 }
 

@@ -76,8 +76,7 @@ namespace {
 // columns, column first+s keeps its entries for rows first+s+1 .. first+K-1 (inside the run)
 // at offsets 1 .. K-1-s, and then the rows it shares with the run's last column.
 template <int M, int K>
-void forward_run(const FactorView& f, const ColumnRun& run, double* Y, int m, double* shared,
-                 const int* top_slot) {
+void forward_run(const FactorView& f, const ColumnRun& run, double* Y, int m, double* shared, const int* top_slot) {
   constexpr int kCols = M > 0 ? M : kMaxBlock;
   const int cols = M > 0 ? M : m;
   const int j0 = run.first;
@@ -138,28 +137,60 @@ void backward_run(const FactorView& f, const ColumnRun& run, double* Y, int m) {
 template <int M>
 void forward(const FactorView& f, const ColumnRun& run, double* Y, int m, double* shared, const int* top_slot) {
   switch (run.count) {
-    case 1: forward_run<M, 1>(f, run, Y, m, shared, top_slot); break;
-    case 2: forward_run<M, 2>(f, run, Y, m, shared, top_slot); break;
-    case 3: forward_run<M, 3>(f, run, Y, m, shared, top_slot); break;
-    case 4: forward_run<M, 4>(f, run, Y, m, shared, top_slot); break;
-    case 5: forward_run<M, 5>(f, run, Y, m, shared, top_slot); break;
-    case 6: forward_run<M, 6>(f, run, Y, m, shared, top_slot); break;
-    case 7: forward_run<M, 7>(f, run, Y, m, shared, top_slot); break;
-    default: forward_run<M, 8>(f, run, Y, m, shared, top_slot); break;
+    case 1:
+      forward_run<M, 1>(f, run, Y, m, shared, top_slot);
+      break;
+    case 2:
+      forward_run<M, 2>(f, run, Y, m, shared, top_slot);
+      break;
+    case 3:
+      forward_run<M, 3>(f, run, Y, m, shared, top_slot);
+      break;
+    case 4:
+      forward_run<M, 4>(f, run, Y, m, shared, top_slot);
+      break;
+    case 5:
+      forward_run<M, 5>(f, run, Y, m, shared, top_slot);
+      break;
+    case 6:
+      forward_run<M, 6>(f, run, Y, m, shared, top_slot);
+      break;
+    case 7:
+      forward_run<M, 7>(f, run, Y, m, shared, top_slot);
+      break;
+    default:
+      forward_run<M, 8>(f, run, Y, m, shared, top_slot);
+      break;
   }
 }
 
 template <int M>
 void backward(const FactorView& f, const ColumnRun& run, double* Y, int m) {
   switch (run.count) {
-    case 1: backward_run<M, 1>(f, run, Y, m); break;
-    case 2: backward_run<M, 2>(f, run, Y, m); break;
-    case 3: backward_run<M, 3>(f, run, Y, m); break;
-    case 4: backward_run<M, 4>(f, run, Y, m); break;
-    case 5: backward_run<M, 5>(f, run, Y, m); break;
-    case 6: backward_run<M, 6>(f, run, Y, m); break;
-    case 7: backward_run<M, 7>(f, run, Y, m); break;
-    default: backward_run<M, 8>(f, run, Y, m); break;
+    case 1:
+      backward_run<M, 1>(f, run, Y, m);
+      break;
+    case 2:
+      backward_run<M, 2>(f, run, Y, m);
+      break;
+    case 3:
+      backward_run<M, 3>(f, run, Y, m);
+      break;
+    case 4:
+      backward_run<M, 4>(f, run, Y, m);
+      break;
+    case 5:
+      backward_run<M, 5>(f, run, Y, m);
+      break;
+    case 6:
+      backward_run<M, 6>(f, run, Y, m);
+      break;
+    case 7:
+      backward_run<M, 7>(f, run, Y, m);
+      break;
+    default:
+      backward_run<M, 8>(f, run, Y, m);
+      break;
   }
 }
 
@@ -203,8 +234,7 @@ void solve_blocks(const FactorView& f, const SubtreeSchedule& s, double* Y, int 
 
 }  // namespace
 
-DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule& schedule,
-                                  const DenseMatrix& B) {
+DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule& schedule, const DenseMatrix& B) {
   const FactorView f(L);
   const int n = f.n;
   const int m = static_cast<int>(B.cols());
@@ -216,9 +246,8 @@ DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule
     }
     return X;
   }
-  return solve_permuted_rows(f.perm, B, [&](double* Y, auto width) {
-    solve_blocks<decltype(width)::value>(f, schedule, Y, m);
-  });
+  return solve_permuted_rows(f.perm, B,
+                             [&](double* Y, auto width) { solve_blocks<decltype(width)::value>(f, schedule, Y, m); });
 }
 
 }  // namespace lapis::solver::detail

@@ -36,7 +36,7 @@ struct SubtreeSchedule {
   std::vector<ColumnRun> top;                // ascending: the ancestors of those subtrees
   std::vector<int> top_slot;                 // per column among the ancestors: its index
   int top_columns = 0;
-  long long pattern_entries = 0;             // Σ nnz of L's columns when built (a pattern check)
+  long long pattern_entries = 0;  // Σ nnz of L's columns when built (a pattern check)
 };
 
 // Splits the elimination tree of the simplicial factor L into `threads` balanced sets of
@@ -49,7 +49,6 @@ SubtreeSchedule schedule_subtrees(const cholmod_factor& L, int threads);
 bool schedule_matches(const SubtreeSchedule& schedule, const cholmod_factor& L);
 
 // X with A X = B, where L D Lᵀ = P A Pᵀ is the simplicial LDLᵀ factor L (L->Perm = P).
-DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule& schedule,
-                                  const DenseMatrix& B);
+DenseMatrix solve_simplicial_ldlt(const cholmod_factor& L, const SubtreeSchedule& schedule, const DenseMatrix& B);
 
 }  // namespace lapis::solver::detail

@@ -27,10 +27,14 @@ struct SupernodeView {
   int n;
 
   explicit SupernodeView(const cholmod_factor& L)
-      : super(static_cast<const int*>(L.super)), pi(static_cast<const int*>(L.pi)),
-        px(static_cast<const int*>(L.px)), s(static_cast<const int*>(L.s)),
-        x(static_cast<const double*>(L.x)), perm(static_cast<const int*>(L.Perm)),
-        nsuper(static_cast<int>(L.nsuper)), n(static_cast<int>(L.n)) {}
+      : super(static_cast<const int*>(L.super)),
+        pi(static_cast<const int*>(L.pi)),
+        px(static_cast<const int*>(L.px)),
+        s(static_cast<const int*>(L.s)),
+        x(static_cast<const double*>(L.x)),
+        perm(static_cast<const int*>(L.Perm)),
+        nsuper(static_cast<int>(L.nsuper)),
+        n(static_cast<int>(L.n)) {}
 
   int first_column(int k) const { return super[k]; }
   int columns(int k) const { return super[k + 1] - super[k]; }
@@ -76,12 +80,10 @@ void subtract_columns_q(const double* Lb, int ld, int j0, int r0, int r1, double
 // x_c[r] −= Σ_{j0 <= j < j1} L(r, j) x_c[j] for rows r in [r0, r1), every right-hand side c:
 // four columns of L at a time, each x row read and written once per four columns.
 template <int M>
-void subtract_columns(const double* Lb, int ld, int j0, int j1, int r0, int r1, double* x, int ldx,
-                      Width<M> width) {
+void subtract_columns(const double* Lb, int ld, int j0, int j1, int r0, int r1, double* x, int ldx, Width<M> width) {
   if (r0 >= r1) return;
-  for_column_groups(j0, j1, [&](auto q, int j) {
-    subtract_columns_q<decltype(q)::value>(Lb, ld, j, r0, r1, x, ldx, width);
-  });
+  for_column_groups(j0, j1,
+                    [&](auto q, int j) { subtract_columns_q<decltype(q)::value>(Lb, ld, j, r0, r1, x, ldx, width); });
 }
 
 // x_c[j] −= Σ_{r0 <= r < r1} L(r, j) x_c[r] for columns j in [j0, j0 + Q), every c; Q sums
@@ -111,12 +113,10 @@ void subtract_transposed_q(const double* Lb, int ld, int j0, int r0, int r1, dou
 
 // x_c[j] −= Σ_{r0 <= r < r1} L(r, j) x_c[r] for columns j in [j0, j1), every c.
 template <int M>
-void subtract_transposed(const double* Lb, int ld, int j0, int j1, int r0, int r1, double* x, int ldx,
-                         Width<M> width) {
+void subtract_transposed(const double* Lb, int ld, int j0, int j1, int r0, int r1, double* x, int ldx, Width<M> width) {
   if (r0 >= r1) return;
-  for_column_groups(j0, j1, [&](auto q, int j) {
-    subtract_transposed_q<decltype(q)::value>(Lb, ld, j, r0, r1, x, ldx, width);
-  });
+  for_column_groups(
+      j0, j1, [&](auto q, int j) { subtract_transposed_q<decltype(q)::value>(Lb, ld, j, r0, r1, x, ldx, width); });
 }
 
 // Where a forward update of a row below the diagonal block goes: the thread's own rows of Y
@@ -147,8 +147,8 @@ void for_chunks(int begin, int end, bool parallel, F f) {
 // (ldx rows per right-hand side). parallel: split the rectangular updates over the threads
 // (top supernodes).
 template <int M>
-void forward_supernode(const SupernodeView& v, int k, Width<M> width, const ForwardTarget& target,
-                       double* x, int ldx, bool parallel) {
+void forward_supernode(const SupernodeView& v, int k, Width<M> width, const ForwardTarget& target, double* x, int ldx,
+                       bool parallel) {
   const int w = width.get();
   const int nc = v.columns(k), nr = v.rows(k), ld = nr;
   const double* Lb = v.block(k);
@@ -173,16 +173,17 @@ void forward_supernode(const SupernodeView& v, int k, Width<M> width, const Forw
     double* t = r < nc ? Yk + static_cast<size_t>(r) * w : target.row(rows[r], w);
     for (int c = 0; c < w; ++c) {
       const double value = x[static_cast<size_t>(c) * ldx + r];
-      if (r < nc) t[c] = value;
-      else t[c] += value;
+      if (r < nc)
+        t[c] = value;
+      else
+        t[c] += value;
     }
   }
 }
 
 // L_kᵀ x_k = y_k − L_belowᵀ x_below for supernode k (the rows below are solved already).
 template <int M>
-void backward_supernode(const SupernodeView& v, int k, Width<M> width, double* Y, double* x, int ldx,
-                        bool parallel) {
+void backward_supernode(const SupernodeView& v, int k, Width<M> width, double* Y, double* x, int ldx, bool parallel) {
   const int w = width.get();
   const int nc = v.columns(k), nr = v.rows(k), ld = nr;
   const double* Lb = v.block(k);
@@ -229,7 +230,8 @@ void solve_rows(const SupernodeView& v, const SupernodalSchedule& s, double* Y, 
     for (int j = v.first_column(k); j < v.first_column(k + 1); ++j) {
       const size_t slot = static_cast<size_t>(s.top_slot[static_cast<size_t>(j)]);
       for (int t = 0; t < threads; ++t)
-        for (size_t c = 0; c < w; ++c) Y[static_cast<size_t>(j) * w + c] += shared[static_cast<size_t>(t)][slot * w + c];
+        for (size_t c = 0; c < w; ++c)
+          Y[static_cast<size_t>(j) * w + c] += shared[static_cast<size_t>(t)][slot * w + c];
     }
   const ForwardTarget top_target{Y, nullptr, nullptr, v.n};
   for (int k : s.top) forward_supernode(v, k, width, top_target, scratch[0].data(), ldx, threads > 1);
@@ -271,18 +273,17 @@ SupernodalSchedule schedule_supernodes(const cholmod_factor& L, int threads) {
   for (int k = 0; k < v.nsuper; ++k) {
     if (split.in_subtree[static_cast<size_t>(k)]) continue;
     s.top.push_back(k);
-    for (int j = v.first_column(k); j < v.first_column(k + 1); ++j) s.top_slot[static_cast<size_t>(j)] = s.top_columns++;
+    for (int j = v.first_column(k); j < v.first_column(k + 1); ++j)
+      s.top_slot[static_cast<size_t>(j)] = s.top_columns++;
   }
   return s;
 }
 
-DenseMatrix solve_supernodal_llt(const cholmod_factor& L, const SupernodalSchedule& schedule,
-                                 const DenseMatrix& B) {
+DenseMatrix solve_supernodal_llt(const cholmod_factor& L, const SupernodalSchedule& schedule, const DenseMatrix& B) {
   const SupernodeView v(L);
   const int m = static_cast<int>(B.cols());
-  return solve_permuted_rows(v.perm, B, [&](double* Y, auto width) {
-    solve_rows<decltype(width)::value>(v, schedule, Y, m);
-  });
+  return solve_permuted_rows(v.perm, B,
+                             [&](double* Y, auto width) { solve_rows<decltype(width)::value>(v, schedule, Y, m); });
 }
 
 }  // namespace lapis::solver::detail

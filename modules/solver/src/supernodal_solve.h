@@ -28,7 +28,7 @@ struct SupernodalSchedule {
   std::vector<int> top;                      // ascending: the supernodes the subtrees share
   std::vector<int> top_slot;                 // per column of a top supernode: its buffer row
   int top_columns = 0;
-  int max_rows = 0;                          // the tallest supernode's row count
+  int max_rows = 0;  // the tallest supernode's row count
   int threads = 1;
 };
 
@@ -36,7 +36,6 @@ struct SupernodalSchedule {
 SupernodalSchedule schedule_supernodes(const cholmod_factor& L, int threads);
 
 // X with A X = B, where L Lᵀ = P A Pᵀ is the supernodal factor L (L->Perm = P).
-DenseMatrix solve_supernodal_llt(const cholmod_factor& L, const SupernodalSchedule& schedule,
-                                 const DenseMatrix& B);
+DenseMatrix solve_supernodal_llt(const cholmod_factor& L, const SupernodalSchedule& schedule, const DenseMatrix& B);
 
 }  // namespace lapis::solver::detail

@@ -12,9 +12,10 @@ double assign_bins(const std::vector<int>& roots, const std::vector<double>& wei
                    std::vector<int>& bin_of) {
   std::vector<int> order(roots.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return weight[static_cast<size_t>(roots[static_cast<size_t>(a)])] >
-                                       weight[static_cast<size_t>(roots[static_cast<size_t>(b)])]; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return weight[static_cast<size_t>(roots[static_cast<size_t>(a)])] >
+           weight[static_cast<size_t>(roots[static_cast<size_t>(b)])];
+  });
   std::vector<double> load(static_cast<size_t>(bins), 0.0);
   bin_of.assign(roots.size(), 0);
   for (int k : order) {

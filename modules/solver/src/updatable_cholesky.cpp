@@ -1,8 +1,8 @@
 #include "lapis/solver/updatable_cholesky.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <map>
 
 #include "checks.h"
@@ -16,9 +16,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // sign = +1: A + C C', sign = -1: A - C C'.
 SparseMatrix add_outer(const SparseMatrix& A, const SparseMatrix& C, double sign) {
@@ -141,8 +139,8 @@ struct UpdatableCholesky::Impl {
     if (bad < 0) return;
     factor->updown(true, C, fn);
     if (factor->first_bad_pivot() >= 0) refactorize(A, fn);
-    throw NotPositiveDefinite(std::string(fn) + ": downdate makes the matrix indefinite (pivot " +
-                                  std::to_string(bad) + " is not positive); previous factor kept",
+    throw NotPositiveDefinite(std::string(fn) + ": downdate makes the matrix indefinite (pivot " + std::to_string(bad) +
+                                  " is not positive); previous factor kept",
                               bad);
   }
 
@@ -152,8 +150,8 @@ struct UpdatableCholesky::Impl {
     const std::ptrdiff_t bad = factor->update_diagonal(deltas, options.threads);
     if (bad < 0) return;
     refactorize(A, fn);
-    throw NotPositiveDefinite(std::string(fn) + ": downdate makes the matrix indefinite (pivot " +
-                                  std::to_string(bad) + " is not positive); previous factor kept",
+    throw NotPositiveDefinite(std::string(fn) + ": downdate makes the matrix indefinite (pivot " + std::to_string(bad) +
+                                  " is not positive); previous factor kept",
                               bad);
   }
 
@@ -216,14 +214,13 @@ struct UpdatableCholesky::Impl {
 
   void check_columns(const SparseMatrix& C, const char* fn) const {
     if (C.rows() != n)
-      throw InvalidArgument(std::string(fn) + ": C is " + detail::dims(C.rows(), C.cols()) +
-                            ", expected " + std::to_string(n) + " rows");
+      throw InvalidArgument(std::string(fn) + ": C is " + detail::dims(C.rows(), C.cols()) + ", expected " +
+                            std::to_string(n) + " rows");
     detail::require_finite(C, fn);
   }
 };
 
-UpdatableCholesky::UpdatableCholesky(UpdatableCholeskyOptions options)
-    : impl_(std::make_unique<Impl>()) {
+UpdatableCholesky::UpdatableCholesky(UpdatableCholeskyOptions options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
   impl_->stats.backend = options.backend;
   impl_->stats.kind = FactorKind::Simplicial;
@@ -232,9 +229,7 @@ UpdatableCholesky::~UpdatableCholesky() = default;
 UpdatableCholesky::UpdatableCholesky(UpdatableCholesky&&) noexcept = default;
 UpdatableCholesky& UpdatableCholesky::operator=(UpdatableCholesky&&) noexcept = default;
 
-void UpdatableCholesky::compute(const SparseMatrix& A) {
-  compute(A, Eigen::VectorXd::Zero(A.rows()));
-}
+void UpdatableCholesky::compute(const SparseMatrix& A) { compute(A, Eigen::VectorXd::Zero(A.rows())); }
 
 void UpdatableCholesky::compute(const SparseMatrix& A0, const Eigen::VectorXd& diagonal_weights) {
   constexpr const char* fn = "solver::UpdatableCholesky::compute()";
@@ -322,8 +317,7 @@ ModifyReport UpdatableCholesky::downdate(const SparseMatrix& C) {
   return impl_->report;
 }
 
-ModifyReport UpdatableCholesky::set_diagonal_weights(std::span<const int> indices,
-                                                     std::span<const double> weights) {
+ModifyReport UpdatableCholesky::set_diagonal_weights(std::span<const int> indices, std::span<const double> weights) {
   constexpr const char* fn = "solver::UpdatableCholesky::set_diagonal_weights()";
   Impl& m = *impl_;
   if (indices.size() != weights.size())

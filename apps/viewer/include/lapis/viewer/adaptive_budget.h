@@ -10,17 +10,16 @@
 namespace lapis::viewer {
 
 struct AdaptiveBudgetOptions {
-  double target_ms = 80;     // frame time aimed at (12 frames a second)
-  long minimum = 20000;      // never below: the item must stay recognisable
-  int slow_frames = 2;       // consecutive frames over 1.5× target before shrinking
-  int fast_frames = 8;       // consecutive frames under 0.5× target before growing
+  double target_ms = 80;  // frame time aimed at (12 frames a second)
+  long minimum = 20000;   // never below: the item must stay recognisable
+  int slow_frames = 2;    // consecutive frames over 1.5× target before shrinking
+  int fast_frames = 8;    // consecutive frames under 0.5× target before growing
   double growth = 1.5;
 };
 
 class AdaptiveBudget {
  public:
-  explicit AdaptiveBudget(long initial, AdaptiveBudgetOptions options = {})
-      : value_(initial), options_(options) {}
+  explicit AdaptiveBudget(long initial, AdaptiveBudgetOptions options = {}) : value_(initial), options_(options) {}
 
   long value() const { return value_; }
   bool pinned() const { return pinned_; }
@@ -34,7 +33,8 @@ class AdaptiveBudget {
     fast_ = frame_ms < 0.5 * options_.target_ms ? fast_ + 1 : 0;
     const long before = value_;
     if (slow_ >= options_.slow_frames && value_ > options_.minimum) {
-      value_ = std::max(options_.minimum, static_cast<long>(static_cast<double>(value_) * options_.target_ms / frame_ms));
+      value_ =
+          std::max(options_.minimum, static_cast<long>(static_cast<double>(value_) * options_.target_ms / frame_ms));
       slow_ = 0;
     } else if (fast_ >= options_.fast_frames && value_ < full) {
       value_ = std::min(full, static_cast<long>(static_cast<double>(value_) * options_.growth));

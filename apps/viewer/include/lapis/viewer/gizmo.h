@@ -23,12 +23,12 @@ const char* to_string(GizmoPart p);
 int gizmo_axis(GizmoPart p);
 
 struct GizmoOptions {
-  double size_px = 110;            // arrow length on screen; the gizmo keeps it at any zoom
-  double ring_fraction = 0.72;     // ring radius as a fraction of the arrow length
-  double shaft_start = 0.25;       // arrows are grabbable from here (fraction of the length), so
-                                   // the centre square stays free for scaling
-  double square_fraction = 0.14;   // half side of the scale square, fraction of the length
-  double pick_tolerance_px = 8;    // how close the cursor must come to a part to grab it
+  double size_px = 110;           // arrow length on screen; the gizmo keeps it at any zoom
+  double ring_fraction = 0.72;    // ring radius as a fraction of the arrow length
+  double shaft_start = 0.25;      // arrows are grabbable from here (fraction of the length), so
+                                  // the centre square stays free for scaling
+  double square_fraction = 0.14;  // half side of the scale square, fraction of the length
+  double pick_tolerance_px = 8;   // how close the cursor must come to a part to grab it
   int ring_segments = 64;
 };
 
@@ -78,7 +78,7 @@ class Gizmo {
   GizmoPart active_ = GizmoPart::None;
   geometry::CameraMatrices drag_camera_;
   Eigen::Vector2d start_pixel_ = Eigen::Vector2d::Zero();
-  double start_parameter_ = 0;  // translate: position along the axis under the start pixel
+  double start_parameter_ = 0;          // translate: position along the axis under the start pixel
   double last_angle_ = 0, turned_ = 0;  // rotate: screen angle last seen, total (unwrapped)
 };
 

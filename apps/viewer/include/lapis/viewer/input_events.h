@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "lapis/core/error.h"
 #include <string>
 #include <vector>
+#include "lapis/core/error.h"
 
 namespace lapis::viewer {
 
@@ -17,13 +17,13 @@ enum class EventType { MouseMove, MouseButton, Scroll, Key, Char, Resize, Idle }
 
 struct InputEvent {
   EventType type = EventType::MouseMove;
-  long frame = 0;        // frame index at which the event arrived
-  double time = 0;       // seconds since the app started
-  double x = 0, y = 0;   // cursor position in pixels (y down); scroll offsets for Scroll
-  int button = 0;        // GLFW_MOUSE_BUTTON_*
-  int action = 0;        // GLFW_PRESS / GLFW_RELEASE / GLFW_REPEAT
-  int mods = 0;          // GLFW_MOD_* bits
-  int key = 0;           // GLFW_KEY_*
+  long frame = 0;       // frame index at which the event arrived
+  double time = 0;      // seconds since the app started
+  double x = 0, y = 0;  // cursor position in pixels (y down); scroll offsets for Scroll
+  int button = 0;       // GLFW_MOUSE_BUTTON_*
+  int action = 0;       // GLFW_PRESS / GLFW_RELEASE / GLFW_REPEAT
+  int mods = 0;         // GLFW_MOD_* bits
+  int key = 0;          // GLFW_KEY_*
   unsigned codepoint = 0;
   int width = 0, height = 0;  // Resize
 };

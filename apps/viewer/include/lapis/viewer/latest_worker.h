@@ -98,8 +98,10 @@ class LatestWorker {
       lock.lock();
       running_ = false;
       ++completed_;
-      if (error) error_ = error;
-      else done_ = std::move(result);
+      if (error)
+        error_ = error;
+      else
+        done_ = std::move(result);
       if (!queued_) idle_.notify_all();
       if (on_done_) on_done_();  // under the lock: set_on_done cannot race it
     }

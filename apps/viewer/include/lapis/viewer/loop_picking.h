@@ -12,9 +12,9 @@
 namespace lapis::viewer {
 
 struct LoopPick {
-  int loop = -1;        // index into the loops given, -1 for none
-  int position = -1;    // index into that loop of the vertex nearest the pixel
-  int vertex = -1;      // loops[loop][position]
+  int loop = -1;                                            // index into the loops given, -1 for none
+  int position = -1;                                        // index into that loop of the vertex nearest the pixel
+  int vertex = -1;                                          // loops[loop][position]
   double pixels = std::numeric_limits<double>::infinity();  // screen distance to the loop
   explicit operator bool() const { return loop >= 0; }
 };

@@ -8,8 +8,8 @@
 
 namespace lapis::viewer {
 
-inline std::optional<geometry::RayHit> pick(const geometry::Bvh& bvh, const geometry::CameraMatrices& camera,
-                                            double x, double y) {
+inline std::optional<geometry::RayHit> pick(const geometry::Bvh& bvh, const geometry::CameraMatrices& camera, double x,
+                                            double y) {
   const geometry::Ray ray = geometry::unproject_ray(camera, x, y);
   return bvh.intersect(ray.origin, ray.direction);
 }

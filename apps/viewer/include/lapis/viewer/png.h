@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <filesystem>
 
-#include "lapis/core/error.h"
 #include <vector>
+#include "lapis/core/error.h"
 
 namespace lapis::viewer {
 

@@ -13,8 +13,7 @@ class Renderer {
  public:
   virtual ~Renderer() = default;
   // Draws the scene into the current framebuffer of the given pixel size.
-  virtual void render(const Scene& scene, const geometry::CameraMatrices& camera, int width,
-                      int height) = 0;
+  virtual void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) = 0;
 };
 
 // Needs a current OpenGL 3.3 core context (the Viewer makes one).

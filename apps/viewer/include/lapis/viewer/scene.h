@@ -19,27 +19,27 @@ using Points3f = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 struct MeshItem {
   geometry::TriMesh mesh;
-  Points3f colors;                      // #V by 3 per-vertex colours, or empty for base_color
+  Points3f colors;  // #V by 3 per-vertex colours, or empty for base_color
   Eigen::Vector3f base_color{0.78f, 0.74f, 0.70f};
-  float alpha = 1.0f;                   // < 1 draws translucent, after the opaque items
+  float alpha = 1.0f;  // < 1 draws translucent, after the opaque items
   bool visible = true;
   std::uint64_t version = 0;
 };
 
 enum class LineShading {
-  Flat,        // constant colour: curves, markers
-  KajiyaKay,   // hair fibres: Kajiya–Kay diffuse + specular around the strand tangent
+  Flat,       // constant colour: curves, markers
+  KajiyaKay,  // hair fibres: Kajiya–Kay diffuse + specular around the strand tangent
 };
 
 struct LineItem {
-  Points3f points;                      // all strips, concatenated
-  std::vector<int> strip_offsets{0};    // strip i is points[offsets[i], offsets[i+1])
-  Points3f colors;                      // per point, or empty for base_color
+  Points3f points;                    // all strips, concatenated
+  std::vector<int> strip_offsets{0};  // strip i is points[offsets[i], offsets[i+1])
+  Points3f colors;                    // per point, or empty for base_color
   Eigen::Vector3f base_color{0.2f, 0.6f, 1.0f};
-  float width = 1.0f;                   // pixels
+  float width = 1.0f;  // pixels
   float alpha = 1.0f;
   LineShading shading = LineShading::Flat;
-  bool on_top = false;                  // ignore depth (previews, selections)
+  bool on_top = false;  // ignore depth (previews, selections)
   bool visible = true;
   std::uint64_t version = 0;
 
@@ -55,7 +55,7 @@ struct PointItem {
   Points3f points;
   Points3f colors;
   Eigen::Vector3f base_color{1.0f, 0.3f, 0.2f};
-  float size = 8.0f;                    // pixels
+  float size = 8.0f;  // pixels
   bool on_top = true;
   bool visible = true;
   std::uint64_t version = 0;

@@ -24,14 +24,14 @@ struct ViewerOptions {
   std::string title = "Lapis";
   int width = 1280, height = 800;
   int msaa_samples = 4;
-  bool headless = false;                 // hidden window, closed once the app is idle (after a
-                                         // replay, if any); still needs an X display (Xvfb)
-  std::filesystem::path replay;          // replay this event log
-  std::filesystem::path record;          // record the input stream to this file on exit
-  std::filesystem::path screenshot;      // written when the app is idle (after a replay)
-  bool exit_after_replay = false;        // quit once the replay is over and the app idle
-  std::filesystem::path benchmark;       // write frame statistics here on exit
-  double idle_timeout_s = 300;           // give up waiting for a busy app after a replay
+  bool headless = false;             // hidden window, closed once the app is idle (after a
+                                     // replay, if any); still needs an X display (Xvfb)
+  std::filesystem::path replay;      // replay this event log
+  std::filesystem::path record;      // record the input stream to this file on exit
+  std::filesystem::path screenshot;  // written when the app is idle (after a replay)
+  bool exit_after_replay = false;    // quit once the replay is over and the app idle
+  std::filesystem::path benchmark;   // write frame statistics here on exit
+  double idle_timeout_s = 300;       // give up waiting for a busy app after a replay
   // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
   // first frame and after every frame that handled input or changed the app's busy state, as
   // one line "frame=F events=N buttons=B keys=K busy=0|1" (input events, mouse button and key
@@ -81,7 +81,7 @@ class Viewer {
   Scene& scene() { return scene_; }
   OrbitCamera& camera() { return camera_; }
   CameraMatrices camera_matrices() const;
-  void frame_scene();                     // fit the camera to the scene's bounds
+  void frame_scene();  // fit the camera to the scene's bounds
   int width() const { return width_; }
   int height() const { return height_; }
   const ViewerOptions& options() const { return options_; }
@@ -97,7 +97,7 @@ class Viewer {
   void flash(std::string message);
 
   long frame() const { return frame_; }
-  double time() const;                    // seconds since start
+  double time() const;  // seconds since start
   bool replaying() const { return replay_.has_value() && replay_next_ < replay_->events.size(); }
   double last_frame_ms() const { return last_frame_ms_; }
 
@@ -152,12 +152,12 @@ class Viewer {
   EventLog recording_;
   std::optional<EventLog> replay_;
   size_t replay_next_ = 0;
-  long replay_delay_ = 0;  // frames the replay waited at Idle events
-  bool was_busy_ = false;  // the app's busy state in the previous frame
+  long replay_delay_ = 0;          // frames the replay waited at Idle events
+  bool was_busy_ = false;          // the app's busy state in the previous frame
   double idle_since_replay_ = -1;  // when the app was first seen busy after the replay
   int idle_frames_after_replay_ = 0;
   long handled_events_ = 0, handled_buttons_ = 0, handled_keys_ = 0;  // for the ready file
-  std::string last_ready_;  // its last content but the frame
+  std::string last_ready_;                                            // its last content but the frame
 };
 
 }  // namespace lapis::viewer

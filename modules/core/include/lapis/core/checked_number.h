@@ -79,7 +79,8 @@ double parse_finite(std::string_view text, const std::string& what, double lo = 
 // A value already in memory, e.g. computed from read numbers, or an output about to be written.
 template <class E = InvalidArgument>
 double check_finite(double v, const std::string& what, double lo = -kAnyFinite, double hi = kAnyFinite) {
-  if (!(std::isfinite(v) && v >= lo && v <= hi)) detail::number_error<E>(what, detail::number_range(lo, hi), format_number(v));
+  if (!(std::isfinite(v) && v >= lo && v <= hi))
+    detail::number_error<E>(what, detail::number_range(lo, hi), format_number(v));
   return v;
 }
 

@@ -32,8 +32,7 @@ class IoError : public Error {
 // (in the caller's ordering where known, else the factor's) where the factorization broke.
 class NotPositiveDefinite : public Error {
  public:
-  NotPositiveDefinite(const std::string& what, std::ptrdiff_t column)
-      : Error(what), column_(column) {}
+  NotPositiveDefinite(const std::string& what, std::ptrdiff_t column) : Error(what), column_(column) {}
   std::ptrdiff_t column() const { return column_; }
 
  private:

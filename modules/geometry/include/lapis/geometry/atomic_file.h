@@ -22,8 +22,7 @@ namespace lapis::geometry {
 // path is left untouched, and the exception propagates (I/O failures as lapis::IoError
 // "geometry::write_file_atomically(): <path>: <reason>"). Inside an AtomicFileGroup the
 // rename waits for the group's commit().
-void write_file_atomically(const std::filesystem::path& path,
-                           const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
 // Files that belong together (a .hair and its .obj, a mesh and its selection): while a group
 // is alive on this thread, write_file_atomically writes and syncs each temporary file but does

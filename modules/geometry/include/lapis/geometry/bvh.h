@@ -15,8 +15,8 @@ namespace lapis::geometry {
 
 struct RayHit {
   int face = -1;
-  double t = 0;                     // hit point = origin + t * direction
-  Eigen::Vector3d barycentric;      // weights of the face's corners 0, 1, 2
+  double t = 0;                 // hit point = origin + t * direction
+  Eigen::Vector3d barycentric;  // weights of the face's corners 0, 1, 2
   Eigen::Vector3d point;
 };
 
@@ -70,13 +70,14 @@ class Bvh {
 
 // Ray-triangle test shared by the tree and by brute-force checks: t and barycentrics of the
 // hit of origin + t direction with triangle (a, b, c), or nothing (parallel, outside, t < 0).
-std::optional<std::pair<double, Eigen::Vector3d>> intersect_triangle(
-    const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, const Eigen::Vector3d& a,
-    const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+std::optional<std::pair<double, Eigen::Vector3d>> intersect_triangle(const Eigen::Vector3d& origin,
+                                                                     const Eigen::Vector3d& direction,
+                                                                     const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                                     const Eigen::Vector3d& c);
 
 // Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
 // Collision Detection, 5.1.5).
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                          const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c);
 
 }  // namespace lapis::geometry

@@ -28,8 +28,7 @@ inline Eigen::Vector3d project(const CameraMatrices& camera, const Eigen::Vector
   const Eigen::Vector4d clip = camera.projection * camera.view * world.homogeneous();
   const Eigen::Vector3d ndc = clip.head<3>() / clip.w();
   const auto& vp = camera.viewport;
-  return {vp[0] + (ndc.x() + 1) * 0.5 * vp[2], vp[1] + (1 - ndc.y()) * 0.5 * vp[3],
-          (ndc.z() + 1) * 0.5};
+  return {vp[0] + (ndc.x() + 1) * 0.5 * vp[2], vp[1] + (1 - ndc.y()) * 0.5 * vp[3], (ndc.z() + 1) * 0.5};
 }
 
 // The world point at pixel (x, y) (y down) and window depth in [0, 1].
@@ -58,9 +57,9 @@ namespace lapis::geometry {
 // A perspective camera at eye looking at target (gluLookAt + gluPerspective conventions):
 // what tests and asset generators use to draw synthetic strokes.
 inline CameraMatrices look_at_camera(const Eigen::Vector3d& eye, const Eigen::Vector3d& target,
-                                     const Eigen::Vector3d& up = Eigen::Vector3d::UnitY(),
-                                     double fov_y = 0.8, double width = 800, double height = 600,
-                                     double near_plane = 0.1, double far_plane = 50) {
+                                     const Eigen::Vector3d& up = Eigen::Vector3d::UnitY(), double fov_y = 0.8,
+                                     double width = 800, double height = 600, double near_plane = 0.1,
+                                     double far_plane = 50) {
   CameraMatrices c;
   const Eigen::Vector3d f = (target - eye).normalized(), s = f.cross(up).normalized(), u = s.cross(f);
   c.view.setIdentity();

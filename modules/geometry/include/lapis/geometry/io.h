@@ -45,8 +45,7 @@ struct Polylines {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::vector<int>> lines;  // 0-based indices into points
 };
-void write_obj_polylines(const std::filesystem::path& path,
-                         const std::vector<std::vector<Eigen::Vector3d>>& polylines);
+void write_obj_polylines(const std::filesystem::path& path, const std::vector<std::vector<Eigen::Vector3d>>& polylines);
 Polylines read_obj_polylines(const std::filesystem::path& path);
 
 }  // namespace lapis::geometry

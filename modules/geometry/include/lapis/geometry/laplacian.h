@@ -17,18 +17,18 @@
 namespace lapis::geometry {
 
 // A triangle is numerically degenerate when its smallest height is at most this fraction of its
-// longest edge (is_thin_triangle, tri_mesh.h): a cap (an angle near 180 degrees) or a needle. Its cotangents are unbounded (a
-// collinear triangle's come out ~1e16 from rounding), and squared in a least-squares normal
-// matrix they swamp every other row: one such face made every deformer and the merge fail as
-// "not positive definite". A triangle a million times longer than high has no usable angles.
-// Looser than ValidationOptions::degenerate_tolerance (1e-14, zero area up to rounding): a
-// face can have an area worth reporting and still angles no solver can use.
+// longest edge (is_thin_triangle, tri_mesh.h): a cap (an angle near 180 degrees) or a needle. Its cotangents are
+// unbounded (a collinear triangle's come out ~1e16 from rounding), and squared in a least-squares normal matrix they
+// swamp every other row: one such face made every deformer and the merge fail as "not positive definite". A triangle a
+// million times longer than high has no usable angles. Looser than ValidationOptions::degenerate_tolerance (1e-14, zero
+// area up to rounding): a face can have an area worth reporting and still angles no solver can use.
 inline constexpr double kDegenerateTriangleHeight = 1e-6;
 
 // Cotangents of the corner angles of the triangle (p0, p1, p2), cot[k] at p_k; all three zero
 // for a degenerate triangle (see above) or a non-finite corner, which then contributes nothing
 // to a Laplacian.
-std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
+std::array<double, 3> triangle_cotangents(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                          const Eigen::Vector3d& p2);
 
 // #V x #V cotangent Laplacian (convention above). Degenerate faces (kDegenerateTriangleHeight)
 // contribute nothing. Columns are sorted, compressed.
@@ -38,9 +38,9 @@ Eigen::SparseMatrix<double> cotan_laplacian(const TriMesh& mesh);
 Eigen::SparseMatrix<double> uniform_laplacian(const TriMesh& mesh);
 
 enum class MassType {
-  Barycentric,       // a third of each incident face's area
-  Voronoi,           // Meyer et al. 2003 mixed Voronoi areas: Voronoi cells for non-obtuse
-  Mixed = Voronoi,   // triangles, area/2 or area/4 split for obtuse ones (always positive)
+  Barycentric,      // a third of each incident face's area
+  Voronoi,          // Meyer et al. 2003 mixed Voronoi areas: Voronoi cells for non-obtuse
+  Mixed = Voronoi,  // triangles, area/2 or area/4 split for obtuse ones (always positive)
 };
 
 // Per-vertex areas (the diagonal of mass_matrix); sums to the surface area.

@@ -18,8 +18,8 @@ TriMesh make_plane_grid(int nx, int ny, double width = 1.0, double height = 1.0)
 // boundary, the usual stress case for cotangent weights. jitter must be in [0, 0.25): then a
 // vertex and the opposite edge of any triangle together move less than the triangle's
 // height (1/sqrt(2) cell), so no triangle folds.
-TriMesh make_irregular_grid(int nx, int ny, double jitter = 0.2, std::uint32_t seed = 1,
-                            double width = 1.0, double height = 1.0);
+TriMesh make_irregular_grid(int nx, int ny, double jitter = 0.2, std::uint32_t seed = 1, double width = 1.0,
+                            double height = 1.0);
 
 // Closed surface of the box [0, sx] x [0, sy] x [0, sz] with nx, ny, nz segments per side:
 // the bar used by deformation tests (thesis fig. 2.7).

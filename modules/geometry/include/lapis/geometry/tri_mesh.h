@@ -41,13 +41,13 @@ struct ValidationOptions {
 
 // Problems found by validate(), each as the list of offending indices (ascending).
 struct ValidationReport {
-  std::vector<int> out_of_range_faces;    // faces with an index outside [0, #V)
-  std::vector<int> non_finite_vertices;   // NaN or Inf coordinates
-  std::vector<int> degenerate_faces;      // zero area or a repeated index
-  std::vector<int> duplicate_faces;       // same vertex set as an earlier face
-  std::vector<std::array<int, 2>> non_manifold_edges;    // (a < b) shared by > 2 faces
-  std::vector<int> non_manifold_vertices;                // faces around it form > 1 fan
-  std::vector<std::array<int, 2>> misoriented_edges;     // directed edge (a, b) in 2 faces
+  std::vector<int> out_of_range_faces;                 // faces with an index outside [0, #V)
+  std::vector<int> non_finite_vertices;                // NaN or Inf coordinates
+  std::vector<int> degenerate_faces;                   // zero area or a repeated index
+  std::vector<int> duplicate_faces;                    // same vertex set as an earlier face
+  std::vector<std::array<int, 2>> non_manifold_edges;  // (a < b) shared by > 2 faces
+  std::vector<int> non_manifold_vertices;              // faces around it form > 1 fan
+  std::vector<std::array<int, 2>> misoriented_edges;   // directed edge (a, b) in 2 faces
 
   bool ok() const;
   // One line per problem kind, e.g. "2 degenerate faces: 5, 17"; lists are cut after

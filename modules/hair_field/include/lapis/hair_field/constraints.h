@@ -50,7 +50,6 @@ struct ConstraintDiff {
 };
 
 // Targets equal to within `tolerance` (absolute, per component) count as unchanged.
-ConstraintDiff diff(const ConstraintSet& before, const ConstraintSet& after,
-                    double tolerance = 0.0);
+ConstraintDiff diff(const ConstraintSet& before, const ConstraintSet& after, double tolerance = 0.0);
 
 }  // namespace lapis::hair_field

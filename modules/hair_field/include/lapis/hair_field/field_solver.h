@@ -25,12 +25,12 @@ const char* to_string(FieldMethod m);
 struct FieldSolveReport {
   FieldMethod method = FieldMethod::Multigrid;  // what ran (never Auto)
   int added = 0, removed = 0, changed = 0;      // the diff applied
-  double update_ms = 0;   // modifying the factor / the multigrid operators
-  double solve_ms = 0;    // back-substitution / iterations
+  double update_ms = 0;                         // modifying the factor / the multigrid operators
+  double solve_ms = 0;                          // back-substitution / iterations
   double total_ms = 0;
-  int iterations = 0;     // multigrid: PCG iterations (0 for direct paths)
+  int iterations = 0;         // multigrid: PCG iterations (0 for direct paths)
   double error_estimate = 0;  // multigrid: estimated relative 2-norm error of the field
-  std::string detail;     // e.g. "updown rank 240" or "refactorize"
+  std::string detail;         // e.g. "updown rank 240" or "refactorize"
 };
 
 class FieldSolver {

@@ -14,12 +14,10 @@ namespace lapis::hair_field {
 // Node (i, j, k) sits at origin + spacing * (i, j, k); index = i + dims[0] * (j + dims[1] * k).
 struct Grid {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double spacing = 1.0;               // d, the thesis' "step size in the vector field"
-  std::array<int, 3> dims{1, 1, 1};   // nodes per axis
+  double spacing = 1.0;              // d, the thesis' "step size in the vector field"
+  std::array<int, 3> dims{1, 1, 1};  // nodes per axis
 
-  std::int64_t num_nodes() const {
-    return static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
-  }
+  std::int64_t num_nodes() const { return static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2]; }
   int index(int i, int j, int k) const { return i + dims[0] * (j + dims[1] * k); }
   std::array<int, 3> coords(int node) const {
     return {node % dims[0], (node / dims[0]) % dims[1], node / (dims[0] * dims[1])};
@@ -33,8 +31,8 @@ struct Grid {
   }
   bool contains(const Eigen::Vector3d& p) const {
     const Eigen::Vector3d q = (p - origin) / spacing;
-    return q.x() >= 0 && q.y() >= 0 && q.z() >= 0 && q.x() <= dims[0] - 1 &&
-           q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1;
+    return q.x() >= 0 && q.y() >= 0 && q.z() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 &&
+           q.z() <= dims[2] - 1;
   }
   // Grid coordinates of p (continuous; node (i,j,k) at integer values).
   Eigen::Vector3d to_grid(const Eigen::Vector3d& p) const { return (p - origin) / spacing; }
@@ -50,9 +48,9 @@ struct GridOptions {
   double target_unknowns = 25000;
   // Enlargement of the head box, in head-box extents. The thesis only says "bounding
   // volume"; hair below the shoulders needs room under the head (y is up).
-  double margin_side = 0.3;    // each of ±x, ±z
-  double margin_top = 0.15;    // +y
-  double margin_below = 1.0;   // -y: long hair
+  double margin_side = 0.3;   // each of ±x, ±z
+  double margin_top = 0.15;   // +y
+  double margin_below = 1.0;  // -y: long hair
   // Memory the field may use (bytes); make_grid throws ResourceLimit beyond it.
   double memory_limit_bytes = kDefaultMemoryLimitBytes;
 };

@@ -22,7 +22,6 @@ SparseMatrix normal_matrix(const Grid& grid, const Eigen::VectorXd& weights);
 
 // Y = (DᵀD + diag(weights)) X without forming the matrix: two 7-point passes, OpenMP over
 // z-slabs. X, Y  n by 3; Y is resized.
-void apply_normal_operator(const Grid& grid, const Eigen::VectorXd& weights, const Field& X,
-                           Field& Y);
+void apply_normal_operator(const Grid& grid, const Eigen::VectorXd& weights, const Field& X, Field& Y);
 
 }  // namespace lapis::hair_field

@@ -31,15 +31,15 @@ struct MultigridFieldOptions {
   // 250K and 1M four corrections save 3–4 iterations over two, at 50K (4 levels) none, hence
   // the automatic choice. The measurements, and the variants that were slower (degree 1, a
   // W-cycle on the finest level too), are in docs/decisions.md.
-  int smoothing_degree = 2;       // Chebyshev degree per pre/post smoothing
-  int cycle_index = 1;            // coarse corrections per cycle on the finest level
-  int coarse_cycle_index = 0;     // ... per visit of each coarser level (1: V-cycle; 0: 4 if
-                                  // the hierarchy has 5 or more levels, else 2, and at most
-                                  // 2 into a level small enough to run on one thread, where
-                                  // the other thread waits: the same iterations, faster)
-  int coarsest_nodes = 500;       // dense LDLᵀ at or below this many nodes
+  int smoothing_degree = 2;         // Chebyshev degree per pre/post smoothing
+  int cycle_index = 1;              // coarse corrections per cycle on the finest level
+  int coarse_cycle_index = 0;       // ... per visit of each coarser level (1: V-cycle; 0: 4 if
+                                    // the hierarchy has 5 or more levels, else 2, and at most
+                                    // 2 into a level small enough to run on one thread, where
+                                    // the other thread waits: the same iterations, faster)
+  int coarsest_nodes = 500;         // dense LDLᵀ at or below this many nodes
   bool cubic_prolongation = false;  // cubic measured worse (70 vs 41 iterations)
-  double smoothing_range = 0.12;  // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
+  double smoothing_range = 0.12;    // Chebyshev smooths λ(D⁻¹A) in [range·λmax, λmax]
   // The warm start is first relaxed by Gauss–Seidel sweeps over the nodes within this many
   // nodes of a changed constraint (local_relaxation.h: after an edit most of the previous
   // field's error is there, and it saves an iteration at 250K and 1M), when the sweeps update

@@ -18,15 +18,14 @@ namespace lapis::hair_sketch {
 
 struct DividingCurve {
   std::vector<Eigen::Vector3d> points;  // polyline on (or near) the scalp
-  double alpha0 = 0, alpha1 = 0;  // tilt angles (radians) at the start and end (Fig. 4.4)
-  double sigma = 1.0;             // Gaussian width, in grid spacings (Fig. 4.4 default)
-  double height = 0.5;            // Gaussian height h, in grid spacings (Fig. 4.4 default)
-  double discontinuity = 0.3;     // magnitude of the discontinuity vectors (Fig. 4.4)
-  int samples_per_side = 3;       // Gaussian-tangent constraints per side, 1 grid spacing apart
+  double alpha0 = 0, alpha1 = 0;        // tilt angles (radians) at the start and end (Fig. 4.4)
+  double sigma = 1.0;                   // Gaussian width, in grid spacings (Fig. 4.4 default)
+  double height = 0.5;                  // Gaussian height h, in grid spacings (Fig. 4.4 default)
+  double discontinuity = 0.3;           // magnitude of the discontinuity vectors (Fig. 4.4)
+  int samples_per_side = 3;             // Gaussian-tangent constraints per side, 1 grid spacing apart
 
   // Throws InvalidArgument for a degenerate curve.
-  std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid,
-                                                  const Head& head) const;
+  std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid, const Head& head) const;
 };
 
 // The local frame's x axis (pointing to the +x side) at arc-length fraction s of the

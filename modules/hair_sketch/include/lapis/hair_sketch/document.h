@@ -36,17 +36,17 @@ const char* primitive_type(const StylePrimitive& p);
 bool same_primitive(const StylePrimitive& a, const StylePrimitive& b);
 
 struct HairstyleSettings {
-  std::string head_mesh;        // path; relative paths are relative to the session file
-  std::string scalp_mask;       // path or empty (cap above a plane, see load_head)
+  std::string head_mesh;         // path; relative paths are relative to the session file
+  std::string scalp_mask;        // path or empty (cap above a plane, see load_head)
   hair_field::GridOptions grid;  // grid.target_unknowns: thesis §4.6
   hair_field::FieldMethod field_method = hair_field::FieldMethod::Auto;
-  hair_field::FieldSolverOptions field;  // field.omega: constraint weight ω, thesis §4.4.1
-  RootOptions roots;            // roots.count strands to grow, roots.seed their jitter (§4.6)
-  GrowthOptions growth;         // growth.step l and growth.max_length, thesis §4.6
-  bool scalp_avoidance = true;  // thesis §4.6's one-shot avoidance step before growing
+  hair_field::FieldSolverOptions field;      // field.omega: constraint weight ω, thesis §4.4.1
+  RootOptions roots;                         // roots.count strands to grow, roots.seed their jitter (§4.6)
+  GrowthOptions growth;                      // growth.step l and growth.max_length, thesis §4.6
+  bool scalp_avoidance = true;               // thesis §4.6's one-shot avoidance step before growing
   SupportMode support = SupportMode::Strip;  // supporting surface of new curves
-  SketchOptions sketch;  // sketch.tail_segments of new stream curves (§4.5); its
-                         // spacing is the grid's (sketch_options)
+  SketchOptions sketch;                      // sketch.tail_segments of new stream curves (§4.5); its
+                                             // spacing is the grid's (sketch_options)
 };
 // Equal in what a session stores: the paths, grid.target_unknowns, field_method,
 // field.omega, roots.count and .seed, growth.step and .max_length, scalp_avoidance, support
@@ -59,9 +59,9 @@ const char* to_string(StrokeAction a);
 
 struct RecordedStroke {
   StrokeAction action = StrokeAction::StreamCurve;
-  int target = -1;                     // Hint, Tilt: the edited primitive's index
-  geometry::CameraMatrices camera;     // as drawn
-  std::vector<Stroke> strokes;         // one, or four for a ponytail
+  int target = -1;                  // Hint, Tilt: the edited primitive's index
+  geometry::CameraMatrices camera;  // as drawn
+  std::vector<Stroke> strokes;      // one, or four for a ponytail
 };
 bool operator==(const RecordedStroke& a, const RecordedStroke& b);
 
@@ -74,17 +74,29 @@ struct Hairstyle {
 bool same_hairstyle(const Hairstyle& a, const Hairstyle& b);
 
 // The changes a command can make.
-struct InsertPrimitive { int index = 0; StylePrimitive primitive; };
-struct RemovePrimitive { int index = 0; };
-struct ReplacePrimitive { int index = 0; StylePrimitive primitive; };
-struct SetCamera { geometry::CameraMatrices camera; };
-struct SetSettings { HairstyleSettings settings; };
+struct InsertPrimitive {
+  int index = 0;
+  StylePrimitive primitive;
+};
+struct RemovePrimitive {
+  int index = 0;
+};
+struct ReplacePrimitive {
+  int index = 0;
+  StylePrimitive primitive;
+};
+struct SetCamera {
+  geometry::CameraMatrices camera;
+};
+struct SetSettings {
+  HairstyleSettings settings;
+};
 using Change = std::variant<InsertPrimitive, RemovePrimitive, ReplacePrimitive, SetCamera, SetSettings>;
 
 struct Command {
-  std::string name;                       // for the Edit menu: "add stream curve", ...
+  std::string name;  // for the Edit menu: "add stream curve", ...
   Change change;
-  std::optional<RecordedStroke> stroke;   // appended to the stroke log, removed on undo
+  std::optional<RecordedStroke> stroke;  // appended to the stroke log, removed on undo
 };
 
 class Document {

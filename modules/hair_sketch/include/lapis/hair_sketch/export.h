@@ -17,12 +17,10 @@ void write_strands_obj(const std::filesystem::path& path, const Strands& strands
 
 // Legacy VTK STRUCTURED_POINTS (ASCII) with the field as VECTORS "direction" and its length
 // as SCALARS "magnitude". Throws InvalidArgument when field is not num_nodes by 3.
-void write_field_vtk(const std::filesystem::path& path, const hair_field::Grid& grid,
-                     const hair_field::Field& field);
+void write_field_vtk(const std::filesystem::path& path, const hair_field::Grid& grid, const hair_field::Field& field);
 
 // float32 little-endian, x y z per node, nodes in grid index order (x fastest): a
 // dims[2] x dims[1] x dims[0] x 3 array. Throws InvalidArgument on a size mismatch.
-void write_field_raw(const std::filesystem::path& path, const hair_field::Grid& grid,
-                     const hair_field::Field& field);
+void write_field_raw(const std::filesystem::path& path, const hair_field::Grid& grid, const hair_field::Field& field);
 
 }  // namespace lapis::hair_sketch

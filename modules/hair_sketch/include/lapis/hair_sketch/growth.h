@@ -33,10 +33,10 @@ class SampledField {
 };
 
 struct GrowthOptions {
-  double step = 0.5;          // segment length l in grid spacings d (thesis §4.6: l = 0.5d)
+  double step = 0.5;            // segment length l in grid spacings d (thesis §4.6: l = 0.5d)
   double min_magnitude = 0.05;  // stop when |v(p)| < this (thesis §4.6)
-  double max_length = 120;    // in grid spacings (the thesis stops only at the box; a cap
-                              // keeps circulating flow from growing forever)
+  double max_length = 120;      // in grid spacings (the thesis stops only at the box; a cap
+                                // keeps circulating flow from growing forever)
   // Memory the strands may use (bytes): growth is refused, before it starts, when the worst
   // case (every strand max_length / step steps long) would need more.
   double memory_limit_bytes = 4.0 * (1ull << 30);

@@ -19,7 +19,7 @@ namespace lapis::hair_sketch {
 
 struct Head {
   geometry::TriMesh mesh;
-  std::vector<char> scalp_face;     // #F, 1 for scalp faces
+  std::vector<char> scalp_face;                      // #F, 1 for scalp faces
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  // of the cranium: origin of θ, φ
   Eigen::AlignedBox3d box;
   std::shared_ptr<const geometry::Bvh> bvh;
@@ -49,8 +49,7 @@ std::vector<int> read_scalp_mask(const std::filesystem::path& path, int num_vert
 // Loads a head mesh (OBJ/OFF/PLY) and its mask; without a mask the scalp is the cap above
 // the plane 15% of the head box height above its centre (y up). Throws IoError for a
 // malformed file, InvalidArgument for a mesh that is not a valid closed surface.
-Head load_head(const std::filesystem::path& mesh_path,
-               const std::filesystem::path& mask_path = {});
+Head load_head(const std::filesystem::path& mesh_path, const std::filesystem::path& mask_path = {});
 
 // The bundled head: assets/head.obj with assets/head_scalp.txt below source_dir.
 Head load_bundled_head(const std::filesystem::path& source_dir);
@@ -62,9 +61,9 @@ struct RootOptions {
   // 5000 keeps the interactive loop's regrowth well within a frame; the thesis leaves the
   // density to the user (§4.6).
   int count = 5000;
-  double jitter = 0.35;      // random offset in units of a step ("a small amount of randomness")
-  std::uint32_t seed = 1;    // root jitter seed
-  double lift = 1e-3;        // roots are moved this far (× head size) outward off the surface
+  double jitter = 0.35;    // random offset in units of a step ("a small amount of randomness")
+  std::uint32_t seed = 1;  // root jitter seed
+  double lift = 1e-3;      // roots are moved this far (× head size) outward off the surface
 };
 
 // Root points on the scalp, never inside the head. Deterministic for a seed.

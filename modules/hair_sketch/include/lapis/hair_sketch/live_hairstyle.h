@@ -19,8 +19,8 @@ struct LiveUpdate {
   Strands strands;
   std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
   int constraints = 0;
-  double solve_ms = 0;     // constraint diff + field update(s)
-  double growth_ms = 0;    // regrowing every strand
+  double solve_ms = 0;   // constraint diff + field update(s)
+  double growth_ms = 0;  // regrowing every strand
   double total_ms = 0;
 };
 

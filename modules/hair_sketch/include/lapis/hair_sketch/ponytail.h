@@ -16,12 +16,12 @@
 namespace lapis::hair_sketch {
 
 struct Ponytail {
-  std::vector<Eigen::Vector3d> spine;          // from the head outward
-  std::vector<Eigen::Vector3d> cross_section;  // a loop around the spine: C1's place and radius
+  std::vector<Eigen::Vector3d> spine;                 // from the head outward
+  std::vector<Eigen::Vector3d> cross_section;         // a loop around the spine: C1's place and radius
   std::vector<Eigen::Vector3d> profile_a, profile_b;  // along the spine on either side: radii
-  double tightness = 0.6;      // centripetal magnitude (thesis §4.5 default)
-  double inner_ratio = 1.3;    // annulus R1 = 1.3 r (thesis §4.5)
-  double outer_ratio = 1.9;    // annulus R2 = 1.9 r (thesis §4.5)
+  double tightness = 0.6;                             // centripetal magnitude (thesis §4.5 default)
+  double inner_ratio = 1.3;                           // annulus R1 = 1.3 r (thesis §4.5)
+  double outer_ratio = 1.9;                           // annulus R2 = 1.9 r (thesis §4.5)
 
   // The first cross section: centre, unit normal (spine direction), radius.
   struct Section {

@@ -14,15 +14,15 @@
 namespace lapis::hair_sketch {
 
 struct ScalpAvoidanceOptions {
-  double band = 1.5;        // "near the scalp": within this many grid spacings of the head
-  double magnitude = 0.3;   // thesis §4.6
+  double band = 1.5;       // "near the scalp": within this many grid spacings of the head
+  double magnitude = 0.3;  // thesis §4.6
 };
 
 // Constraints from the current field (n by 3 on grid). Nodes just inside the surface are
 // included: trilinear lookups just outside it read them. Nodes with a vanishing direction
 // are left free.
-std::vector<hair_field::Constraint> scalp_avoidance_constraints(
-    const hair_field::Grid& grid, const hair_field::Field& field, const Head& head,
-    const ScalpAvoidanceOptions& options = {});
+std::vector<hair_field::Constraint> scalp_avoidance_constraints(const hair_field::Grid& grid,
+                                                                const hair_field::Field& field, const Head& head,
+                                                                const ScalpAvoidanceOptions& options = {});
 
 }  // namespace lapis::hair_sketch

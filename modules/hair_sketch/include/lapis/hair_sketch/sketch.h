@@ -32,12 +32,12 @@ class StrokeRejected : public InvalidArgument {
 };
 
 struct SketchOptions {
-  double spacing = 0.1;        // grid spacing d: style curves are resampled at d (§4.5)
-  double lift = 0.1;           // curve points stay this far (in d) above the scalp
-  double surface_width = 6;    // supporting surface half-width, in d ("its neighborhood")
-  double near = 1.5;           // a hint point within this many d of the curve is "near" it
+  double spacing = 0.1;          // grid spacing d: style curves are resampled at d (§4.5)
+  double lift = 0.1;             // curve points stay this far (in d) above the scalp
+  double surface_width = 6;      // supporting surface half-width, in d ("its neighborhood")
+  double near = 1.5;             // a hint point within this many d of the curve is "near" it
   double min_stroke_pixels = 4;  // a shorter stroke (screen arc length) is degenerate
-  int tail_segments = 3;       // fading tail of created stream curves (§4.5, Fig. 4.5 left)
+  int tail_segments = 3;         // fading tail of created stream curves (§4.5, Fig. 4.5 left)
 };
 
 // Fig. 4.3(a) and (b): the ruled surface through the curve and its viewpoint, or the strip
@@ -54,10 +54,10 @@ struct SupportingSurface {
 
   struct Hit {
     Eigen::Vector3d point;
-    double s = 0;       // arc length along the curve of the hit's foot
-    double w = 0;       // signed offset along the ruling
-    double t = 0;       // ray parameter
-    bool on = false;    // |w| <= half_width
+    double s = 0;     // arc length along the curve of the hit's foot
+    double w = 0;     // signed offset along the ruling
+    double t = 0;     // ray parameter
+    bool on = false;  // |w| <= half_width
   };
   // The hit of the ray with the surface (or its extension beyond half_width, flagged
   // on = false), or nothing when the ray passes the curve's ends or runs along the surface.
@@ -66,21 +66,19 @@ struct SupportingSurface {
 };
 
 // Throws InvalidArgument for fewer than 2 points or the viewpoint on the curve's line.
-SupportingSurface make_supporting_surface(const std::vector<Eigen::Vector3d>& curve,
-                                          const Eigen::Vector3d& viewpoint, SupportMode mode,
-                                          const SketchOptions& options);
+SupportingSurface make_supporting_surface(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint,
+                                          SupportMode mode, const SketchOptions& options);
 
 // §4.5: starts on the scalp (depth of the hit); later points take the depth of their scalp
 // hit while on the scalp, else the depth of the last scalp point; points are then kept at
 // least `lift` above the head and resampled at d. Rejects a stroke with fewer than 2 points,
 // non-finite or too short, or one that does not start on the scalp.
-StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera,
-                                     const Head& head, const SketchOptions& options);
+StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera, const Head& head,
+                                     const SketchOptions& options);
 
 // §4.5: a dividing curve is drawn on the scalp; every point must hit it.
-DividingCurve dividing_curve_from_stroke(const Stroke& stroke,
-                                         const geometry::CameraMatrices& camera,
-                                         const Head& head, const SketchOptions& options);
+DividingCurve dividing_curve_from_stroke(const Stroke& stroke, const geometry::CameraMatrices& camera, const Head& head,
+                                         const SketchOptions& options);
 
 // Fig. 4.3(c)–(h): a hint stroke starting on the curve's supporting surface is
 //   Insert       starts and ends near the curve: the stroke replaces the part between,
@@ -97,9 +95,8 @@ struct HintEdit {
 };
 
 // Rejects strokes that are degenerate, do not start on the surface, or match no rule.
-HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint,
-                        SupportMode mode, const Stroke& stroke,
-                        const geometry::CameraMatrices& camera, const SketchOptions& options);
+HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::Vector3d& viewpoint, SupportMode mode,
+                        const Stroke& stroke, const geometry::CameraMatrices& camera, const SketchOptions& options);
 
 // §4.5, Fig. 4.4: a hint stroke on the scalp beside a dividing curve, drawn away from the
 // parting, gives the hair's flow direction on its side: α is the angle about the scalp
@@ -107,19 +104,17 @@ HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::
 // the curve's start, α1 when nearer its end. `side` reports +1 / -1 (dividing_side_axis).
 struct TiltEdit {
   DividingCurve curve;
-  int end = 0;   // 0: α0 changed, 1: α1 changed
+  int end = 0;  // 0: α0 changed, 1: α1 changed
   int side = 1;
 };
-TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke,
-                        const geometry::CameraMatrices& camera, const Head& head,
-                        const SketchOptions& options);
+TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke, const geometry::CameraMatrices& camera,
+                        const Head& head, const SketchOptions& options);
 
 // §4.5, Fig. 4.5 right: the spine is created like a stream curve; the cross section and the
 // two profiles are drawn on the spine's supporting surface (strip mode, seen from the
 // spine's viewpoint = this camera's eye). strokes = {spine, cross section, profile a,
 // profile b}.
-Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes,
-                               const geometry::CameraMatrices& camera, const Head& head,
-                               const SketchOptions& options);
+Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes, const geometry::CameraMatrices& camera,
+                               const Head& head, const SketchOptions& options);
 
 }  // namespace lapis::hair_sketch

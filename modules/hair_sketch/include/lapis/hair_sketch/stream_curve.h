@@ -15,7 +15,7 @@ namespace lapis::hair_sketch {
 
 struct StreamCurve {
   std::vector<Eigen::Vector3d> points;  // polyline, from the scalp outward
-  int tail_segments = 0;  // thesis §4.5: optional "few extra segments" fading 1 → 0
+  int tail_segments = 0;                // thesis §4.5: optional "few extra segments" fading 1 → 0
 
   // Throws InvalidArgument for fewer than 2 points, non-finite or zero-length curves.
   std::vector<hair_field::Constraint> constraints(const hair_field::Grid& grid) const;

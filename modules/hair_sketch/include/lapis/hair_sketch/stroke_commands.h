@@ -16,8 +16,7 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& stroke
                             const hair_field::Grid& grid);
 
 // command_from_stroke, then Document::execute.
-void apply_stroke(Document& document, const RecordedStroke& stroke, const Head& head,
-                  const hair_field::Grid& grid);
+void apply_stroke(Document& document, const RecordedStroke& stroke, const Head& head, const hair_field::Grid& grid);
 
 // The session's settings and camera with the primitives rebuilt from its recorded strokes
 // alone (grid from the settings). Throws StrokeRejected naming the stroke's index when one

@@ -25,11 +25,10 @@ hair_field::Grid hairstyle_grid(const Head& head, const HairstyleSettings& setti
 SketchOptions sketch_options(const hair_field::Grid& grid, const HairstyleSettings& settings);
 
 // The constraints of one primitive / all of them merged (§4.5).
-std::vector<hair_field::Constraint> primitive_constraints(const StylePrimitive& p,
-                                                          const hair_field::Grid& grid,
+std::vector<hair_field::Constraint> primitive_constraints(const StylePrimitive& p, const hair_field::Grid& grid,
                                                           const Head& head);
-hair_field::ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives,
-                                            const hair_field::Grid& grid, const Head& head);
+hair_field::ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, const hair_field::Grid& grid,
+                                            const Head& head);
 
 // Precompute once (the solver), then update per document revision: the new constraint set
 // is diffed against the last one and only the diff is applied. Undo is just another update,

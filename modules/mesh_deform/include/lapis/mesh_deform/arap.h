@@ -38,8 +38,8 @@ struct ArapStats {
   int rotation_fallbacks = 0;  // rotation fits that needed the SVD fallback (last frame)
   double setup_ms = 0;
   double frame_ms = 0;
-  double rotations_ms = 0;     // local steps of the last frame (with right-hand sides)
-  double solves_ms = 0;        // global steps of the last frame
+  double rotations_ms = 0;  // local steps of the last frame (with right-hand sides)
+  double solves_ms = 0;     // global steps of the last frame
   double ms_per_iteration() const { return iterations ? frame_ms / iterations : 0; }
 };
 

@@ -39,10 +39,10 @@ enum class VertexRole : unsigned char { Fixed, Free, RegionHandle, PointHandle }
 
 // The validated selection, with per-vertex roles and handle membership.
 struct Layout {
-  std::vector<VertexRole> role;   // #V
-  std::vector<int> handle_of;     // #V: region or point handle index, -1 for Fixed/Free
-  std::vector<int> free;          // ascending
-  std::vector<int> constrained;   // ascending: every non-free vertex (fixed and handles)
+  std::vector<VertexRole> role;  // #V
+  std::vector<int> handle_of;    // #V: region or point handle index, -1 for Fixed/Free
+  std::vector<int> free;         // ascending
+  std::vector<int> constrained;  // ascending: every non-free vertex (fixed and handles)
   int num_region_handles = 0;
   int num_point_handles = 0;
 };

@@ -21,7 +21,7 @@ enum class ShearingRemoval {
 };
 
 struct ImplicitOptions {
-  LaplacianWeights weights = LaplacianWeights::Cotangent;  // §2.4.3: uniform weights drift tangentially
+  LaplacianWeights weights = LaplacianWeights::Cotangent;      // §2.4.3: uniform weights drift tangentially
   ShearingRemoval shearing = ShearingRemoval::RetainFeatures;  // §2.4.4, Eq. 2.10
   double degenerate_condition = 2.0e5;  // §2.4.3: cond(V_i V_iᵀ) above this marks a degenerate vertex
   double s_disp = 0.2;                  // §2.4.3, Eq. 2.9: displacement scale of degenerate vertices
@@ -64,18 +64,18 @@ struct LaplacianBlend {
 // What the last deform() did and cost.
 struct ImplicitStats {
   int free_vertices = 0;
-  int degenerate_vertices = 0;   // displaced by Eq. 2.9 (incl. boundary variants)
-  int inserted_vertices = 0;     // midpoints inserted for boundary vertices of valence < 3
-  int polar_fallbacks = 0;       // rotation fits that needed the SVD fallback (last frame)
-  bool guided = false;           // last frame used the large-rotation guide system
+  int degenerate_vertices = 0;      // displaced by Eq. 2.9 (incl. boundary variants)
+  int inserted_vertices = 0;        // midpoints inserted for boundary vertices of valence < 3
+  int polar_fallbacks = 0;          // rotation fits that needed the SVD fallback (last frame)
+  bool guided = false;              // last frame used the large-rotation guide system
   long long first_factor_nnz = 0;   // non-zeros of the Cholesky factors of Eq. 2.8's and
   long long second_factor_nnz = 0;  // Eq. 2.10's normal matrices
-  double setup_ms = 0;           // assembly + both factorizations
-  int basis_columns = 0;         // > 0: Eq. 2.8 combined from that many precomputed solutions
-  double first_solve_ms = 0;     // Eq. 2.8 back-substitution (x, y, z together) or combination
-  double polar_ms = 0;           // all gradients M_i and their polar decompositions
-  double second_solve_ms = 0;    // Eq. 2.10/2.11 back-substitution
-  double frame_ms = 0;           // the whole deform() call
+  double setup_ms = 0;              // assembly + both factorizations
+  int basis_columns = 0;            // > 0: Eq. 2.8 combined from that many precomputed solutions
+  double first_solve_ms = 0;        // Eq. 2.8 back-substitution (x, y, z together) or combination
+  double polar_ms = 0;              // all gradients M_i and their polar decompositions
+  double second_solve_ms = 0;       // Eq. 2.10/2.11 back-substitution
+  double frame_ms = 0;              // the whole deform() call
 };
 
 class ImplicitLaplacianDeformer final : public Deformer {

@@ -23,21 +23,21 @@ struct LiveRequest {
   Selection selection;
   std::uint64_t selection_revision = 0;  // the caller bumps it when the selection changes
   HandleTransforms transforms;
-  bool preview = false;  // implicit method: first system only (§2.5's preview while dragging)
+  bool preview = false;                  // implicit method: first system only (§2.5's preview while dragging)
   std::optional<DistortionField> field;  // per-vertex distortion to compute, if any
 };
 
 struct LiveFrame {
-  Vertices positions;                    // #V by 3
-  Eigen::VectorXd distortion;            // #V, empty when no field was requested
-  bool did_setup = false;                // this frame ran the setup
-  bool preview = false;                  // this frame stopped after the first system
-  double setup_ms = 0;                   // of the current setup (whenever it ran)
-  double solve_ms = 0;                   // this frame's deform() call
+  Vertices positions;          // #V by 3
+  Eigen::VectorXd distortion;  // #V, empty when no field was requested
+  bool did_setup = false;      // this frame ran the setup
+  bool preview = false;        // this frame stopped after the first system
+  double setup_ms = 0;         // of the current setup (whenever it ran)
+  double solve_ms = 0;         // this frame's deform() call
   double distortion_ms = 0;
-  std::string method;                    // deformer name
-  std::string timing;                    // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
-  std::vector<int> degenerate_vertices;  // implicit: found by the current setup
+  std::string method;                     // deformer name
+  std::string timing;                     // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
+  std::vector<int> degenerate_vertices;   // implicit: found by the current setup
   std::vector<HandleTransforms> history;  // every frame solved since the setup, this one last
 };
 

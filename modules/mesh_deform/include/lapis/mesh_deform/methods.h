@@ -29,8 +29,8 @@ Method method_from_name(const std::string& name);
 struct MethodSettings {
   Method method = Method::Implicit;
   LaplacianWeights weights = LaplacianWeights::Cotangent;  // naive and implicit (§2.3)
-  bool scale_features = false;  // implicit: Eq. 2.11 (R_i S_i δ_i) instead of Eq. 2.10
-  int arap_iterations = 10;     // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
+  bool scale_features = false;                             // implicit: Eq. 2.11 (R_i S_i δ_i) instead of Eq. 2.10
+  int arap_iterations = 10;  // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
 
   bool operator==(const MethodSettings&) const = default;
 };

@@ -17,7 +17,7 @@ namespace lapis::mesh_deform {
 
 // A selection with the frames of a drag, as a handles file holds it.
 struct Drag {
-  Selection selection;                  // roi is filled by the caller (it is a separate file)
+  Selection selection;                   // roi is filled by the caller (it is a separate file)
   std::vector<HandleTransforms> frames;  // at least one
 };
 

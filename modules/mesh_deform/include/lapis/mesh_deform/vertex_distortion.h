@@ -19,6 +19,7 @@ const char* to_string(DistortionField f);
 
 // rest, deformed  same faces, #V by 3 each. Returns #V values (0 at isolated vertices).
 // Throws InvalidArgument "mesh_deform::vertex_distortion(): ..." when the vertex counts differ.
-Eigen::VectorXd vertex_distortion(const geometry::TriMesh& rest, const geometry::Vertices& deformed, DistortionField field);
+Eigen::VectorXd vertex_distortion(const geometry::TriMesh& rest, const geometry::Vertices& deformed,
+                                  DistortionField field);
 
 }  // namespace lapis::mesh_deform

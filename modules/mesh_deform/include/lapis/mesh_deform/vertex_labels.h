@@ -13,7 +13,7 @@ namespace lapis::mesh_deform {
 
 struct VertexLabels {
   static constexpr int kNone = -1, kRoi = -2, kFixed = -3;  // >= 0: region handle index
-  std::vector<int> label;                                    // #V
+  std::vector<int> label;                                   // #V
 
   VertexLabels() = default;
   explicit VertexLabels(int num_vertices) : label(static_cast<size_t>(num_vertices), kNone) {}

@@ -14,10 +14,10 @@
 namespace lapis::mesh_merge {
 
 struct BoundaryConstraint {
-  int vertex = -1;                                   // source vertex
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // where it must go
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // R_i: source frame -> target frame
-  double scale = 1.0;                                // s_i: target / source tangent length
+  int vertex = -1;                                               // source vertex
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();            // where it must go
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();        // R_i: source frame -> target frame
+  double scale = 1.0;                                            // s_i: target / source tangent length
   Eigen::Matrix3d gradient() const { return scale * rotation; }  // M_i = R_i S_i
 };
 

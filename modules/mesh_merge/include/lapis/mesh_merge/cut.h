@@ -12,8 +12,8 @@
 namespace lapis::mesh_merge {
 
 struct PlaneCut {
-  geometry::TriMesh above, below;   // faces whose centroid is on the normal's side / the other
-  std::vector<int> above_to_mesh;   // new vertex -> original vertex
+  geometry::TriMesh above, below;  // faces whose centroid is on the normal's side / the other
+  std::vector<int> above_to_mesh;  // new vertex -> original vertex
   std::vector<int> below_to_mesh;
 };
 

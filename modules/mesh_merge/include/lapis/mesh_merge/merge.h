@@ -74,25 +74,26 @@ struct MergeOptions {
 };
 
 struct MergeTimings {
-  double setup_ms = 0;   // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
-  double solve_ms = 0;   // both implicit Laplacian solves and the polar decompositions
+  double setup_ms = 0;  // correspondence and constraints (+ refinement and deformer precompute in the one-off merge())
+  double solve_ms = 0;  // both implicit Laplacian solves and the polar decompositions
   double zip_ms = 0;
   double smooth_ms = 0;  // Transition mode: the band's reconstruction, which replaces the smoothing
   double total_ms = 0;
 };
 
 struct MergeResult {
-  TriMesh mesh;                   // the merged mesh: target part first, then the source
-  std::vector<int> target_map;    // #V_target: merged index, -1 for vertices removed with the band
-  std::vector<int> source_map;    // #V_source (as given): merged index (-1: removed with the source band, Transition mode)
+  TriMesh mesh;                 // the merged mesh: target part first, then the source
+  std::vector<int> target_map;  // #V_target: merged index, -1 for vertices removed with the band
+  std::vector<int>
+      source_map;  // #V_source (as given): merged index (-1: removed with the source band, Transition mode)
   // The source the solve ran on (refined; as given + appended vertices). Transition mode: as
   // given, centred and scaled to the target's loop perimeter.
   TriMesh source_rest;
-  Vertices source_deformed;       // its positions after the solve, before zipping and smoothing
+  Vertices source_deformed;          // its positions after the solve, before zipping and smoothing
   std::vector<int> source_boundary;  // source_rest vertices constrained to the target boundary
-  std::vector<int> strip_faces;   // merged faces of the re-triangulated gaps
-  std::vector<int> seam_vertices; // merged vertices on the strips
-  std::vector<int> smoothed;      // merged vertices the umbrella operator moved (the seam band)
+  std::vector<int> strip_faces;      // merged faces of the re-triangulated gaps
+  std::vector<int> seam_vertices;    // merged vertices on the strips
+  std::vector<int> smoothed;         // merged vertices the umbrella operator moved (the seam band)
   // Transition mode: the merged vertices of the kept band, and for each the target's share τ of
   // its interpolated Laplacian coordinate (1 where the band meets the kept target, 0 where it
   // meets the rest of the source).

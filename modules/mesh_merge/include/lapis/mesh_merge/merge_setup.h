@@ -15,8 +15,8 @@
 namespace lapis::mesh_merge {
 
 struct PickedPair {
-  int source_loop = -1;  // index into Connectivity(source).boundary_loops()
-  int target_loop = -1;  // index into Connectivity(target).boundary_loops()
+  int source_loop = -1;                 // index into Connectivity(source).boundary_loops()
+  int target_loop = -1;                 // index into Connectivity(target).boundary_loops()
   std::vector<KeyCorrespondence> keys;  // in the source loop's order
 };
 

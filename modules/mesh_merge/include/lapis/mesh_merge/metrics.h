@@ -10,15 +10,16 @@
 namespace lapis::mesh_merge {
 
 struct SeamQuality {
-  int seam_boundary_edges = 0;    // boundary edges with both ends on the seam: 0 when watertight
-  int non_manifold_edges = 0;     // in the whole merged mesh
+  int seam_boundary_edges = 0;  // boundary edges with both ends on the seam: 0 when watertight
+  int non_manifold_edges = 0;   // in the whole merged mesh
   int non_manifold_vertices = 0;
   int degenerate_faces = 0;
-  double min_strip_angle_deg = 0;    // smallest corner angle of the zipped strips
-  double max_target_displacement = 0;  // over target vertices outside the smoothed and transition bands, / bbox diagonal
-  double seam_dihedral_mean_deg = 0;   // normal deviation across strip edges
+  double min_strip_angle_deg = 0;  // smallest corner angle of the zipped strips
+  double max_target_displacement =
+      0;                              // over target vertices outside the smoothed and transition bands, / bbox diagonal
+  double seam_dihedral_mean_deg = 0;  // normal deviation across strip edges
   double seam_dihedral_max_deg = 0;
-  double target_dihedral_mean_deg = 0; // the target's own interior edges, for comparison
+  double target_dihedral_mean_deg = 0;  // the target's own interior edges, for comparison
   double target_dihedral_p95_deg = 0;
   bool valid() const {
     return seam_boundary_edges == 0 && non_manifold_edges == 0 && non_manifold_vertices == 0 && degenerate_faces == 0;

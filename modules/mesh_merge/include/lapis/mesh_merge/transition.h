@@ -18,8 +18,8 @@ namespace lapis::mesh_merge {
 // and 1 on the rim; inside, each vertex is the mean of its neighbours (Tutte's embedding with
 // those boundary values: one-to-one because the square is convex).
 struct TransitionBand {
-  std::vector<int> loop;      // the merging loop in the seam's direction (as given), loop[0] = the key
-  std::vector<int> rim;       // the band's inner border (kept, outside the band), same direction, rim[0] = the cut's end
+  std::vector<int> loop;  // the merging loop in the seam's direction (as given), loop[0] = the key
+  std::vector<int> rim;   // the band's inner border (kept, outside the band), same direction, rim[0] = the cut's end
   std::vector<int> vertices;  // the band: every vertex of `faces` that is not on the rim, ascending
   std::vector<int> faces;     // faces with a vertex closer to the loop than the width
   std::vector<int> cut;       // loop[0] ... rim[0]: the shortest path the band is cut along
@@ -28,7 +28,7 @@ struct TransitionBand {
   std::vector<int> param_vertex;
   Eigen::MatrixX2d uv;
   geometry::Faces param_faces;  // `faces` in parameter-domain indices
-  std::vector<int> param_of;    // #V: a parameter-domain index of each band and rim vertex (the u = 0 copy), -1 elsewhere
+  std::vector<int> param_of;  // #V: a parameter-domain index of each band and rim vertex (the u = 0 copy), -1 elsewhere
   Eigen::Vector2d at(int vertex) const { return uv.row(param_of[vertex]).transpose(); }
 };
 

@@ -11,11 +11,11 @@
 namespace lapis::mesh_merge {
 
 struct ZipResult {
-  TriMesh mesh;                   // target part first, then the source
-  std::vector<int> target_map;    // #V_target: merged index, -1 for vertices removed with the band
-  std::vector<int> source_map;    // #V_source: merged index
-  std::vector<int> strip_faces;   // merged faces of the re-triangulated gaps
-  std::vector<int> seam_vertices; // merged vertices on the strips (both sides), ascending
+  TriMesh mesh;                    // target part first, then the source
+  std::vector<int> target_map;     // #V_target: merged index, -1 for vertices removed with the band
+  std::vector<int> source_map;     // #V_source: merged index
+  std::vector<int> strip_faces;    // merged faces of the re-triangulated gaps
+  std::vector<int> seam_vertices;  // merged vertices on the strips (both sides), ascending
 };
 
 // source  the deformed source (same connectivity as the one pairs were made on). Throws

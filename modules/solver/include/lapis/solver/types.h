@@ -31,14 +31,14 @@ const char* to_string(FactorKind k);
 struct FactorStats {
   Backend backend = Backend::Cholmod;
   FactorKind kind = FactorKind::Supernodal;
-  int n = 0;                    // rows of A
-  std::int64_t nnz_A = 0;       // non-zeros of A (both triangles)
-  std::int64_t nnz_L = 0;       // non-zeros of the factor L
-  double flops = 0;             // floating-point operations of the numeric factorization
-  std::string ordering;         // fill-reducing ordering the analysis chose (AMD, METIS, ...)
-  double analyze_ms = 0;        // symbolic analysis
-  double factorize_ms = 0;      // last numeric factorization
-  double solve_ms = 0;          // last solve
+  int n = 0;                // rows of A
+  std::int64_t nnz_A = 0;   // non-zeros of A (both triangles)
+  std::int64_t nnz_L = 0;   // non-zeros of the factor L
+  double flops = 0;         // floating-point operations of the numeric factorization
+  std::string ordering;     // fill-reducing ordering the analysis chose (AMD, METIS, ...)
+  double analyze_ms = 0;    // symbolic analysis
+  double factorize_ms = 0;  // last numeric factorization
+  double solve_ms = 0;      // last solve
 };
 
 }  // namespace lapis::solver

@@ -14,7 +14,7 @@
 namespace lapis::solver {
 
 enum class ModifyMethod {
-  Auto,         // let the cost model choose (the default)
+  Auto,  // let the cost model choose (the default)
   UpdateDowndate,
   Refactorize,
 };
@@ -24,10 +24,10 @@ const char* to_string(ModifyMethod m);
 // What one modification did.
 struct ModifyReport {
   ModifyMethod method = ModifyMethod::UpdateDowndate;  // what actually ran (never Auto)
-  int rank = 0;                     // columns of C (update + downdate)
-  double predicted_updown_ms = 0;   // the cost model's predictions
+  int rank = 0;                                        // columns of C (update + downdate)
+  double predicted_updown_ms = 0;                      // the cost model's predictions
   double predicted_refactor_ms = 0;
-  double ms = 0;                    // measured wall time
+  double ms = 0;  // measured wall time
 };
 
 struct UpdatableCholeskyOptions {
