@@ -229,11 +229,13 @@ void DeformApp::on_exit(viewer::Viewer& v) {
       request_solve();
     }
     pending_export_ = true;
-    if (export_ready())
-      export_result(v);
-    else
+    if (!export_ready()) {
       std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
                    !selection_error_.empty() ? selection_error_.c_str() : engine_error_.c_str());
+      exit_status_ = 1;
+    } else if (!export_result(v)) {
+      exit_status_ = 1;
+    }
     pending_export_ = false;
   }
 }
@@ -333,13 +335,13 @@ bool DeformApp::export_ready() const {
   return last_ && !worker_.busy() && received_ == submitted_ && last_->request == submitted_ && !last_->frame.preview;
 }
 
-void DeformApp::export_result(viewer::Viewer& v) {
+bool DeformApp::export_result(viewer::Viewer& v) {
   pending_export_ = false;
   if (!export_ready()) {
-    if (!selection_) return v.flash("export: " + selection_error_);
-    if (!engine_error_.empty()) return v.flash("export: " + engine_error_);
+    if (!selection_) return v.flash("export: " + selection_error_), false;
+    if (!engine_error_.empty()) return v.flash("export: " + engine_error_), false;
     pending_export_ = true;  // written once the newest solve arrives
-    return v.flash("export: waiting for the solve to finish");
+    return v.flash("export: waiting for the solve to finish"), false;
   }
   try {
     const fs::path& out = paths_.export_mesh;
@@ -373,8 +375,11 @@ void DeformApp::export_result(viewer::Viewer& v) {
     files.commit();
     v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json)");
     std::printf("exported %s\n", out.string().c_str());
+    return true;
   } catch (const Error& e) {
     v.flash(std::string("export failed: ") + e.what());
+    std::fprintf(stderr, "lapis-deform: export failed: %s\n", e.what());
+    return false;
   }
 }
 

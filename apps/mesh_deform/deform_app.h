@@ -68,6 +68,7 @@ class DeformApp final : public viewer::ViewerApp {
   void on_frame(viewer::Viewer& v) override;
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
+  int exit_status() const override { return exit_status_; }
   bool busy() const override;
   void benchmark_fields(nlohmann::json& j) const override;
 
@@ -103,7 +104,8 @@ class DeformApp final : public viewer::ViewerApp {
   // Files.
   void open_mesh(viewer::Viewer& v, const fs::path& path);
   void save_selection(viewer::Viewer& v);
-  void export_result(viewer::Viewer& v);
+  // Writes the result and the files that reproduce it; false when nothing was written.
+  bool export_result(viewer::Viewer& v);
   bool export_ready() const;
 
   // Engine.
@@ -172,6 +174,7 @@ class DeformApp final : public viewer::ViewerApp {
   std::string engine_error_;
   double setup_started_ = -1;  // time a request needing setup was submitted
   bool pending_export_ = false;
+  int exit_status_ = 0;                      // 1 when the export on exit wrote nothing
   std::vector<double> solve_ms_, setup_ms_;  // for --benchmark
   long drag_frames_ = 0;
   double now_ = 0;

@@ -454,7 +454,7 @@ void MergeApp::on_exit(viewer::Viewer& v) {
       worker_.wait();
       receive_merge(v);
     }
-    export_all(v);
+    if (!export_all(v)) exit_status_ = 1;
   }
 }
 

@@ -84,6 +84,7 @@ class MergeApp final : public viewer::ViewerApp {
   void on_frame(viewer::Viewer& v) override;
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
+  int exit_status() const override { return exit_status_; }
   bool busy() const override;
   void benchmark_fields(nlohmann::json& j) const override;
 
@@ -129,7 +130,8 @@ class MergeApp final : public viewer::ViewerApp {
   bool auto_merge_allowed() const;
 
   // Exports (merge_export.cpp).
-  void export_all(viewer::Viewer& v);
+  // Writes the merge and the files that reproduce it; false when nothing was written.
+  bool export_all(viewer::Viewer& v);
 
   // Drawing (merge_scene.cpp) and panels (merge_panels.cpp).
   void update_scene(viewer::Viewer& v);
@@ -163,6 +165,7 @@ class MergeApp final : public viewer::ViewerApp {
   bool auto_merge_ = true;
   bool scene_dirty_ = true;
   bool export_pending_ = false;
+  int exit_status_ = 0;  // 1 when the export on exit wrote nothing
 
   // Engine: a Merger is kept between jobs while the source and the options it was built
   // with stay the same (only the worker touches it).

@@ -21,10 +21,15 @@ std::string shortest(double x) {  // round-trips, so the command reproduces the 
 
 }  // namespace
 
-void MergeApp::export_all(viewer::Viewer& v) {
+bool MergeApp::export_all(viewer::Viewer& v) {
   export_pending_ = false;
-  if (!last_ || last_->revision != revision()) return v.flash("export: no merge of the current setup");
-  if (!last_->error.empty()) return v.flash("export: nothing to export, the merge failed: " + last_->error);
+  auto refuse = [&](const std::string& why) {
+    v.flash(why);
+    std::fprintf(stderr, "lapis-merge: %s\n", why.c_str());
+    return false;
+  };
+  if (!last_ || last_->revision != revision()) return refuse("export: no merge of the current setup");
+  if (!last_->error.empty()) return refuse("export: nothing to export, the merge failed: " + last_->error);
   const std::string p = paths_.export_prefix.string();
   const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj",
                     pairs = p + "_pairs.json", handles = p + "_handles.json", command = p + "_command.txt";
@@ -51,8 +56,9 @@ void MergeApp::export_all(viewer::Viewer& v) {
     files.commit();
     v.flash("exported " + merged + " and " + pairs);
     std::printf("exported %s, %s, %s, %s\n", merged.c_str(), source.c_str(), target.c_str(), pairs.c_str());
+    return true;
   } catch (const Error& e) {
-    v.flash(std::string("export failed: ") + e.what());
+    return refuse(std::string("export failed: ") + e.what());
   }
 }
 

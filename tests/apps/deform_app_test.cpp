@@ -343,14 +343,15 @@ TEST_CASE("apps: deform app — bad input is reported, not a crash") {
   const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   CHECK(text.find("lapis-deform: error:") == 0);
   CHECK(text.find("bad.off") != std::string::npos);
-  // A handle outside the mesh: the app starts, says why, and exports nothing.
+  // A handle outside the mesh: the app starts, says why, exports nothing, and the batch run
+  // that asked for the export fails.
   std::ofstream(dir / "h.json")
       << R"({"regions": [{"vertices": [999999], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
   std::ofstream(dir / "roi.txt") << "1 2 3";
   REQUIRE(run_under_xvfb(kApp + " --headless --mesh " + kMesh.string() + " --roi " + (dir / "roi.txt").string() +
                          " --handles " + (dir / "h.json").string() + " --export " + (dir / "none.obj").string() +
                          " --export-on-exit --screenshot " + (dir / "err.png").string() + " 2> " +
-                         (dir / "err2.txt").string()) == 0);
+                         (dir / "err2.txt").string()) == 1);
   std::ifstream err2(dir / "err2.txt");
   const std::string text2((std::istreambuf_iterator<char>(err2)), std::istreambuf_iterator<char>());
   CHECK(text2.find("out of range") != std::string::npos);
@@ -365,4 +366,20 @@ TEST_CASE("apps: deform app — bad input is reported, not a crash") {
   const std::string text3((std::istreambuf_iterator<char>(err3)), std::istreambuf_iterator<char>());
   CHECK(text3.find("mesh_deform::Deformer::precompute(): region handle 0 vertex 7 is outside the ROI") !=
         std::string::npos);
+}
+
+TEST_CASE("apps: deform app — a headless export that cannot be written fails the run, naming the cause") {
+  const fs::path dir = scratch_dir();
+  std::ofstream(dir / "a_file") << "not a directory";
+  const fs::path log = dir / "export_failed.log";
+  const int status =
+      run_under_xvfb(kApp + " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() +
+                     " --handles " + kHandles.string() + " --export " + (dir / "a_file" / "out.obj").string() +
+                     " --export-on-exit > " + log.string() + " 2>&1");
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CAPTURE(output);
+  CHECK(status == 1);
+  CHECK(output.find("lapis-deform: export failed: ") != std::string::npos);
+  CHECK(output.find("exported") == std::string::npos);
 }

@@ -225,6 +225,25 @@ TEST_CASE("apps: merge app — replaying the recorded pairing session merges wat
   check_equals_cli(e, dir / "replayed_cli.obj");
 }
 
+TEST_CASE("apps: merge app — a headless export that cannot be written, or has no merge, fails the run") {
+  const fs::path dir = scratch_dir();
+  std::ofstream(dir / "a_file") << "not a directory";
+  const fs::path log = dir / "export_failed.log";
+  CHECK(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +
+                       " --exit-after-replay --export " + (dir / "a_file" / "m").string() + " > " + log.string() +
+                       " 2>&1") == 1);
+  std::string output = text_of(log);
+  CAPTURE(output);
+  CHECK(output.find("lapis-merge: export failed: ") != std::string::npos);
+  CHECK(output.find("exported") == std::string::npos);
+  // Nothing paired: the merge fails, and so does the export the run asked for.
+  CHECK(run_under_xvfb(kApp + " --headless --export " + (dir / "unpaired").string() + " > " + log.string() + " 2>&1") ==
+        1);
+  output = text_of(log);
+  CHECK(output.find("lapis-merge: export: nothing to export, the merge failed: ") != std::string::npos);
+  CHECK(!fs::exists(dir / "unpaired.obj"));
+}
+
 TEST_CASE("apps: merge app — the headless screenshot after a merge is neither blank nor the unedited scene") {
   const fs::path dir = scratch_dir(), before = dir / "before.png", after = dir / "after.png";
   REQUIRE(run_under_xvfb(kApp + kSize + " --headless --screenshot " + before.string()) == 0);
