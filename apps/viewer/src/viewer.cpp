@@ -34,8 +34,6 @@ bool finishing_run(const lapis::viewer::ViewerOptions& o) {
   const bool replayed = !o.replay.empty();
   return o.headless || (replayed && (o.exit_after_replay || !o.screenshot.empty()));
 }
-}  // namespace
-namespace {
 
 using Clock = std::chrono::steady_clock;
 thread_local std::string last_glfw_error;
@@ -122,42 +120,6 @@ struct GlfwCallbacks {
     v.width_ = width, v.height_ = height;
   }
 };
-
-std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& o) {
-  std::vector<std::string> rest;
-  auto value = [&](int& i, const char* flag) -> std::string {
-    if (i + 1 >= argc) throw InvalidArgument(std::string("viewer: ") + flag + " needs a value");
-    return argv[++i];
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--headless")
-      o.headless = true;
-    else if (a == "--replay")
-      o.replay = value(i, "--replay");
-    else if (a == "--record")
-      o.record = value(i, "--record");
-    else if (a == "--screenshot")
-      o.screenshot = value(i, "--screenshot");
-    else if (a == "--exit-after-replay")
-      o.exit_after_replay = true;
-    else if (a == "--benchmark")
-      o.benchmark = value(i, "--benchmark");
-    else if (a == "--ready-file")
-      o.ready_file = value(i, "--ready-file");
-    else if (a == "--size") {
-      const std::string s = value(i, "--size");
-      if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
-        throw InvalidArgument("viewer: --size expects WIDTHxHEIGHT (at least 64x64), got '" + s + "'");
-    } else if (a == "--msaa") {
-      const std::string s = value(i, "--msaa");
-      if (std::sscanf(s.c_str(), "%d", &o.msaa_samples) != 1 || o.msaa_samples < 0 || o.msaa_samples > 16)
-        throw InvalidArgument("viewer: --msaa expects 0..16 samples per pixel, got '" + s + "'");
-    } else
-      rest.push_back(a);
-  }
-  return rest;
-}
 
 Viewer::Viewer(ViewerOptions options) : options_(std::move(options)) {
   if (!options_.replay.empty()) {
