@@ -91,6 +91,11 @@ struct ImplicitLaplacianDeformer::Impl {
   }
 
   // Eq. 2.8 in displacements d = ṽ' − v' for these transforms.
+  solver::DenseMatrix guide_rhs(const HandleTransforms& transforms) const;
+  void pull_back(const solver::DenseMatrix& X, const Vertices& targets, int n0, Vertices& out) const;
+  solver::DenseMatrix polar_rhs(const Vertices& X, bool scale, int& fallbacks);
+  solver::DenseMatrix second_fixed(const HandleTransforms& transforms) const;
+
   FirstSystemInput first_input(const HandleTransforms& transforms) const {
     const Vertices& P = w.displaced;
     FirstSystemInput in;
@@ -356,6 +361,76 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
   m.guided_for = handles;
 }
 
+// The guide block's right-hand side (large rotations, §2.5's limit): each guide vertex takes the
+// φ-blend of the handles' accumulated rotation vectors and log-scales (the fixed region
+// contributes the identity with weight 1 − Σ φ_k).
+solver::DenseMatrix ImplicitLaplacianDeformer::Impl::guide_rhs(const HandleTransforms& transforms) const {
+  solver::DenseMatrix g = -guide_rest;
+  std::vector<double> log_scale(accumulated.size());
+  for (size_t h = 0; h < accumulated.size(); ++h)
+    log_scale[h] = std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+  for (size_t t = 0; t < guide_rows.size(); ++t) {
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    double ls = 0;
+    for (size_t h = 0; h < accumulated.size(); ++h) {
+      const double phi = guide_weights(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(h));
+      r += phi * accumulated[h];
+      ls += phi * log_scale[h];
+    }
+    g.middleRows(static_cast<Eigen::Index>(3 * t), 3) += (std::exp(ls) * detail::rotation_of(r)).transpose();
+  }
+  return g;
+}
+
+// The first system's result as the frame (preview, or no shearing removal), with the
+// displaced vertices pulled back (§2.4.3): ṽ_i = M_i (v_i − v'_i) + ṽ'_i.
+void ImplicitLaplacianDeformer::Impl::pull_back(const solver::DenseMatrix& X, const Vertices& targets, int n0,
+                                                Vertices& out) const {
+  const Vertices Xv = X;
+  const Vertices& P = w.displaced;
+  for (int v : free)
+    if (v < n0) out.row(v) = Xv.row(v);
+  for (int v : w.moved)
+    if (v < n0 && w.role[v] == VertexRole::Free)
+      out.row(v) = Xv.row(v) + (G.gradient(v, Xv) * (w.mesh.V.row(v) - P.row(v)).transpose()).transpose();
+  for (int v : constrained)
+    if (v < n0) out.row(v) = targets.row(v);
+}
+
+// Shearing removal (§2.4.4): M_i = R_i S_i, s_i = sqrt((λ1² + λ2² + λ3²) / 3) = ‖M_i‖_F / √3;
+// the second system's right-hand side s_i R_i δ_i − δ_i per free vertex.
+solver::DenseMatrix ImplicitLaplacianDeformer::Impl::polar_rhs(const Vertices& X, bool scale, int& fallbacks) {
+  const int nf = static_cast<int>(free.size());
+  solver::DenseMatrix rhs(nf, 3);
+  fallbacks = core::parallel_sum<int>(0, nf, detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    int fell = 0;
+    for (std::ptrdiff_t k = lo; k < hi; ++k) {
+      const int v = free[static_cast<size_t>(k)];
+      const Eigen::Matrix3d M = G.gradient(v, X);
+      bool fell_back = false;
+      // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
+      const Eigen::Matrix3d R = detail::nearest_rotation(M, polar_start[static_cast<size_t>(k)], &fell_back);
+      fell += fell_back;
+      const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
+      const Eigen::Vector3d d = delta.row(k).transpose();
+      rhs.row(k) = (s_i * (R * d) - d).transpose();
+    }
+    return fell;
+  });
+  return rhs;
+}
+
+// The second system's constrained displacements: each constrained vertex where its handle puts it.
+solver::DenseMatrix ImplicitLaplacianDeformer::Impl::second_fixed(const HandleTransforms& transforms) const {
+  solver::DenseMatrix fixed(constrained.size(), 3);
+  for (size_t k = 0; k < constrained.size(); ++k) {
+    const int v = constrained[k];
+    const Eigen::Vector3d r = w.mesh.V.row(v).transpose();
+    fixed.row(k) = (place(transforms, v, r) - r).transpose();
+  }
+  return fixed;
+}
+
 void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
@@ -385,74 +460,25 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   } else {
     FirstSystemInput in = m.first_input(transforms);
     if (big != m.guided_for) build_guide(big);
-    solver::DenseMatrix g = -m.guide_rest;
-    // Each guide vertex takes the φ-blend of the handles' accumulated rotation vectors and
-    // log-scales (the fixed region contributes the identity with weight 1 − Σ φ_k).
-    std::vector<double> log_scale(m.accumulated.size());
-    for (size_t h = 0; h < m.accumulated.size(); ++h)
-      log_scale[h] = std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
-    for (size_t t = 0; t < m.guide_rows.size(); ++t) {
-      Eigen::Vector3d r = Eigen::Vector3d::Zero();
-      double ls = 0;
-      for (size_t h = 0; h < m.accumulated.size(); ++h) {
-        const double phi = m.guide_weights(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(h));
-        r += phi * m.accumulated[h];
-        ls += phi * log_scale[h];
-      }
-      g.middleRows(static_cast<Eigen::Index>(3 * t), 3) += (std::exp(ls) * detail::rotation_of(r)).transpose();
-    }
-    in.rhs.push_back(std::move(g));
+    in.rhs.push_back(m.guide_rhs(transforms));
     X = solver::DenseMatrix(P) + m.guided->solve(in.rhs, in.fixed);
   }
   stats_.first_solve_ms = ms_since(t0);
 
   if (options_.shearing == ShearingRemoval::None || preview_) {
-    // Pull-back of displaced vertices (§2.4.3): ṽ_i = M_i (v_i − v'_i) + ṽ'_i.
-    const Vertices Xv = X;
-    for (int v : m.free)
-      if (v < n0) out.row(v) = Xv.row(v);
-    for (int v : w.moved)
-      if (v < n0 && w.role[v] == VertexRole::Free)
-        out.row(v) = Xv.row(v) + (m.G.gradient(v, Xv) * (w.mesh.V.row(v) - P.row(v)).transpose()).transpose();
-    for (int v : m.constrained)
-      if (v < n0) out.row(v) = targets.row(v);
+    m.pull_back(X, targets, n0, out);
     stats_.polar_ms = stats_.second_solve_ms = 0;
     stats_.frame_ms = ms_since(t_frame);
     return;
   }
 
-  // Shearing removal (§2.4.4): M_i = R_i S_i, s_i = sqrt((λ1² + λ2² + λ3²) / 3) = ‖M_i‖_F / √3.
-  t0 = std::chrono::steady_clock::now();
-  const Vertices Xv = X;
-  const int nf = static_cast<int>(m.free.size());
-  solver::DenseMatrix rhs2(nf, 3);
-  const bool scale = options_.shearing == ShearingRemoval::ScaleFeatures;
-  stats_.polar_fallbacks =
-      core::parallel_sum<int>(0, nf, detail::kVertexChunk, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
-        int fallbacks = 0;
-        for (std::ptrdiff_t k = lo; k < hi; ++k) {
-          const int v = m.free[static_cast<size_t>(k)];
-          const Eigen::Matrix3d M = m.G.gradient(v, Xv);
-          bool fell_back = false;
-          // Frames of a drag differ little: last frame's rotation starts the fit (rotation_fit.h).
-          const Eigen::Matrix3d R = detail::nearest_rotation(M, m.polar_start[static_cast<size_t>(k)], &fell_back);
-          fallbacks += fell_back;
-          const double s_i = scale ? M.norm() / std::sqrt(3.0) : 1.0;
-          const Eigen::Vector3d d = m.delta.row(k).transpose();
-          rhs2.row(k) = (s_i * (R * d) - d).transpose();
-        }
-        return fallbacks;
-      });
+  t0 = std::chrono::steady_clock::now();  // shearing removal (§2.4.4)
+  const solver::DenseMatrix rhs2 =
+      m.polar_rhs(Vertices(X), options_.shearing == ShearingRemoval::ScaleFeatures, stats_.polar_fallbacks);
   stats_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  solver::DenseMatrix fixed2(m.constrained.size(), 3);
-  for (size_t k = 0; k < m.constrained.size(); ++k) {
-    const int v = m.constrained[k];
-    const Eigen::Vector3d r = w.mesh.V.row(v).transpose();
-    fixed2.row(k) = (m.place(transforms, v, r) - r).transpose();
-  }
-  const solver::DenseMatrix Y = m.second.solve({rhs2}, fixed2);
+  const solver::DenseMatrix Y = m.second.solve({rhs2}, m.second_fixed(transforms));
   for (int v : m.free)
     if (v < n0) out.row(v) = w.mesh.V.row(v) + Y.row(v);
   stats_.second_solve_ms = ms_since(t0);
