@@ -150,6 +150,11 @@ std::vector<Case> corpus() {
        "z\nelement face 1\nproperty list char int vertex_indices\nend_header\n" +
            ply_triangle_body().substr(0, 36) + "\xff" + i32(0) + i32(1) + i32(2),
        "invalid list count -1"},
+      {"huge_count.ply",  // a whole ASCII count no integer holds (was a float-to-int overflow)
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement "
+       "face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n" +
+           std::string(38, '3') + " 0 1 2\n",
+       "list count 3.33333e+37 of face 0 exceeds the remaining"},
       // STL
       {"empty.stl", "", "empty file, expected 'solid' or an 84-byte binary STL header"},
       {"short.stl", "abc", "byte 3: file ends inside the 84-byte binary STL header and is not ASCII STL"},

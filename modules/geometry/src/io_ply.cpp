@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io_text.h"
+#include "lapis/core/format.h"
 #include "lapis/geometry/io.h"
 #include "mesh_builder.h"
 
@@ -246,11 +247,11 @@ size_t min_instance_bytes(const Element& e, bool ascii) {
 long long list_count(Body& body, const Property& p, const Element& e, long long i) {
   auto where = [&] { return e.name + " " + std::to_string(i); };
   const double c = body.scalar(p.count_type, "list count", e, i);
-  if (!(c >= 0) || c != static_cast<double>(static_cast<long long>(c)))
-    body.fail("invalid list count " + std::to_string(c) + " of " + where());
+  if (!(c >= 0) || c != std::floor(c)) body.fail("invalid list count " + std::to_string(c) + " of " + where());
+  // Compared as doubles: an ASCII count of 1e37 is whole but no integer type holds it.
   const size_t item = body.ascii() ? 2 : type_size(p.type);
-  if (static_cast<unsigned long long>(c) > body.remaining() / item)
-    body.fail("list count " + std::to_string(static_cast<long long>(c)) + " of " + where() + " exceeds the remaining " +
+  if (c > static_cast<double>(body.remaining() / item))
+    body.fail("list count " + format_number(c) + " of " + where() + " exceeds the remaining " +
               std::to_string(body.remaining()) + " bytes");
   return static_cast<long long>(c);
 }
