@@ -9,9 +9,9 @@
 #include <string>
 
 #include "args.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
 #include "lapis/core/format.h"
-#include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/tri_mesh.h"
 
@@ -40,7 +40,7 @@ inline void emit_report(const nlohmann::json& j, const Args& args) {
   const std::string text = j.dump(2);
   std::printf("%s\n", text.c_str());
   if (args.has("--report"))
-    geometry::write_file_atomically(args.get("--report"), [&](std::ostream& out) { out << text << "\n"; });
+    core::write_file_atomically(args.get("--report"), [&](std::ostream& out) { out << text << "\n"; });
 }
 
 }  // namespace lapis::cli

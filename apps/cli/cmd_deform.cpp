@@ -9,7 +9,7 @@
 #include "args.h"
 #include "cli_io.h"
 #include "command.h"
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/methods.h"
@@ -97,7 +97,7 @@ int run(const std::vector<std::string>& argv) {
               {"arap_energy", q.arap_energy}}}};
   if (implicit) r["degenerate_vertices"] = implicit->stats().degenerate_vertices;
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
-  geometry::AtomicFileGroup outputs;    // the mesh and the report: both new or both old
+  core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
   emit_report(r, args);
   outputs.commit();

@@ -8,7 +8,7 @@
 #include "args.h"
 #include "cli_io.h"
 #include "command.h"
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
@@ -55,7 +55,7 @@ int run(const std::vector<std::string>& argv) {
   const HairstyleResult r = build_hairstyle(style, head);
 
   t = std::chrono::steady_clock::now();
-  geometry::AtomicFileGroup outputs;  // .hair, .obj, .vtk and the report: all new or all old
+  core::AtomicFileGroup outputs;  // .hair, .obj, .vtk and the report: all new or all old
   write_hair_file(out_hair, to_hair_file(r.strands));
   if (args.has("--out-obj")) write_strands_obj(args.get("--out-obj"), r.strands);
   if (args.has("--out-field")) write_field_vtk(args.get("--out-field"), r.grid, r.field);

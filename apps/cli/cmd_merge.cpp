@@ -6,7 +6,7 @@
 #include "args.h"
 #include "cli_io.h"
 #include "command.h"
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/metrics.h"
@@ -111,7 +111,7 @@ int run(const std::vector<std::string>& argv) {
                  {"max_distance", d.max_distance},
                  {"mean_distance", d.mean_distance}};
   require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
-  geometry::AtomicFileGroup outputs;    // the mesh and the report: both new or both old
+  core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out, r.mesh);
   emit_report(j, args);
   outputs.commit();

@@ -6,7 +6,7 @@
 #include "args.h"
 #include "cli_io.h"
 #include "command.h"
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/tri_mesh.h"

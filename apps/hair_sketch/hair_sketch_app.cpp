@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
@@ -280,7 +280,7 @@ void HairSketchApp::save(viewer::Viewer& v, const std::filesystem::path& path) {
   try {
     Hairstyle style = document_.style();
     style.camera = v.camera_matrices();
-    geometry::create_parent_directories(path);
+    core::create_parent_directories(path);
     save_session(path, style);
     v.flash("saved " + path.string());
     std::printf("saved session: %s\n", path.string().c_str());
@@ -313,8 +313,8 @@ bool HairSketchApp::export_strands(viewer::Viewer& v) {
     return false;
   }
   try {
-    for (const auto* p : {&paths_.export_hair, &paths_.export_obj}) geometry::create_parent_directories(*p);
-    geometry::AtomicFileGroup pair;  // both new or both old, never a new .hair beside an old .obj
+    for (const auto* p : {&paths_.export_hair, &paths_.export_obj}) core::create_parent_directories(*p);
+    core::AtomicFileGroup pair;  // both new or both old, never a new .hair beside an old .obj
     write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
     write_strands_obj(paths_.export_obj, last_->update.strands);
     pair.commit();
@@ -350,7 +350,7 @@ void HairSketchApp::on_exit(viewer::Viewer& v) {
   try {
     Hairstyle style = document_.style();
     style.camera = v.camera_matrices();
-    geometry::create_parent_directories(paths_.autosave);
+    core::create_parent_directories(paths_.autosave);
     save_session(paths_.autosave, style);
   } catch (const Error& e) {
     std::fprintf(stderr, "lapis-hair-sketch: autosave on exit failed: %s\n", e.what());

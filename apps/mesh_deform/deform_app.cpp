@@ -7,7 +7,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/selection_io.h"
 #include "lapis/viewer/colormap.h"
@@ -294,7 +294,7 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
 void DeformApp::save_selection(viewer::Viewer& v) {
   if (!selection_) return v.flash("save selection: " + selection_error_);
   try {
-    for (const auto* p : {&paths_.roi, &paths_.handles}) geometry::create_parent_directories(*p);
+    for (const auto* p : {&paths_.roi, &paths_.handles}) core::create_parent_directories(*p);
     HandleTransforms now;
     for (int label : selection_->handle_label) now.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
     write_roi(paths_.roi, selection_->selection.roi);
@@ -345,11 +345,11 @@ bool DeformApp::export_result(viewer::Viewer& v) {
   }
   try {
     const fs::path& out = paths_.export_mesh;
-    geometry::create_parent_directories(out);
+    core::create_parent_directories(out);
     const fs::path stem = out.parent_path() / out.stem();
     geometry::TriMesh result = rest_;
     result.V = last_->frame.positions;
-    geometry::AtomicFileGroup files;  // the mesh and the files that reproduce it: all new or all old
+    core::AtomicFileGroup files;  // the mesh and the files that reproduce it: all new or all old
     geometry::write_mesh(out, result);
     // What `lapis deform` needs to reproduce the export: the selection and every frame this
     // setup solved (the implicit method unwraps rotations over them, ARAP warm-starts).
@@ -371,7 +371,7 @@ bool DeformApp::export_result(viewer::Viewer& v) {
                         {"iterations", s.arap_iterations},
                         {"frames", last_->frame.history.size()},
                         {"cli", command}};
-    geometry::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+    core::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
     files.commit();
     v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json)");
     std::printf("exported %s\n", out.string().c_str());

@@ -12,7 +12,7 @@
 
 #include "bundled_meshes.h"
 #include "first_view.h"
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/mesh_merge/merge_setup.h"
 
@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     const nlohmann::json out{
         {"format", "lapis-events"}, {"version", 1}, {"width", kWidth}, {"height", kHeight}, {"events", e.list}};
     const auto path = std::filesystem::path(argv[1]) / "assets/events/merge_demo.json";
-    lapis::geometry::write_file_atomically(path, [&](std::ostream& o) { o << out.dump(1) << "\n"; });
+    lapis::core::write_file_atomically(path, [&](std::ostream& o) { o << out.dump(1) << "\n"; });
     std::printf("%s: key pixels source (%.0f, %.0f), target (%.0f, %.0f)\n", path.c_str(), sp.x(), sp.y(), tp.x(),
                 tp.y());
   } catch (const std::exception& ex) {

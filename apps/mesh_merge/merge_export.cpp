@@ -5,7 +5,7 @@
 #include <charconv>
 #include <cstdio>
 
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/pairs_file.h"
 #include "merge_app.h"
@@ -34,9 +34,9 @@ bool MergeApp::export_all(viewer::Viewer& v) {
   const std::string merged = p + ".obj", source = p + "_source.obj", target = p + "_target.obj",
                     pairs = p + "_pairs.json", handles = p + "_handles.json", command = p + "_command.txt";
   try {
-    geometry::create_parent_directories(paths_.export_prefix);
+    core::create_parent_directories(paths_.export_prefix);
     const MergeSetup& s = setup();
-    geometry::AtomicFileGroup files;  // the merge and the files that reproduce it: all new or all old
+    core::AtomicFileGroup files;  // the merge and the files that reproduce it: all new or all old
     geometry::write_mesh(merged, last_->result.mesh);
     geometry::write_mesh(source, mesh_merge::placed_source(s));
     geometry::write_mesh(target, *s.target);
@@ -52,7 +52,7 @@ bool MergeApp::export_all(viewer::Viewer& v) {
              shortest(t.target_width) + " --keep " +
              (t.keep == mesh_merge::TransitionKeep::Source ? "source" : "target");
     }
-    geometry::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
+    core::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
     files.commit();
     v.flash("exported " + merged + " and " + pairs);
     std::printf("exported %s, %s, %s, %s\n", merged.c_str(), source.c_str(), target.c_str(), pairs.c_str());

@@ -175,8 +175,8 @@ TEST_CASE("apps: hair app — a headless export that cannot be written fails the
   const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CAPTURE(output);
   CHECK(status == 1);  // not 0 (the export failed) and not an abort (134: uncaught filesystem_error)
-  CHECK(output.find("export failed: geometry::create_parent_directories(): ") != std::string::npos);
+  CHECK(output.find("export failed: core::create_parent_directories(): ") != std::string::npos);
   CHECK(output.find("exported") == std::string::npos);
   // The autosave beside --save-session F/s.json, F a file, is reported, not an abort.
-  CHECK(output.find("autosave on exit failed: geometry::create_parent_directories(): ") != std::string::npos);
+  CHECK(output.find("autosave on exit failed: core::create_parent_directories(): ") != std::string::npos);
 }

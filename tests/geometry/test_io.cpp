@@ -7,9 +7,9 @@
 #include <bit>
 #include <fstream>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
 #include "lapis/core/format.h"
-#include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "test_util.h"
 
@@ -134,16 +134,16 @@ TEST_CASE("geometry: writers are atomic and leave no temporary files") {
   const fs::path path = dir / "m.off";
   write_mesh(path, test::tetrahedron());
   // A writer that throws half way leaves the previous file intact and no debris.
-  CHECK_THROWS_AS(write_file_atomically(path,
-                                        [](std::ostream& out) {
-                                          out << "garbage";
-                                          throw std::runtime_error("crash");
-                                        }),
+  CHECK_THROWS_AS(lapis::core::write_file_atomically(path,
+                                                     [](std::ostream& out) {
+                                                       out << "garbage";
+                                                       throw std::runtime_error("crash");
+                                                     }),
                   std::runtime_error);
   CHECK(read_mesh(path).F == test::tetrahedron().F);
   CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);
   CHECK_THROWS_WITH_AS(write_mesh(dir / "missing_dir" / "m.off", test::tetrahedron()),
-                       doctest::Contains("geometry::write_file_atomically(): "), lapis::IoError);
+                       doctest::Contains("core::write_file_atomically(): "), lapis::IoError);
   CHECK_THROWS_WITH_AS(write_mesh(dir / "m.xyz", test::tetrahedron()), doctest::Contains("unknown extension '.xyz'"),
                        lapis::IoError);
 }
@@ -154,7 +154,7 @@ std::string slurp(const fs::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 void write_text(const fs::path& p, const std::string& text) {
-  write_file_atomically(p, [&](std::ostream& out) { out << text; });
+  lapis::core::write_file_atomically(p, [&](std::ostream& out) { out << text; });
 }
 size_t entries(const fs::path& dir) { return std::distance(fs::directory_iterator(dir), fs::directory_iterator()); }
 }  // namespace
@@ -192,7 +192,7 @@ TEST_CASE("geometry: an atomic write removes the temporary files that killed pro
   const fs::path alive = dir / (".strands.hair.lapis-tmp-" + std::to_string(::getpid()) + "-999");
   const fs::path other = dir / (".other.hair.lapis-tmp-" + std::to_string(child) + "-0");
   for (const fs::path& p : {dead, alive, other}) std::ofstream(p) << "87 MB of a killed export";
-  CHECK(stale_temporaries(target) == std::vector<fs::path>{dead});
+  CHECK(lapis::core::stale_temporaries(target) == std::vector<fs::path>{dead});
   write_text(target, "complete");
   CHECK_FALSE(fs::exists(dead));
   CHECK(fs::exists(alive));  // a live process may still finish it
@@ -207,10 +207,10 @@ TEST_CASE("geometry: a group of atomic writes renames all files or none") {
   write_text(a, "old a");
   write_text(b, "old b");
   CHECK_THROWS_AS(([&] {
-                    AtomicFileGroup group;
+                    lapis::core::AtomicFileGroup group;
                     write_text(a, "new a");
                     CHECK(slurp(a) == "old a");  // staged, not renamed
-                    write_file_atomically(b, [](std::ostream& out) {
+                    lapis::core::write_file_atomically(b, [](std::ostream& out) {
                       out << "half";
                       throw lapis::IoError("disk full");
                     });
@@ -221,13 +221,13 @@ TEST_CASE("geometry: a group of atomic writes renames all files or none") {
   CHECK(slurp(b) == "old b");
   CHECK(entries(dir) == 2);
   {
-    AtomicFileGroup group;
+    lapis::core::AtomicFileGroup group;
     write_text(a, "abandoned");
   }  // no commit: nothing renamed
   CHECK(slurp(a) == "old a");
   CHECK(entries(dir) == 2);
   {
-    AtomicFileGroup group;
+    lapis::core::AtomicFileGroup group;
     write_text(a, "new a");
     write_text(b, "new b");
     group.commit();

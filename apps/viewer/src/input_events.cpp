@@ -3,9 +3,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/checked_number.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::viewer {
 namespace {
@@ -74,7 +74,7 @@ void EventLog::save(const std::filesystem::path& path) const {
     }
     list.push_back(std::move(o));
   }
-  geometry::write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
+  core::write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
 }
 
 EventLog EventLog::load(const std::filesystem::path& path) {

@@ -5,8 +5,8 @@
 
 #include <string>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::viewer {
 namespace {
@@ -23,7 +23,7 @@ void write_png(const std::filesystem::path& path, const Image& image) {
     throw InvalidArgument("viewer::write_png(): " + path.string() + ": image is " + std::to_string(image.width) + "x" +
                           std::to_string(image.height) + " with " + std::to_string(image.rgba.size()) +
                           " bytes, expected 4 per pixel");
-  geometry::write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     if (!stbi_write_png_to_func(append, &out, image.width, image.height, 4, image.rgba.data(), image.width * 4))
       throw IoError("viewer::write_png(): " + path.string() + ": PNG encoding failed");
   });

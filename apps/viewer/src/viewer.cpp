@@ -17,8 +17,8 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 #include "lapis/viewer/renderer.h"
 
 namespace lapis::viewer {
@@ -268,7 +268,7 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
     std::copy_n(raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row,
                 image.rgba.data() + static_cast<size_t>(y) * row);
   for (size_t k = 3; k < image.rgba.size(); k += 4) image.rgba[k] = 255;
-  geometry::create_parent_directories(path);
+  core::create_parent_directories(path);
   write_png(path, image);
   std::printf("screenshot: %s\n", path.string().c_str());
 }
@@ -279,8 +279,8 @@ void Viewer::report_ready(bool busy) {
                             " busy=" + (busy ? "1" : "0");
   if (state == last_ready_) return;
   last_ready_ = state;
-  geometry::write_file_atomically(options_.ready_file,
-                                  [&](std::ostream& out) { out << "frame=" << frame_ << state << "\n"; });
+  core::write_file_atomically(options_.ready_file,
+                              [&](std::ostream& out) { out << "frame=" << frame_ << state << "\n"; });
 }
 
 void Viewer::write_benchmark(const ViewerApp& app) const {
@@ -296,8 +296,8 @@ void Viewer::write_benchmark(const ViewerApp& app) const {
   j["width"] = width_;
   j["height"] = height_;
   app.benchmark_fields(j);
-  geometry::create_parent_directories(options_.benchmark);
-  geometry::write_file_atomically(options_.benchmark, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  core::create_parent_directories(options_.benchmark);
+  core::write_file_atomically(options_.benchmark, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
   std::printf("benchmark: %s\n", options_.benchmark.string().c_str());
 }
 

@@ -106,7 +106,7 @@ void append_vertex_line(std::string& s, const Eigen::Vector3d& p) {
 void write_obj(const std::filesystem::path& path, const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::write_obj()");
   require_finite_vertices(mesh, "geometry::write_obj()");
-  write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     std::string s;
     for (int v = 0; v < mesh.num_vertices(); ++v) {
       append_vertex_line(s, mesh.V.row(v).transpose());
@@ -133,7 +133,7 @@ void write_obj_polylines(const std::filesystem::path& path,
       if (!polylines[i][k].allFinite())
         throw InvalidArgument("geometry::write_obj_polylines(): point " + std::to_string(k) + " of polyline " +
                               std::to_string(i) + " is not finite");
-  write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     std::string s;
     long long next = 1;
     for (const auto& line : polylines) {

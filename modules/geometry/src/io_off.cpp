@@ -85,7 +85,7 @@ TriMesh read_off(const std::filesystem::path& path, Warnings* warnings) {
 void write_off(const std::filesystem::path& path, const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::write_off()");
   require_finite_vertices(mesh, "geometry::write_off()");
-  write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     std::string s = "OFF\n" + std::to_string(mesh.num_vertices()) + " " + std::to_string(mesh.num_faces()) + " 0\n";
     for (int v = 0; v < mesh.num_vertices(); ++v) {
       for (int k = 0; k < 3; ++k) {

@@ -353,7 +353,7 @@ void write_ply(const std::filesystem::path& path, const TriMesh& mesh, PlyFormat
                                                                : "binary_big_endian";
   const bool swap = format != PlyFormat::Ascii &&
                     ((format == PlyFormat::BinaryLittleEndian) != (std::endian::native == std::endian::little));
-  write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     std::string s = std::string("ply\nformat ") + name + " 1.0\ncomment written by Lapis\nelement vertex " +
                     std::to_string(mesh.num_vertices()) +
                     "\nproperty double x\nproperty double y\nproperty double z\nelement face " +

@@ -134,7 +134,7 @@ TriMesh read_stl(const std::filesystem::path& path, Warnings* warnings) {
 void write_stl(const std::filesystem::path& path, const TriMesh& mesh) {
   require_indices_in_range(mesh, "geometry::write_stl()");
   require_finite_vertices(mesh, "geometry::write_stl()");
-  write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     std::string s(80, '\0');
     s.replace(0, 22, "binary STL from Lapis ");
     auto put32 = [&](std::uint32_t v) {

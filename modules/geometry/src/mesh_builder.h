@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/tri_mesh.h"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 #include "lapis/geometry/io.h"
 
 namespace lapis::hair_sketch {
@@ -37,7 +37,7 @@ void write_strands_obj(const std::filesystem::path& path, const Strands& strands
 
 void write_field_vtk(const std::filesystem::path& path, const Grid& grid, const Field& field) {
   check_field(grid, field, "hair_sketch::write_field_vtk()");
-  geometry::write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     char line[512];
     out << "# vtk DataFile Version 3.0\nLapis hair vector field\nASCII\nDATASET STRUCTURED_POINTS\n";
     std::snprintf(line, sizeof line, "DIMENSIONS %d %d %d\nORIGIN %.17g %.17g %.17g\nSPACING %.17g %.17g %.17g\n",
@@ -60,7 +60,7 @@ void write_field_raw(const std::filesystem::path& path, const Grid& grid, const 
   static_assert(std::endian::native == std::endian::little, "raw field files are little-endian");
   check_field(grid, field, "hair_sketch::write_field_raw()");
   const Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> f = field.cast<float>();
-  geometry::write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(f.data()), static_cast<std::streamsize>(f.size() * sizeof(float)));
   });
 }

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <fstream>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
 namespace {
@@ -76,7 +76,7 @@ void write_hair_file(const std::filesystem::path& path, const HairFile& f) {
   h.default_transparency = f.default_transparency;
   for (int c = 0; c < 3; ++c) h.default_color[c] = f.default_color[c];
   std::memcpy(h.info, f.info.data(), std::min(f.info.size(), kInfoBytes - 1));
-  geometry::write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(&h), sizeof h);
     write_array(out, f.segments);
     write_array(out, f.points);

@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/checked_number.h"
 #include "lapis/core/error.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::hair_sketch {
 using hair_field::FieldMethod;
@@ -309,7 +309,7 @@ Hairstyle session_from_json(std::string_view text, const std::string& source, co
 
 void save_session(const std::filesystem::path& path, const Hairstyle& style) {
   const std::string text = session_to_json(style);
-  geometry::write_file_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
+  core::write_file_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
 }
 
 Hairstyle load_session(const std::filesystem::path& path, const SessionLimits& limits) {

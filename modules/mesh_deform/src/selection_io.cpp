@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/checked_number.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::mesh_deform {
 namespace {
@@ -68,7 +68,7 @@ std::vector<int> read_roi(const std::filesystem::path& path) {
 }
 
 void write_roi(const std::filesystem::path& path, const std::vector<int>& roi) {
-  geometry::write_file_atomically(path, [&](std::ostream& out) {
+  core::write_file_atomically(path, [&](std::ostream& out) {
     for (size_t k = 0; k < roi.size(); ++k) out << roi[k] << ((k + 1) % 16 == 0 || k + 1 == roi.size() ? '\n' : ' ');
   });
 }
@@ -151,7 +151,7 @@ void write_handles(const std::filesystem::path& path, const Selection& selection
   }
   // nlohmann writes doubles in their shortest round-trip form: the CLI reads back the very
   // transforms the app used.
-  geometry::write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
+  core::write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
 }
 
 }  // namespace lapis::mesh_deform

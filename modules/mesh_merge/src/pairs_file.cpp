@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "lapis/core/atomic_file.h"
 #include "lapis/core/checked_number.h"
-#include "lapis/geometry/atomic_file.h"
 
 namespace lapis::mesh_merge {
 
@@ -26,7 +26,7 @@ int vertex_index(const nlohmann::json& j, const std::string& fn, const std::stri
 }
 
 void write_json(const std::filesystem::path& path, const nlohmann::json& j) {
-  geometry::write_file_atomically(path, [&](std::ostream& out) { out << j.dump() << "\n"; });
+  core::write_file_atomically(path, [&](std::ostream& out) { out << j.dump() << "\n"; });
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "lapis/geometry/atomic_file.h"
+#include "lapis/core/atomic_file.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -15,11 +15,11 @@
 
 #include "lapis/core/error.h"
 
-namespace lapis::geometry {
+namespace lapis::core {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what, int err) {
-  throw IoError("geometry::write_file_atomically(): " + path.string() + ": " + what + ": " + std::strerror(err));
+  throw IoError("core::write_file_atomically(): " + path.string() + ": " + what + ": " + std::strerror(err));
 }
 
 // A stream buffer straight onto a POSIX descriptor, so that we can fsync what we wrote
@@ -150,7 +150,7 @@ void create_parent_directories(const std::filesystem::path& path) {
   std::error_code ec;
   std::filesystem::create_directories(path.parent_path(), ec);
   if (ec)
-    throw IoError("geometry::create_parent_directories(): " + path.string() + ": cannot create directory " +
+    throw IoError("core::create_parent_directories(): " + path.string() + ": cannot create directory " +
                   path.parent_path().string() + ": " + ec.message());
 }
 
@@ -206,4 +206,4 @@ void AtomicFileGroup::commit() {
   }
 }
 
-}  // namespace lapis::geometry
+}  // namespace lapis::core

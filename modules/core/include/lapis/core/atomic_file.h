@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-namespace lapis::geometry {
+namespace lapis::core {
 
 // Calls write(stream) on a binary stream into a temporary sibling of path, then fsyncs and
 // renames it to path. If write throws or any I/O step fails, the temporary file is removed,
 // path is left untouched, and the exception propagates (I/O failures as lapis::IoError
-// "geometry::write_file_atomically(): <path>: <reason>"). Inside an AtomicFileGroup the
+// "core::write_file_atomically(): <path>: <reason>"). Inside an AtomicFileGroup the
 // rename waits for the group's commit().
 void write_file_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& write);
 
@@ -48,7 +48,7 @@ class AtomicFileGroup {
 };
 
 // Creates the directories above path that do not exist yet (outputs of the apps under out/).
-// Throws IoError "geometry::create_parent_directories(): <path>: <reason>", e.g. when a
+// Throws IoError "core::create_parent_directories(): <path>: <reason>", e.g. when a
 // component is a regular file, instead of std::filesystem::filesystem_error.
 void create_parent_directories(const std::filesystem::path& path);
 
@@ -56,4 +56,4 @@ void create_parent_directories(const std::filesystem::path& path);
 // processes that no longer exist. For tests and tools.
 std::vector<std::filesystem::path> stale_temporaries(const std::filesystem::path& path);
 
-}  // namespace lapis::geometry
+}  // namespace lapis::core
