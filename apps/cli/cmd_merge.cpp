@@ -34,10 +34,9 @@ constexpr const char* kUsage =
     "  H.json: {\"handles\": [5, 6, 7]}. --smooth: umbrella iterations on the seam (default 3).\n"
     "  Prints the report (timings, seam validity and smoothness, detail preservation) as JSON.\n";
 
-int run(const std::vector<std::string>& argv) {
-  const Args args(argv);
-  args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
-                   "--source-width", "--target-width", "--keep", "--report"});
+// The merge options the flags give, but the transition widths (they default to a width
+// suggested from the meshes, read later).
+mesh_merge::MergeOptions merge_options(const Args& args) {
   mesh_merge::MergeOptions o;
   const std::string mode = args.get("--mode", "independent");
   if (mode == "dependent") {
@@ -61,23 +60,15 @@ int run(const std::vector<std::string>& argv) {
   }
   o.smooth_iterations = static_cast<int>(args.get_int("--smooth", o.smooth_iterations, 0, 1000));
   o.roi_width = args.get_double("--roi-width", 0.0, 0.0, 1e300);
-  const std::string out = args.get("--out");
-  const geometry::TriMesh source = read_valid_mesh(args.get("--source"));
-  const geometry::TriMesh target = read_valid_mesh(args.get("--target"));
-  const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
-  if (transition) {
-    // Only values the module rejects with a clearer message (<= 0) pass the flag parser as well.
-    const double suggested = mesh_merge::suggested_transition_width(target, pairs);
-    o.transition.source_width = args.get_double("--source-width", suggested, -1e300, 1e300);
-    o.transition.target_width = args.get_double("--target-width", suggested, -1e300, 1e300);
-  }
+  return o;
+}
 
-  const mesh_merge::MergeResult r = mesh_merge::merge(source, target, pairs, o);
-  const mesh_merge::SeamQuality q = mesh_merge::seam_quality(target, r);
-  const mesh_merge::DetailPreservation d = mesh_merge::detail_preservation(source, r);
-
+nlohmann::json merge_report(const std::string& out, const geometry::TriMesh& source, const mesh_merge::MergeOptions& o,
+                            const mesh_merge::MergeResult& r, const mesh_merge::SeamQuality& q,
+                            const mesh_merge::DetailPreservation& d) {
+  const bool transition = o.mode == mesh_merge::MergeMode::Transition;
   nlohmann::json j;
-  j["mode"] = mode;
+  j["mode"] = o.mode == mesh_merge::MergeMode::Dependent ? "dependent" : transition ? "transition" : "independent";
   j["out"] = out;
   j["vertices"] = r.mesh.num_vertices();
   j["faces"] = r.mesh.num_faces();
@@ -89,7 +80,7 @@ int run(const std::vector<std::string>& argv) {
     j["transition"] = {{"source_width", o.transition.source_width},
                        {"target_width", o.transition.target_width},
                        {"weight", o.transition.weight},
-                       {"keep", keep},
+                       {"keep", o.transition.keep == mesh_merge::TransitionKeep::Target ? "target" : "source"},
                        {"band_vertices", r.transition_vertices.size()}};
   j["timings_ms"] = {{"setup", r.timings.setup_ms},
                      {"solve", r.timings.solve_ms},
@@ -110,6 +101,31 @@ int run(const std::vector<std::string>& argv) {
   j["detail"] = {{"laplacian_residual", d.laplacian_residual},
                  {"max_distance", d.max_distance},
                  {"mean_distance", d.mean_distance}};
+  return j;
+}
+
+int run(const std::vector<std::string>& argv) {
+  const Args args(argv);
+  args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
+                   "--source-width", "--target-width", "--keep", "--report"});
+  mesh_merge::MergeOptions o = merge_options(args);
+  const bool transition = o.mode == mesh_merge::MergeMode::Transition;
+  const std::string out = args.get("--out");
+  const geometry::TriMesh source = read_valid_mesh(args.get("--source"));
+  const geometry::TriMesh target = read_valid_mesh(args.get("--target"));
+  const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
+  if (transition) {
+    // Only values the module rejects with a clearer message (<= 0) pass the flag parser as well.
+    const double suggested = mesh_merge::suggested_transition_width(target, pairs);
+    o.transition.source_width = args.get_double("--source-width", suggested, -1e300, 1e300);
+    o.transition.target_width = args.get_double("--target-width", suggested, -1e300, 1e300);
+  }
+
+  const mesh_merge::MergeResult r = mesh_merge::merge(source, target, pairs, o);
+  const mesh_merge::SeamQuality q = mesh_merge::seam_quality(target, r);
+  const mesh_merge::DetailPreservation d = mesh_merge::detail_preservation(source, r);
+
+  const nlohmann::json j = merge_report(out, source, o, r, q, d);
   require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out, r.mesh);
