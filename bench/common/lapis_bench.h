@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "lapis/core/allocator.h"
+#include "allocator_name.h"
 
 namespace lapis::bench {
 
@@ -73,7 +73,7 @@ inline std::string fmt(double v, int digits = 1) {
 // Writes bench/results/<name>.json (atomically: temporary file, then rename).
 // The figures depend on the allocator (cmake/LapisAllocator.cmake), so the file names it.
 inline std::filesystem::path write_results(const std::string& name, nlohmann::json j) {
-  if (j.is_object() && !j.contains("allocator")) j["allocator"] = core::allocator_name();
+  if (j.is_object() && !j.contains("allocator")) j["allocator"] = allocator_name();
   const std::filesystem::path dir = std::filesystem::path(LAPIS_SOURCE_DIR) / "bench" / "results";
   std::filesystem::create_directories(dir);
   const auto path = dir / (name + ".json");
@@ -83,7 +83,7 @@ inline std::filesystem::path write_results(const std::string& name, nlohmann::js
     out << j.dump(2) << "\n";
   }
   std::filesystem::rename(tmp, path);
-  std::printf("wrote %s (allocator: %s)\n", path.string().c_str(), core::allocator_name().c_str());
+  std::printf("wrote %s (allocator: %s)\n", path.string().c_str(), allocator_name().c_str());
   return path;
 }
 

@@ -1,5 +1,5 @@
-// Which allocator this process runs on: for benchmark tables and reports, whose figures
-// depend on it (see cmake/LapisAllocator.cmake).
+// Which allocator this benchmark runs on: the tables and JSON results name it, because their
+// figures depend on it (see cmake/LapisAllocator.cmake).
 #pragma once
 
 #include <dlfcn.h>
@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <string>
 
-namespace lapis::core {
+namespace lapis::bench {
 
 // "jemalloc, thp:always, dirty_decay_ms:-1" when the process allocates through jemalloc (named
 // with the two options that change Lapis' timings), "system malloc" otherwise.
@@ -26,4 +26,4 @@ inline std::string allocator_name() {
   return name;
 }
 
-}  // namespace lapis::core
+}  // namespace lapis::bench
