@@ -80,6 +80,10 @@ class DeformApp final : public viewer::ViewerApp {
   void load_selection(viewer::Viewer& v);
   // Input (deform_input.cpp).
   bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
+  bool handle_command_key(viewer::Viewer& v, int key, bool shift);
+  bool handle_tool_key(int key);
+  bool handle_edit_key(viewer::Viewer& v, int key);
+  void select_next_painted_handle();
   bool press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods);
   void move(viewer::Viewer& v, const Eigen::Vector2d& p);
   void release(viewer::Viewer& v);

@@ -29,29 +29,36 @@ bool DeformApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
 
 bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (e.action != GLFW_PRESS && e.action != GLFW_REPEAT) return false;
-  const bool ctrl = e.mods & GLFW_MOD_CONTROL, shift = e.mods & GLFW_MOD_SHIFT;
-  if (ctrl) {
-    switch (e.key) {
-      case GLFW_KEY_Z:
-        shift ? redo(v) : undo(v);
-        return true;
-      case GLFW_KEY_Y:
-        redo(v);
-        return true;
-      case GLFW_KEY_S:
-        save_selection(v);
-        return true;
-      case GLFW_KEY_O:
-        load_selection(v);
-        return true;
-      case GLFW_KEY_E:
-        export_result(v);
-        return true;
-      default:
-        return false;  // Ctrl+P, Ctrl+Q: the viewer's
-    }
+  if (e.mods & GLFW_MOD_CONTROL) return handle_command_key(v, e.key, e.mods & GLFW_MOD_SHIFT);
+  return handle_tool_key(e.key) || handle_edit_key(v, e.key);
+}
+
+// Ctrl+key: history, files, export.
+bool DeformApp::handle_command_key(viewer::Viewer& v, int key, bool shift) {
+  switch (key) {
+    case GLFW_KEY_Z:
+      shift ? redo(v) : undo(v);
+      return true;
+    case GLFW_KEY_Y:
+      redo(v);
+      return true;
+    case GLFW_KEY_S:
+      save_selection(v);
+      return true;
+    case GLFW_KEY_O:
+      load_selection(v);
+      return true;
+    case GLFW_KEY_E:
+      export_result(v);
+      return true;
+    default:
+      return false;  // Ctrl+P, Ctrl+Q: the viewer's
   }
-  switch (e.key) {
+}
+
+// Keys that choose what the mouse does: tool, paint target, handle, brush size, colours.
+bool DeformApp::handle_tool_key(int key) {
+  switch (key) {
     case GLFW_KEY_M:
       tool_ = Tool::Move;
       return true;
@@ -73,26 +80,8 @@ bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     case GLFW_KEY_4:
       target_ = VertexLabels::kNone;
       return true;
-    case GLFW_KEY_N:
-      new_handle();
-      return true;
-    case GLFW_KEY_TAB: {
-      // Next painted handle.
-      const int n = state_.labels->handle_count();
-      for (int k = 1; k <= n; ++k)
-        if (state_.labels->any((state_.active_handle + k) % n)) {
-          state_.active_handle = (state_.active_handle + k) % n;
-          break;
-        }
-      return true;
-    }
-    case GLFW_KEY_EQUAL:
-    case GLFW_KEY_KP_ADD:
-      grow_or_shrink(v, 1);
-      return true;
-    case GLFW_KEY_MINUS:
-    case GLFW_KEY_KP_SUBTRACT:
-      grow_or_shrink(v, -1);
+    case GLFW_KEY_TAB:
+      select_next_painted_handle();
       return true;
     case GLFW_KEY_LEFT_BRACKET:
       brush_px_ = std::max(3.0f, brush_px_ / 1.25f);
@@ -104,6 +93,25 @@ bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
       color_mode_ = color_mode_ == ColorMode::Selection ? ColorMode::Distortion : ColorMode::Selection;
       surface_dirty_ = true;
       return true;
+    default:
+      return false;
+  }
+}
+
+// Keys that change the selection or the pose.
+bool DeformApp::handle_edit_key(viewer::Viewer& v, int key) {
+  switch (key) {
+    case GLFW_KEY_N:
+      new_handle();
+      return true;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_KP_ADD:
+      grow_or_shrink(v, 1);
+      return true;
+    case GLFW_KEY_MINUS:
+    case GLFW_KEY_KP_SUBTRACT:
+      grow_or_shrink(v, -1);
+      return true;
     case GLFW_KEY_R:
       reset_pose(v);
       return true;
@@ -113,6 +121,15 @@ bool DeformApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     default:
       return false;
   }
+}
+
+void DeformApp::select_next_painted_handle() {
+  const int n = state_.labels->handle_count();
+  for (int k = 1; k <= n; ++k)
+    if (state_.labels->any((state_.active_handle + k) % n)) {
+      state_.active_handle = (state_.active_handle + k) % n;
+      return;
+    }
 }
 
 int DeformApp::paint_value() const {

@@ -135,10 +135,20 @@ class MergeApp final : public viewer::ViewerApp {
 
   // Drawing (merge_scene.cpp) and panels (merge_panels.cpp).
   void update_scene(viewer::Viewer& v);
+  void update_inputs(viewer::Scene& scene, bool result);  // result: the merged mesh is shown
+  void update_result(viewer::Scene& scene, bool result);
+  void update_loops(viewer::Scene& scene);
+  void update_markers(viewer::Scene& scene);
   void update_gizmo(viewer::Viewer& v);
   void draw_labels(viewer::Viewer& v);
   void draw_menu(viewer::Viewer& v);
   void draw_merge_panel(viewer::Viewer& v);
+  void draw_inputs_and_tools(viewer::Viewer& v);
+  std::string edit_pairs(MergeSetup& next);  // each edit_* returns the name of its edit, or ""
+  std::string edit_mode(MergeSetup& next);
+  std::string edit_mode_options(MergeSetup& next);
+  std::string edit_transition_bands(mesh_merge::TransitionOptions& t);
+  void draw_merge_actions(viewer::Viewer& v);
   void draw_result_panel(viewer::Viewer& v);
   void draw_overlay(viewer::Viewer& v);
   void draw_paint_controls(viewer::Viewer& v);

@@ -65,6 +65,20 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::Begin("Merge", nullptr, ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_AlwaysAutoResize);
   draw_menu(v);
   ImGui::PushItemWidth(150);
+  draw_inputs_and_tools(v);
+  // Every section draws its widgets each frame; the last edit of the frame names the commit.
+  MergeSetup next = setup();
+  std::string edit;
+  for (std::string e : {edit_pairs(next), edit_mode(next), edit_mode_options(next)})
+    if (!e.empty()) edit = std::move(e);
+  if (!edit.empty()) commit(v, std::move(next), edit);
+  draw_merge_actions(v);
+  ImGui::PopItemWidth();
+  merge_panel_bottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
+  ImGui::End();
+}
+
+void MergeApp::draw_inputs_and_tools(viewer::Viewer& v) {
   ImGui::TextWrapped("source: %s (%d vertices, %zu loops)", source_name().c_str(), source_.mesh.num_vertices(),
                      source_.loops().size());
   ImGui::TextWrapped("target: %s (%d vertices, %zu loops)", target_name().c_str(), target_.mesh.num_vertices(),
@@ -79,29 +93,34 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::TextWrapped("keys 1-5 tools, D dependent, T transition, M merge, Tab result/inputs");
   ImGui::PopStyleColor();
   if (tool_ == Tool::Paint) draw_paint_controls(v);
+}
 
-  MergeSetup next = setup();
-  std::string edit;
-  // Pairs, with their keys; X removes.
+// The pairs, with their keys; x removes a pair, -key its last key.
+std::string MergeApp::edit_pairs(MergeSetup& next) {
   for (size_t p = 0; p < next.pairs.size(); ++p) {
     ImGui::PushID(static_cast<int>(p));
     const auto& pair = next.pairs[p];
     ImGui::Text("pair %zu: loops %d <-> %d, %zu key%s", p + 1, pair.source_loop, pair.target_loop, pair.keys.size(),
                 pair.keys.size() == 1 ? "" : "s");
     ImGui::SameLine();
-    if (ImGui::SmallButton("x"))
+    std::string edit;
+    if (ImGui::SmallButton("x")) {
       next.pairs.erase(next.pairs.begin() + static_cast<long>(p)), edit = "remove pair";
-    else if (!pair.keys.empty()) {
+    } else if (!pair.keys.empty()) {
       ImGui::SameLine();
       if (ImGui::SmallButton("-key")) next.pairs[p].keys.pop_back(), edit = "remove key";
     }
     ImGui::PopID();
-    if (!edit.empty()) break;
+    if (!edit.empty()) return edit;
   }
+  return {};
+}
 
+std::string MergeApp::edit_mode(MergeSetup& next) {
   ImGui::Separator();
   using mesh_merge::MergeMode;
   MergeMode& mode = next.options.mode;
+  std::string edit;
   if (ImGui::RadioButton("configuration-independent (thesis 3.3.1)", mode == MergeMode::Independent))
     mode = MergeMode::Independent, edit = "mode";
   if (ImGui::RadioButton("configuration-dependent (thesis 3.3.2)", mode == MergeMode::Dependent))
@@ -118,23 +137,16 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::RadioButton("optimal boundary (thesis 3.4)", off);
   tooltip(kOptimalTooltip);
   ImGui::EndDisabled();
-  if (mode == MergeMode::Transition) {
-    auto& t = next.options.transition;
-    float band[2] = {static_cast<float>(t.source_width), static_cast<float>(t.target_width)};
-    const float most = static_cast<float>(std::max(1e-3, 0.5 * mesh_merge::bbox_diagonal(target_.mesh.V)));
-    ImGui::SliderFloat2("widths", band, 1e-3f * most, most);
-    tooltip(kTransitionTooltip);
-    if (ImGui::IsItemDeactivatedAfterEdit()) t.source_width = band[0], t.target_width = band[1], edit = "band widths";
-    int keep = t.keep == mesh_merge::TransitionKeep::Source ? 0 : 1;
-    ImGui::TextUnformatted("band connectivity:");
-    ImGui::SameLine();
-    if (ImGui::RadioButton("source's", keep == 0)) keep = 0, edit = "band connectivity";
-    ImGui::SameLine();
-    if (ImGui::RadioButton("target's", keep == 1)) keep = 1, edit = "band connectivity";
-    t.keep = keep == 0 ? mesh_merge::TransitionKeep::Source : mesh_merge::TransitionKeep::Target;
-  }
+  return edit;
+}
 
-  if (next.options.mode == mesh_merge::MergeMode::Dependent) {
+// The selected mode's own options, the smoothing, and the placement of the source.
+std::string MergeApp::edit_mode_options(MergeSetup& next) {
+  using mesh_merge::MergeMode;
+  const MergeMode mode = next.options.mode;
+  std::string edit;
+  if (mode == MergeMode::Transition) edit = edit_transition_bands(next.options.transition);
+  if (mode == MergeMode::Dependent) {
     float width = static_cast<float>(next.options.roi_width);
     ImGui::SliderFloat("ROI width (0: auto)", &width, 0.0f,
                        static_cast<float>(std::max(1e-3, source_.mesh.V.colwise().maxCoeff().maxCoeff() -
@@ -157,8 +169,28 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
                                       *next.target, target_.loops()[static_cast<size_t>(next.pairs[0].target_loop)]);
     edit = "place source";
   }
-  if (!edit.empty()) commit(v, std::move(next), edit);
+  return edit;
+}
 
+std::string MergeApp::edit_transition_bands(mesh_merge::TransitionOptions& t) {
+  std::string edit;
+  float band[2] = {static_cast<float>(t.source_width), static_cast<float>(t.target_width)};
+  const float most = static_cast<float>(std::max(1e-3, 0.5 * mesh_merge::bbox_diagonal(target_.mesh.V)));
+  ImGui::SliderFloat2("widths", band, 1e-3f * most, most);
+  tooltip(kTransitionTooltip);
+  if (ImGui::IsItemDeactivatedAfterEdit()) t.source_width = band[0], t.target_width = band[1], edit = "band widths";
+  int keep = t.keep == mesh_merge::TransitionKeep::Source ? 0 : 1;
+  ImGui::TextUnformatted("band connectivity:");
+  ImGui::SameLine();
+  if (ImGui::RadioButton("source's", keep == 0)) keep = 0, edit = "band connectivity";
+  ImGui::SameLine();
+  if (ImGui::RadioButton("target's", keep == 1)) keep = 1, edit = "band connectivity";
+  t.keep = keep == 0 ? mesh_merge::TransitionKeep::Source : mesh_merge::TransitionKeep::Target;
+  return edit;
+}
+
+// Merge, auto-merge, what input is missing, the last error, undo / redo and export.
+void MergeApp::draw_merge_actions(viewer::Viewer& v) {
   ImGui::Separator();
   if (ImGui::Button("Merge (M)")) requested_revision_ = 0, request_merge();
   ImGui::SameLine();
@@ -178,9 +210,6 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Export (Ctrl+E)")) export_pending_ = true;
-  ImGui::PopItemWidth();
-  merge_panel_bottom_ = ImGui::GetWindowPos().y + ImGui::GetWindowSize().y;
-  ImGui::End();
 }
 
 void MergeApp::draw_paint_controls(viewer::Viewer& v) {

@@ -38,9 +38,16 @@ void add_point(viewer::PointItem& item, const Eigen::Vector3d& p, const Eigen::V
 }  // namespace
 
 void MergeApp::update_scene(viewer::Viewer& v) {
-  auto& scene = v.scene();
+  viewer::Scene& scene = v.scene();
   const bool result = show_result_ && shown_.has_value();
+  update_inputs(scene, result);
+  update_result(scene, result);
+  update_loops(scene);
+  update_markers(scene);
+  scene_dirty_ = false;
+}
 
+void MergeApp::update_inputs(viewer::Scene& scene, bool result) {
   // The painted region, on whichever mesh it is.
   auto paint = [&](viewer::MeshItem& item, const Eigen::Vector3f& base, bool on_this) {
     item.colors.resize(0, 3);
@@ -65,7 +72,10 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   source.visible = !result || setup().options.mode == mesh_merge::MergeMode::Dependent || tool_ == Tool::Move;
   paint(source, kSourceColor, painted_on_source_);
   ++source.version;
+}
 
+// The merged mesh, its source part tinted, and its seam strips outlined.
+void MergeApp::update_result(viewer::Scene& scene, bool result) {
   auto& merged = scene.meshes["result"];
   merged.visible = result;
   if (result) {
@@ -93,14 +103,17 @@ void MergeApp::update_scene(viewer::Viewer& v) {
           kSeamColor);
   }
   seam.width = 1.5f;
+}
 
+void MergeApp::update_loops(viewer::Scene& scene) {
+  const bool source_visible = scene.meshes["source"].visible;
   // Loops on top of everything: they are what the user clicks. The source's go with the
   // source (hidden beside an independent result: Tab shows the inputs to pick on).
   for (int side = 0; side < 2; ++side) {
     const PickableMesh& pm = side == 0 ? source_ : target_;
     auto& item = scene.lines[side == 0 ? "loops source" : "loops target"];
     item.clear();
-    item.visible = side == 1 || source.visible;
+    item.visible = side == 1 || source_visible;
     item.on_top = true;
     item.width = 3.0f;
     for (size_t l = 0; l < pm.loops().size(); ++l) {
@@ -112,14 +125,18 @@ void MergeApp::update_scene(viewer::Viewer& v) {
                                                                       : kLoopColor);
     }
   }
+}
 
+// The key correspondences and the fixed handles.
+void MergeApp::update_markers(viewer::Scene& scene) {
+  const bool source_visible = scene.meshes["source"].visible;
   auto& keys = scene.points["keys"];
   keys.points.resize(0, 3);
   keys.colors.resize(0, 3);
   keys.size = 11.0f;
   for (size_t p = 0; p < setup().pairs.size(); ++p)
     for (const auto& k : setup().pairs[p].keys) {
-      if (source.visible) add_point(keys, source_.mesh.V.row(k.source).transpose(), pair_color(static_cast<int>(p)));
+      if (source_visible) add_point(keys, source_.mesh.V.row(k.source).transpose(), pair_color(static_cast<int>(p)));
       add_point(keys, target_.mesh.V.row(k.target).transpose(), pair_color(static_cast<int>(p)));
     }
   if (pending_key_source_ >= 0) add_point(keys, source_.mesh.V.row(pending_key_source_).transpose(), kPendingColor);
@@ -135,7 +152,6 @@ void MergeApp::update_scene(viewer::Viewer& v) {
     if (h >= 0 && h < source_.mesh.num_vertices()) add_point(handles, source_.mesh.V.row(h).transpose(), kHandleColor);
   handles.visible = setup().options.mode == mesh_merge::MergeMode::Dependent;
   ++handles.version;
-  scene_dirty_ = false;
 }
 
 // The gizmo sits at the placed source's centroid and keeps its size on screen, so it is

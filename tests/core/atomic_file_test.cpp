@@ -124,4 +124,3 @@ TEST_CASE("core: a group of atomic writes renames all files or none") {
   CHECK(slurp(b) == "new b");
   CHECK(entries(dir) == 3);
 }
-

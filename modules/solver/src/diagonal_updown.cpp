@@ -150,10 +150,9 @@ Terms terms_of(const PivotSlot& slot, double* w_all, size_t n) {
   return t;
 }
 
-// One sweep for up to kTermsPerSweep terms (permuted column, δ).
-std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m, DiagonalUpdownWork& work) {
-  const size_t n = static_cast<size_t>(f.n);
-  // The union of the terms' elimination-tree paths, and which terms pass each column.
+// The sweep's columns: the union of the terms' elimination-tree paths, ascending, with the
+// terms that pass each column marked in work.terms_at.
+std::vector<int> path_union(const std::pair<int, double>* terms, int m, DiagonalUpdownWork& work) {
   std::vector<int> columns;
   for (int t = 0; t < m; ++t)
     for (int j = terms[t].first; j >= 0; j = work.parent[static_cast<size_t>(j)]) {
@@ -161,106 +160,142 @@ std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m, Diag
       work.terms_at[static_cast<size_t>(j)] |= 1u << t;
     }
   std::sort(columns.begin(), columns.end());
-  double alpha[kTermsPerSweep] = {};
-  for (int t = 0; t < m; ++t) {
-    work.w[static_cast<size_t>(t) * n + static_cast<size_t>(terms[t].first)] = std::sqrt(std::abs(terms[t].second));
-    alpha[t] = terms[t].second > 0 ? 1.0 : -1.0;  // σ: update or downdate
-  }
+  return columns;
+}
 
-  // The subtrees' work in this sweep (rows × terms), dealt to the threads heaviest first:
-  // where the terms start decides it, not the subtrees' sizes.
-  std::vector<int> top;
+// The columns of the shared ancestors (no subtree owns them), and the thread of each subtree.
+struct Deal {
+  std::vector<int> top, thread_of;
+};
+
+// The subtrees' work in this sweep (rows × terms), dealt to the threads heaviest first: where
+// the terms start decides it, not the subtrees' sizes.
+Deal deal_subtrees(const Factor& f, const std::vector<int>& columns, const DiagonalUpdownWork& work) {
+  Deal deal{{}, std::vector<int>(static_cast<size_t>(work.units), 0)};
   std::vector<double> unit_work(static_cast<size_t>(work.units), 0.0);
   for (int j : columns) {
     const int u = work.owner[static_cast<size_t>(j)];
     if (u < 0)
-      top.push_back(j);
+      deal.top.push_back(j);
     else
       unit_work[static_cast<size_t>(u)] +=
           static_cast<double>(f.nz[j]) * __builtin_popcount(work.terms_at[static_cast<size_t>(j)]);
   }
-  std::vector<int> order(static_cast<size_t>(work.units)), thread_of(static_cast<size_t>(work.units), 0);
+  std::vector<int> order(static_cast<size_t>(work.units));
   for (int u = 0; u < work.units; ++u) order[static_cast<size_t>(u)] = u;
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return unit_work[static_cast<size_t>(a)] > unit_work[static_cast<size_t>(b)]; });
   std::vector<double> load(static_cast<size_t>(work.threads), 0.0);
   for (int u : order) {
     const auto lightest = std::min_element(load.begin(), load.end()) - load.begin();
-    thread_of[static_cast<size_t>(u)] = static_cast<int>(lightest);
+    deal.thread_of[static_cast<size_t>(u)] = static_cast<int>(lightest);
     load[static_cast<size_t>(lightest)] += unit_work[static_cast<size_t>(u)];
   }
+  return deal;
+}
 
+// What the threads of one sweep share.
+struct Sweep {
+  Factor& f;
+  DiagonalUpdownWork& work;
+  const std::vector<int>& columns;
+  const Deal& deal;
+  double* alpha;  // each term's α
+  double* w_all;  // the terms' w vectors, n apart
+  size_t n;
+  std::atomic<std::ptrdiff_t>& failed;  // the column where a pivot would not stay positive
+
+  // Pivots column j with the given α and updates all its rows; false if the pivot fails.
+  bool column(int j, double* alpha_of, PivotSlot& slot) {
+    const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], alpha_of, w_all, n, slot);
+    if (slot.active < 0) return false;
+    f.x[f.p[j]] = d;
+    if (slot.active > 0) update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, f.nz[j] - 1, terms_of(slot, w_all, n));
+    return true;
+  }
+};
+
+// The subtrees: each thread its own, columns in ascending order. A term's α changes only in
+// the subtree where it starts, so the shared α array has one writer per entry.
+void sweep_subtrees(Sweep& s, int me, int threads, PivotSlot& slot) {
+  for (int j : s.columns) {
+    const int u = s.work.owner[static_cast<size_t>(j)];
+    // (Modulo the team: a nested call may get fewer threads than asked for.)
+    if (u < 0 || s.deal.thread_of[static_cast<size_t>(u)] % threads != me) continue;
+    if (!s.column(j, s.alpha, slot)) {
+      s.failed = j;
+      return;
+    }
+  }
+}
+
+// The shared ancestors in order, called by every thread of the team. A long column's rows are
+// split over the threads: every thread takes the same pivot (the same arithmetic on the same
+// data, with its own α), so one barrier per column suffices, and D(j) is written back by
+// thread 0 once that barrier is passed and no thread reads it any more. A run of short columns
+// goes to thread 0 alone, with one barrier after the run (a barrier per short column would
+// cost more than its rows, and far more when the machine is busy and a waiting thread loses
+// its core).
+void sweep_ancestors(Sweep& s, int me, int threads, PivotSlot& slot) {
+  double my_alpha[kTermsPerSweep];
+  std::copy(s.alpha, s.alpha + kTermsPerSweep, my_alpha);
+  const std::vector<int>& top = s.deal.top;
+  auto rows_of = [&](int j) { return s.f.nz[j] - 1; };
+  for (size_t k = 0; k < top.size() && s.failed < 0;) {
+    if (rows_of(top[k]) < kSplitRows) {
+      size_t end = k;
+      while (end < top.size() && rows_of(top[end]) < kSplitRows) ++end;
+      if (me == 0) {
+        for (; k < end; ++k)
+          if (!s.column(top[k], my_alpha, slot)) {
+            s.failed = top[k];
+            break;
+          }
+        std::copy(my_alpha, my_alpha + kTermsPerSweep, s.alpha);
+      }
+#pragma omp barrier
+      std::copy(s.alpha, s.alpha + kTermsPerSweep, my_alpha);
+      k = end;
+#pragma omp barrier
+      continue;
+    }
+    const int j = top[k++];
+    const double d = pivot(s.f, j, s.work.terms_at[static_cast<size_t>(j)], my_alpha, s.w_all, s.n, slot);
+    if (slot.active < 0) {  // the same on every thread
+      if (me == 0) s.failed = j;
+      break;
+    }
+    if (slot.active > 0) {
+      const int count = rows_of(j);
+      const int share = ((count + threads - 1) / threads + 7) & ~7;  // groups of eight rows
+      const int r0 = std::min(count, me * share), r1 = std::min(count, r0 + share);
+      if (r1 > r0)
+        update_rows(s.f.i + s.f.p[j] + 1 + r0, s.f.x + s.f.p[j] + 1 + r0, r1 - r0, terms_of(slot, s.w_all, s.n));
+    }
+#pragma omp barrier
+    if (me == 0) s.f.x[s.f.p[j]] = d;
+  }
+}
+
+// One sweep for up to kTermsPerSweep terms (permuted column, δ).
+std::ptrdiff_t sweep(Factor& f, const std::pair<int, double>* terms, int m, DiagonalUpdownWork& work) {
+  const size_t n = static_cast<size_t>(f.n);
+  const std::vector<int> columns = path_union(terms, m, work);
+  double alpha[kTermsPerSweep] = {};
+  for (int t = 0; t < m; ++t) {
+    work.w[static_cast<size_t>(t) * n + static_cast<size_t>(terms[t].first)] = std::sqrt(std::abs(terms[t].second));
+    alpha[t] = terms[t].second > 0 ? 1.0 : -1.0;  // σ: update or downdate
+  }
+  const Deal deal = deal_subtrees(f, columns, work);
   std::atomic<std::ptrdiff_t> failed{-1};
-  double* w_all = work.w.data();
+  Sweep s{f, work, columns, deal, alpha, work.w.data(), n, failed};
 #pragma omp parallel num_threads(work.threads)
   {
     const int me = omp_get_thread_num(), threads = omp_get_num_threads();
     PivotSlot slot;
-    // The subtrees: each thread its own, columns in ascending order. A term's α changes only
-    // in the subtree where it starts, so the shared α array has one writer per entry.
-    for (int j : columns) {
-      const int u = work.owner[static_cast<size_t>(j)];
-      // (Modulo the team: a nested call may get fewer threads than asked for.)
-      if (u < 0 || thread_of[static_cast<size_t>(u)] % threads != me) continue;
-      const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], alpha, w_all, n, slot);
-      if (slot.active < 0) {
-        failed = j;
-        break;
-      }
-      f.x[f.p[j]] = d;
-      if (slot.active > 0) update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, f.nz[j] - 1, terms_of(slot, w_all, n));
-    }
+    sweep_subtrees(s, me, threads, slot);
 #pragma omp barrier
-    // The shared ancestors in order. A long column's rows are split over the threads: every
-    // thread takes the same pivot (the same arithmetic on the same data, with its own α), so
-    // one barrier per column suffices, and D(j) is written back by thread 0 once that barrier
-    // is passed and no thread reads it any more. A run of short columns goes to thread 0
-    // alone, with one barrier after the run (a barrier per short column would cost more than
-    // its rows, and far more when the machine is busy and a waiting thread loses its core).
-    if (failed < 0) {
-      double my_alpha[kTermsPerSweep];
-      std::copy(alpha, alpha + kTermsPerSweep, my_alpha);
-      auto rows_of = [&](int j) { return f.nz[j] - 1; };
-      for (size_t k = 0; k < top.size() && failed < 0;) {
-        if (rows_of(top[k]) < kSplitRows) {
-          size_t end = k;
-          while (end < top.size() && rows_of(top[end]) < kSplitRows) ++end;
-          if (me == 0) {
-            for (; k < end; ++k) {
-              const int j = top[k];
-              const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
-              if (slot.active < 0) {
-                failed = j;
-                break;
-              }
-              f.x[f.p[j]] = d;
-              if (slot.active > 0)
-                update_rows(f.i + f.p[j] + 1, f.x + f.p[j] + 1, rows_of(j), terms_of(slot, w_all, n));
-            }
-            std::copy(my_alpha, my_alpha + kTermsPerSweep, alpha);
-          }
-#pragma omp barrier
-          std::copy(alpha, alpha + kTermsPerSweep, my_alpha);
-          k = end;
-#pragma omp barrier
-          continue;
-        }
-        const int j = top[k++];
-        const double d = pivot(f, j, work.terms_at[static_cast<size_t>(j)], my_alpha, w_all, n, slot);
-        if (slot.active < 0) {  // the same on every thread
-          if (me == 0) failed = j;
-          break;
-        }
-        if (slot.active > 0) {
-          const int count = rows_of(j);
-          const int share = ((count + threads - 1) / threads + 7) & ~7;  // groups of eight rows
-          const int r0 = std::min(count, me * share), r1 = std::min(count, r0 + share);
-          if (r1 > r0) update_rows(f.i + f.p[j] + 1 + r0, f.x + f.p[j] + 1 + r0, r1 - r0, terms_of(slot, w_all, n));
-        }
-#pragma omp barrier
-        if (me == 0) f.x[f.p[j]] = d;
-      }
-    }
+    if (failed < 0) sweep_ancestors(s, me, threads, slot);
   }
   // Every row a column touches is one of its ancestors, so on the paths: clear just those.
   for (int j : columns) {

@@ -113,16 +113,9 @@ SparseMatrix assemble(int rows, int cols, const std::vector<ColumnRun>& runs, bo
   return M;
 }
 
-}  // namespace
-
-NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const std::vector<int>& free,
-                               const std::vector<int>& fixed, int n) {
-  // role[c] >= 0: free index; role[c] < 0: fixed index -role[c] - 1.
-  std::vector<int> role(static_cast<size_t>(n), 0);
-  for (size_t j = 0; j < free.size(); ++j) role[static_cast<size_t>(free[j])] = static_cast<int>(j);
-  for (size_t j = 0; j < fixed.size(); ++j) role[static_cast<size_t>(fixed[j])] = -static_cast<int>(j) - 1;
-  // Rows of each block's W_b A_b (CSR): column c of Aᵀ W A is Σ over the entries A(r, c) of
-  // A(r, c) · row r of W A (W symmetric).
+// Rows of each block's W_b A_b (CSR): column c of Aᵀ W A is Σ over the entries A(r, c) of
+// A(r, c) · row r of W A (W symmetric).
+std::vector<RowMajor> weighted_rows(const std::vector<WeightedBlock>& blocks) {
   std::vector<RowMajor> rows(blocks.size());
   for (size_t b = 0; b < blocks.size(); ++b) {
     rows[b] = *blocks[b].A;
@@ -134,11 +127,15 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
       rows[b].swap(weighted);
     }
   }
+  return rows;
+}
+
+// Contiguous column pieces of about equal work (see kPiecesPerThread), so the runs concatenate
+// in column order: piece t holds free columns [begin[t], begin[t + 1]). Work of column c ≈ Σ
+// over its entries of the entry's row length.
+std::vector<int> column_pieces(const std::vector<WeightedBlock>& blocks, const std::vector<RowMajor>& rows,
+                               const std::vector<int>& free, int pieces) {
   const int nf = static_cast<int>(free.size());
-  // Contiguous column pieces of about equal work (see kPiecesPerThread), so the runs
-  // concatenate in column order. Work of column c ≈ Σ over its entries of the entry's row length.
-  const int threads = std::max(1, std::min(omp_get_max_threads(), nf / 256 + 1));
-  const int pieces = threads == 1 ? 1 : threads * kPiecesPerThread;
   std::vector<double> work(static_cast<size_t>(nf) + 1, 0.0);
   for (int j = 0; j < nf; ++j) {
     double w = 0;
@@ -152,55 +149,77 @@ NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const s
     begin[static_cast<size_t>(t)] =
         static_cast<int>(std::lower_bound(work.begin(), work.end(), work.back() * t / pieces) - work.begin());
   begin[0] = 0;
-  std::vector<ColumnRun> runs(static_cast<size_t>(pieces));
+  return begin;
+}
 
+// Column j (unknown c) of Aᵀ W A into the accumulator, lower triangle only. role[k] >= 0: free
+// index; role[k] < 0: fixed index -role[k] - 1.
+void accumulate_column(int j, int c, const std::vector<WeightedBlock>& blocks, const std::vector<RowMajor>& rows,
+                       const std::vector<int>& role, Accumulator& acc) {
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const int* row_start = rows[b].outerIndexPtr();
+    const int* cols = rows[b].innerIndexPtr();
+    const double* vals = rows[b].valuePtr();
+    for (SparseMatrix::InnerIterator e(*blocks[b].A, c); e; ++e) {
+      const double a = blocks[b].weight * e.value();
+      for (int p = row_start[e.row()]; p < row_start[e.row() + 1]; ++p) {
+        const int k = cols[p];
+        const int r = role[static_cast<size_t>(k)];
+        if (r >= 0 && r < j) continue;  // the upper triangle: nothing reads it
+        if (!acc.touched[static_cast<size_t>(k)]) {
+          acc.touched[static_cast<size_t>(k)] = 1;
+          (r >= 0 ? acc.free_list : acc.fixed_list).push_back(r >= 0 ? r : -r - 1);
+        }
+        acc.value[static_cast<size_t>(k)] += a * vals[p];
+      }
+    }
+  }
+}
+
+// The accumulated column appended to the run, rows sorted; the accumulator cleared.
+void flush_column(Accumulator& acc, const std::vector<int>& free, const std::vector<int>& fixed, ColumnRun& run) {
+  std::sort(acc.free_list.begin(), acc.free_list.end());
+  std::sort(acc.fixed_list.begin(), acc.fixed_list.end());
+  for (int r : acc.free_list) {
+    const size_t k = static_cast<size_t>(free[static_cast<size_t>(r)]);
+    run.rows_ff.push_back(r);
+    run.values_ff.push_back(acc.value[k]);
+    acc.value[k] = 0, acc.touched[k] = 0;
+  }
+  for (int r : acc.fixed_list) {
+    const size_t k = static_cast<size_t>(fixed[static_cast<size_t>(r)]);
+    run.rows_fx.push_back(r);
+    run.values_fx.push_back(acc.value[k]);
+    acc.value[k] = 0, acc.touched[k] = 0;
+  }
+  run.count_ff.push_back(static_cast<int>(acc.free_list.size()));
+  run.count_fx.push_back(static_cast<int>(acc.fixed_list.size()));
+  acc.free_list.clear();
+  acc.fixed_list.clear();
+}
+
+}  // namespace
+
+NormalMatrices normal_matrices(const std::vector<WeightedBlock>& blocks, const std::vector<int>& free,
+                               const std::vector<int>& fixed, int n) {
+  std::vector<int> role(static_cast<size_t>(n), 0);  // see accumulate_column
+  for (size_t j = 0; j < free.size(); ++j) role[static_cast<size_t>(free[j])] = static_cast<int>(j);
+  for (size_t j = 0; j < fixed.size(); ++j) role[static_cast<size_t>(fixed[j])] = -static_cast<int>(j) - 1;
+  const std::vector<RowMajor> rows = weighted_rows(blocks);
+  const int nf = static_cast<int>(free.size());
+  const int threads = std::max(1, std::min(omp_get_max_threads(), nf / 256 + 1));
+  const int pieces = threads == 1 ? 1 : threads * kPiecesPerThread;
+  const std::vector<int> begin = column_pieces(blocks, rows, free, pieces);
+  std::vector<ColumnRun> runs(static_cast<size_t>(pieces));
 #pragma omp parallel num_threads(threads)
   {
     Accumulator acc(n);
 #pragma omp for schedule(dynamic, 1)
     for (int t = 0; t < pieces; ++t) {
-      ColumnRun& run = runs[static_cast<size_t>(t)];
-      for (int j = begin[static_cast<size_t>(t)];
-           j < std::max(begin[static_cast<size_t>(t)], begin[static_cast<size_t>(t) + 1]); ++j) {
-        const int c = free[static_cast<size_t>(j)];
-        for (size_t b = 0; b < blocks.size(); ++b) {
-          const RowMajor& R = rows[b];
-          const int* row_start = R.outerIndexPtr();
-          const int* cols = R.innerIndexPtr();
-          const double* vals = R.valuePtr();
-          for (SparseMatrix::InnerIterator e(*blocks[b].A, c); e; ++e) {
-            const double a = blocks[b].weight * e.value();
-            for (int p = row_start[e.row()]; p < row_start[e.row() + 1]; ++p) {
-              const int k = cols[p];
-              const int r = role[static_cast<size_t>(k)];
-              if (r >= 0 && r < j) continue;  // the upper triangle: nothing reads it
-              if (!acc.touched[static_cast<size_t>(k)]) {
-                acc.touched[static_cast<size_t>(k)] = 1;
-                (r >= 0 ? acc.free_list : acc.fixed_list).push_back(r >= 0 ? r : -r - 1);
-              }
-              acc.value[static_cast<size_t>(k)] += a * vals[p];
-            }
-          }
-        }
-        // Sorted rows, values read back and the accumulator cleared.
-        std::sort(acc.free_list.begin(), acc.free_list.end());
-        std::sort(acc.fixed_list.begin(), acc.fixed_list.end());
-        for (int r : acc.free_list) {
-          const size_t k = static_cast<size_t>(free[static_cast<size_t>(r)]);
-          run.rows_ff.push_back(r);
-          run.values_ff.push_back(acc.value[k]);
-          acc.value[k] = 0, acc.touched[k] = 0;
-        }
-        for (int r : acc.fixed_list) {
-          const size_t k = static_cast<size_t>(fixed[static_cast<size_t>(r)]);
-          run.rows_fx.push_back(r);
-          run.values_fx.push_back(acc.value[k]);
-          acc.value[k] = 0, acc.touched[k] = 0;
-        }
-        run.count_ff.push_back(static_cast<int>(acc.free_list.size()));
-        run.count_fx.push_back(static_cast<int>(acc.fixed_list.size()));
-        acc.free_list.clear();
-        acc.fixed_list.clear();
+      const int first = begin[static_cast<size_t>(t)], last = std::max(first, begin[static_cast<size_t>(t) + 1]);
+      for (int j = first; j < last; ++j) {
+        accumulate_column(j, free[static_cast<size_t>(j)], blocks, rows, role, acc);
+        flush_column(acc, free, fixed, runs[static_cast<size_t>(t)]);
       }
     }
   }

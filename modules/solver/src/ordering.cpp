@@ -1,6 +1,7 @@
 #include "lapis/solver/ordering.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "checks.h"
@@ -46,17 +47,108 @@ struct Task {
   bool separator = false;
 };
 
+// Work arrays of the dissection, sized once for all n unknowns. Between two parts, local and
+// side are -1 and crosses is 0 everywhere.
+struct Scratch {
+  explicit Scratch(int n)
+      : local(static_cast<size_t>(n), -1), side(static_cast<size_t>(n), -1), crosses(static_cast<size_t>(n), 0) {}
+  std::vector<int> local;     // an unknown's index within the part being split
+  std::vector<int> side;      // 0, 1, or 2 for the separator
+  std::vector<char> crosses;  // already in crossing[its side] (widen_separator)
+  std::vector<int> column_start, rows, partition;
+  std::vector<double> ones;
+};
+
+// Bisects the skeleton restricted to the part with METIS (cholmod_bisect, on the lower
+// triangle as CHOLMOD's stype = -1 wants) and writes each unknown's side.
+void bisect_skeleton(const Adjacency& g, const std::vector<int>& part, Scratch& s, detail::CholmodContext& context,
+                     const char* fn) {
+  const int m = static_cast<int>(part.size());
+  for (int k = 0; k < m; ++k) s.local[static_cast<size_t>(part[static_cast<size_t>(k)])] = k;
+  s.column_start.assign(static_cast<size_t>(m) + 1, 0);
+  s.rows.clear();
+  for (int k = 0; k < m; ++k) {
+    const int v = part[static_cast<size_t>(k)];
+    const size_t first = s.rows.size();
+    for (int e = g.start[static_cast<size_t>(v)]; e < g.start[static_cast<size_t>(v) + 1]; ++e) {
+      const int u = g.neighbours[static_cast<size_t>(e)];
+      if (u >= 0 && s.local[static_cast<size_t>(u)] > k) s.rows.push_back(s.local[static_cast<size_t>(u)]);
+    }
+    std::sort(s.rows.begin() + static_cast<std::ptrdiff_t>(first), s.rows.end());
+    s.column_start[static_cast<size_t>(k) + 1] = static_cast<int>(s.rows.size());
+  }
+  s.ones.assign(std::max<size_t>(s.rows.size(), 1), 1.0);
+  cholmod_sparse S{};
+  S.nrow = S.ncol = static_cast<size_t>(m);
+  S.nzmax = std::max<size_t>(s.rows.size(), 1);
+  S.p = s.column_start.data();
+  S.i = s.rows.empty() ? s.column_start.data() : s.rows.data();
+  S.x = s.ones.data();
+  S.stype = -1;
+  S.itype = CHOLMOD_INT;
+  S.xtype = CHOLMOD_REAL;
+  S.dtype = CHOLMOD_DOUBLE;
+  S.sorted = 1;
+  S.packed = 1;
+  s.partition.assign(static_cast<size_t>(m), 0);
+  {
+    const std::lock_guard metis(detail::metis_mutex());  // see cholmod_context.h
+    cholmod_bisect(&S, nullptr, 0, /*compress=*/0, s.partition.data(), context.get());
+  }
+  context.check(fn, "cholmod_bisect");
+  for (int k = 0; k < m; ++k)
+    s.side[static_cast<size_t>(part[static_cast<size_t>(k)])] = s.partition[static_cast<size_t>(k)];
+}
+
+// Widens the separator: unknowns of side s coupled in A to side 1 − s join it, for the side
+// that gives the smaller separator. The skeleton's separator is only as wide as its own edges;
+// A's couplings reach further. Each coupling is read once, from its lower-triangle entry
+// (u > v), and marks both ends.
+void widen_separator(const SparseMatrix& a, const std::vector<int>& part, Scratch& s) {
+  std::vector<int> crossing[2];
+  for (int v : part) {
+    const int side = s.side[static_cast<size_t>(v)];
+    if (side == 2) continue;
+    for (SparseMatrix::InnerIterator e(a, v); e; ++e) {
+      const int u = static_cast<int>(e.row());
+      if (u <= v || s.local[static_cast<size_t>(u)] < 0 || s.side[static_cast<size_t>(u)] != 1 - side) continue;
+      for (const int end : {v, u})
+        if (!s.crosses[static_cast<size_t>(end)]) {
+          s.crosses[static_cast<size_t>(end)] = 1;
+          crossing[s.side[static_cast<size_t>(end)]].push_back(end);
+        }
+    }
+  }
+  for (const auto& list : crossing)
+    for (int v : list) s.crosses[static_cast<size_t>(v)] = 0;
+  for (int v : crossing[crossing[0].size() <= crossing[1].size() ? 0 : 1]) s.side[static_cast<size_t>(v)] = 2;
+}
+
+// The part's two sides and its separator, by the sides written; resets the scratch.
+std::array<Task, 3> split_by_side(const std::vector<int>& part, Scratch& s) {
+  std::array<Task, 3> out{Task{}, Task{}, Task{{}, true}};
+  for (int v : part) {
+    out[static_cast<size_t>(s.side[static_cast<size_t>(v)])].unknowns.push_back(v);
+    s.local[static_cast<size_t>(v)] = s.side[static_cast<size_t>(v)] = -1;
+  }
+  return out;
+}
+
+void require_skeleton_of(const SparseMatrix& A, const SparseMatrix& skeleton, const char* fn) {
+  detail::require_square(A, fn);
+  detail::require_square(skeleton, fn);
+  if (skeleton.rows() != A.rows())
+    throw InvalidArgument(std::string(fn) + ": skeleton is " + std::to_string(skeleton.rows()) + " by " +
+                          std::to_string(skeleton.cols()) + ", the matrix " + std::to_string(A.rows()) + " by " +
+                          std::to_string(A.cols()));
+}
+
 }  // namespace
 
 std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const SparseMatrix& skeleton_in,
                                             SkeletonDissectionOptions options) {
   constexpr const char* fn = "solver::skeleton_nested_dissection()";
-  detail::require_square(A_in, fn);
-  detail::require_square(skeleton_in, fn);
-  if (skeleton_in.rows() != A_in.rows())
-    throw InvalidArgument(std::string(fn) + ": skeleton is " + std::to_string(skeleton_in.rows()) + " by " +
-                          std::to_string(skeleton_in.cols()) + ", the matrix " + std::to_string(A_in.rows()) + " by " +
-                          std::to_string(A_in.cols()));
+  require_skeleton_of(A_in, skeleton_in, fn);
   const SparseMatrix A = A_in.isCompressed() ? SparseMatrix() : SparseMatrix(A_in);
   const SparseMatrix& a = A_in.isCompressed() ? A_in : A;
   const int n = static_cast<int>(a.rows());
@@ -65,13 +157,14 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
   const int leaf = std::max(options.leaf_size, 2);
 
   detail::CholmodContext context;
-  cholmod_common* c = context.get();
   std::vector<int> component(static_cast<size_t>(n), -1);  // CAMD's constraint set of each unknown
   int components = 0;
-  std::vector<int> local(static_cast<size_t>(n), -1), side(static_cast<size_t>(n), -1);
-  std::vector<char> crosses(static_cast<size_t>(n), 0);  // already in crossing[its side]
-  std::vector<int> column_start, rows, partition;
-  std::vector<double> ones;
+  auto number_as_one = [&](const std::vector<int>& part) {
+    if (part.empty()) return;
+    for (int v : part) component[static_cast<size_t>(v)] = components;
+    ++components;
+  };
+  Scratch scratch(n);
   // Depth first, the separator task below its two sides: every part is numbered before the
   // separators above it, the order CAMD's constraint sets must have.
   std::vector<Task> stack;
@@ -80,81 +173,15 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
   while (!stack.empty()) {
     Task task = std::move(stack.back());
     stack.pop_back();
-    std::vector<int>& part = task.unknowns;
-    const int m = static_cast<int>(part.size());
-    auto number_as_one = [&] {
-      if (part.empty()) return;
-      for (int v : part) component[static_cast<size_t>(v)] = components;
-      ++components;
-    };
-    if (task.separator || m <= leaf) {
-      number_as_one();
+    if (task.separator || static_cast<int>(task.unknowns.size()) <= leaf) {
+      number_as_one(task.unknowns);
       continue;
     }
-    // The skeleton restricted to the part, lower triangle (CHOLMOD's stype = -1).
-    for (int k = 0; k < m; ++k) local[static_cast<size_t>(part[static_cast<size_t>(k)])] = k;
-    column_start.assign(static_cast<size_t>(m) + 1, 0);
-    rows.clear();
-    for (int k = 0; k < m; ++k) {
-      const int v = part[static_cast<size_t>(k)];
-      const size_t first = rows.size();
-      for (int e = g.start[static_cast<size_t>(v)]; e < g.start[static_cast<size_t>(v) + 1]; ++e) {
-        const int u = g.neighbours[static_cast<size_t>(e)];
-        if (u >= 0 && local[static_cast<size_t>(u)] > k) rows.push_back(local[static_cast<size_t>(u)]);
-      }
-      std::sort(rows.begin() + static_cast<std::ptrdiff_t>(first), rows.end());
-      column_start[static_cast<size_t>(k) + 1] = static_cast<int>(rows.size());
-    }
-    ones.assign(std::max<size_t>(rows.size(), 1), 1.0);
-    cholmod_sparse S{};
-    S.nrow = S.ncol = static_cast<size_t>(m);
-    S.nzmax = std::max<size_t>(rows.size(), 1);
-    S.p = column_start.data();
-    S.i = rows.empty() ? column_start.data() : rows.data();
-    S.x = ones.data();
-    S.stype = -1;
-    S.itype = CHOLMOD_INT;
-    S.xtype = CHOLMOD_REAL;
-    S.dtype = CHOLMOD_DOUBLE;
-    S.sorted = 1;
-    S.packed = 1;
-    partition.assign(static_cast<size_t>(m), 0);
-    {
-      const std::lock_guard metis(detail::metis_mutex());  // see cholmod_context.h
-      cholmod_bisect(&S, nullptr, 0, /*compress=*/0, partition.data(), c);
-    }
-    context.check(fn, "cholmod_bisect");
-    for (int k = 0; k < m; ++k)
-      side[static_cast<size_t>(part[static_cast<size_t>(k)])] = partition[static_cast<size_t>(k)];
-    // Widen: unknowns of side s coupled in A to side 1 − s join the separator, for the side
-    // that gives the smaller separator. The skeleton's separator is only as wide as its own
-    // edges; A's couplings reach further.
-    // Each coupling is read once, from its lower-triangle entry (u > v), and marks both ends.
-    std::vector<int> crossing[2];
-    for (int v : part) {
-      const int s = side[static_cast<size_t>(v)];
-      if (s == 2) continue;
-      for (SparseMatrix::InnerIterator e(a, v); e; ++e) {
-        const int u = static_cast<int>(e.row());
-        if (u <= v || local[static_cast<size_t>(u)] < 0 || side[static_cast<size_t>(u)] != 1 - s) continue;
-        for (const int end : {v, u})
-          if (!crosses[static_cast<size_t>(end)]) {
-            crosses[static_cast<size_t>(end)] = 1;
-            crossing[side[static_cast<size_t>(end)]].push_back(end);
-          }
-      }
-    }
-    for (const auto& list : crossing)
-      for (int v : list) crosses[static_cast<size_t>(v)] = 0;
-    for (int v : crossing[crossing[0].size() <= crossing[1].size() ? 0 : 1]) side[static_cast<size_t>(v)] = 2;
-    Task left, right, separator{{}, true};
-    for (int v : part) {
-      const int s = side[static_cast<size_t>(v)];
-      (s == 0 ? left : s == 1 ? right : separator).unknowns.push_back(v);
-      local[static_cast<size_t>(v)] = side[static_cast<size_t>(v)] = -1;
-    }
+    bisect_skeleton(g, task.unknowns, scratch, context, fn);
+    widen_separator(a, task.unknowns, scratch);
+    auto [left, right, separator] = split_by_side(task.unknowns, scratch);
     if (left.unknowns.empty() || right.unknowns.empty()) {
-      number_as_one();  // nothing to separate (a clique, or a failed bisection)
+      number_as_one(task.unknowns);  // nothing to separate (a clique, or a failed bisection)
       continue;
     }
     stack.push_back(std::move(separator));
@@ -164,7 +191,7 @@ std::vector<int> skeleton_nested_dissection(const SparseMatrix& A_in, const Spar
 
   std::vector<int> perm(static_cast<size_t>(n));
   cholmod_sparse view = detail::sparse_view(a, -1);
-  cholmod_camd(&view, nullptr, 0, component.data(), perm.data(), c);
+  cholmod_camd(&view, nullptr, 0, component.data(), perm.data(), context.get());
   context.check(fn, "cholmod_camd");
   return perm;
 }
