@@ -13,10 +13,7 @@
 namespace lapis::cli {
 
 // Thrown for a malformed command line; main() prints it with the usage and exits 2.
-class UsageError : public Error {
- public:
-  using Error::Error;
-};
+using UsageError = lapis::UsageError;
 
 class Args {
  public:

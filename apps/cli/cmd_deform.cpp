@@ -95,7 +95,7 @@ int run(const std::vector<std::string>& argv) {
               {"laplacian_length", summary(q.laplacian_length)},
               {"angle", summary(q.angle)},
               {"arap_energy", q.arap_energy}}}};
-  if (implicit) r["degenerate_vertices"] = implicit->stats().degenerate_vertices;
+  if (implicit) r["degenerate_vertices"] = implicit->report().degenerate_vertices;
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);

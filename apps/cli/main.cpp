@@ -6,7 +6,7 @@
 
 #include "args.h"
 #include "command.h"
-#include "lapis/core/error.h"
+#include "lapis/core/main_guard.h"
 
 namespace {
 
@@ -31,18 +31,8 @@ int main(int argc, char** argv) {
       std::printf("%s", c.usage);
       return 0;
     }
-    try {
-      return c.run(args);
-    } catch (const UsageError& e) {
-      std::fprintf(stderr, "lapis %s: %s\n%s", c.name, e.what(), c.usage);
-      return 2;
-    } catch (const lapis::Error& e) {
-      std::fprintf(stderr, "lapis %s: error: %s\n", c.name, e.what());
-      return 1;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "lapis %s: internal error: %s\n", c.name, e.what());
-      return 1;
-    }
+    return lapis::core::guarded_main(
+        std::string("lapis ") + c.name, [&] { return c.run(args); }, c.usage);
   }
   std::fprintf(stderr, "lapis: unknown command '%s'\n", name.c_str());
   print_overview();

@@ -2,7 +2,7 @@
 //                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
 //                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
 //                   [--roots N] [--draw-segments N]
-#include <cstdio>
+#include <memory>
 
 #include "args.h"
 #include "hair_sketch_app.h"
@@ -10,65 +10,57 @@
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
+#include "lapis/viewer/app_main.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lapis-hair-sketch [--session FILE] [--head MESH] [--headless] [--replay EVENTS]\n"
+    "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
+    "                         [--benchmark OUT.json] [--ready-file F] [--size WxH] [--export-hair OUT.hair]\n"
+    "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
+    "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
+    "                         adapted to the frame time in a window, all with --headless)\n"
+    "--save-session: where Ctrl+S saves (default: the --session file, else hairstyle.json);\n"
+    "the autosave (every minute and on exit) goes beside it as OUT.json.autosave.json.\n"
+    "Left-drag sketches with the current tool (keys 1-6), right-drag orbits, middle-drag pans,\n"
+    "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
+    "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n";
+
+std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string>& rest) {
   using namespace lapis;
-  try {
-    viewer::ViewerOptions options;
-    options.title = "lapis-hair-sketch";
-    const std::vector<std::string> rest = viewer::parse_viewer_flags(argc, argv, options);
-    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
-      std::printf(
-          "usage: lapis-hair-sketch [--session FILE] [--head MESH] [--headless] [--replay EVENTS]\n"
-          "                         [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
-          "                         [--benchmark OUT.json] [--ready-file F] [--size WxH] [--export-hair OUT.hair]\n"
-          "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
-          "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
-          "                         adapted to the frame time in a window, all with --headless)\n"
-          "--save-session: where Ctrl+S saves (default: the --session file, else hairstyle.json);\n"
-          "the autosave (every minute and on exit) goes beside it as OUT.json.autosave.json.\n"
-          "Left-drag sketches with the current tool (keys 1-6), right-drag orbits, middle-drag pans,\n"
-          "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
-          "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n");
-      return 0;
-    }
-    const cli::Args args(rest);
-    args.allow_only(
-        {"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots", "--draw-segments"});
-    hair_app::AppPaths paths;
-    hair_sketch::Hairstyle style;
-    hair_sketch::Head head;
-    if (args.has("--session")) {
-      paths.session = args.get("--session");
-      style = hair_sketch::load_session(paths.session);
-      head = hair_sketch::load_session_head(style, paths.session, args.get("--head", ""));
-    } else if (args.has("--head")) {
-      paths.session = "hairstyle.json";
-      head = hair_sketch::load_head(args.get("--head"));
-      style.settings.head_mesh = args.get("--head");
-    } else {
-      paths.session = "hairstyle.json";
-      style.settings.head_mesh = asset_path("head.obj").string();
-      style.settings.scalp_mask = asset_path("head_scalp.txt").string();
-      head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);
-    }
-    style.settings.roots.count = static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
-    if (args.has("--save-session")) paths.session = args.get("--save-session");
-    paths.autosave = paths.session.string() + ".autosave.json";
-    paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");
-    paths.export_obj = args.get("--export-obj", "out/hairstyle.obj");
-    paths.export_on_exit = args.has("--export-hair") || args.has("--export-obj");
-    hair_app::HairSketchApp app(std::move(head), std::move(style), paths);
-    if (args.has("--draw-segments"))
-      app.set_drawn_segments(static_cast<int>(args.get_int("--draw-segments", 0, 0, 100000000)));
-    viewer::Viewer viewer(options);
-    const int status = viewer.run(app);
-    return status;
-  } catch (const cli::UsageError& e) {
-    std::fprintf(stderr, "lapis-hair-sketch: %s (see --help)\n", e.what());
-    return 2;
-  } catch (const Error& e) {
-    std::fprintf(stderr, "lapis-hair-sketch: error: %s\n", e.what());
-    return 1;
+  const cli::Args args(rest);
+  args.allow_only(
+      {"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots", "--draw-segments"});
+  hair_app::AppPaths paths;
+  hair_sketch::Hairstyle style;
+  hair_sketch::Head head;
+  if (args.has("--session")) {
+    paths.session = args.get("--session");
+    style = hair_sketch::load_session(paths.session);
+    head = hair_sketch::load_session_head(style, paths.session, args.get("--head", ""));
+  } else if (args.has("--head")) {
+    paths.session = "hairstyle.json";
+    head = hair_sketch::load_head(args.get("--head"));
+    style.settings.head_mesh = args.get("--head");
+  } else {
+    paths.session = "hairstyle.json";
+    style.settings.head_mesh = asset_path("head.obj").string();
+    style.settings.scalp_mask = asset_path("head_scalp.txt").string();
+    head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);
   }
+  style.settings.roots.count = static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
+  if (args.has("--save-session")) paths.session = args.get("--save-session");
+  paths.autosave = paths.session.string() + ".autosave.json";
+  paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");
+  paths.export_obj = args.get("--export-obj", "out/hairstyle.obj");
+  paths.export_on_exit = args.has("--export-hair") || args.has("--export-obj");
+  auto app = std::make_unique<hair_app::HairSketchApp>(std::move(head), std::move(style), paths);
+  if (args.has("--draw-segments"))
+    app->set_drawn_segments(static_cast<int>(args.get_int("--draw-segments", 0, 0, 100000000)));
+  return app;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return lapis::viewer::app_main(argc, argv, "lapis-hair-sketch", kUsage, make_app); }

@@ -3,13 +3,14 @@
 //              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
-#include <cstdio>
+#include <memory>
 
 #include "args.h"
 #include "deform_app.h"
 #include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
+#include "lapis/viewer/app_main.h"
 
 namespace {
 
@@ -30,65 +31,52 @@ constexpr const char* kUsage =
     "export the deformed mesh with OUT.roi.txt, OUT.handles.json (every solved frame) and\n"
     "OUT.deform.json (the `lapis deform` command that reproduces it), Ctrl+P screenshot, Ctrl+Q quit.\n";
 
+std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest) {
+  using namespace lapis;
+  std::string positional;
+  if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
+  const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
+  args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features",
+                   "--iterations", "--full-while-dragging", "--export", "--export-on-exit"});
+  // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
+  // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
+  deform_app::DeformPaths paths;
+  // The bundled meshes (external/ of the assets, extracted by scripts/setup) are the file
+  // panel's choices and the default mesh; without them, a mesh given opens all the same.
+  const bool mesh_given = args.has("--mesh") || !positional.empty();
+  try {
+    paths.bundled_dir = asset_path("external");
+  } catch (const IoError& e) {
+    if (!mesh_given) throw IoError(std::string(e.what()) + "; the bundled meshes are extracted by scripts/setup");
+  }
+  paths.mesh = args.get("--mesh", mesh_given ? positional : (paths.bundled_dir / "armadillo.off").string());
+  geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
+  if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0)
+    mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
+  paths.roi = args.get("--roi", "out/deform_selection.roi.txt");
+  paths.handles = args.get("--handles", "out/deform_selection.handles.json");
+  paths.export_mesh = args.get("--export", "out/deformed.obj");
+  paths.export_on_exit = args.has("--export-on-exit");
+
+  mesh_deform::MethodSettings settings;
+  settings.method = mesh_deform::method_from_name(args.get("--method", "implicit"));
+  const std::string weights = args.get("--weights", "cotan");
+  if (weights != "cotan" && weights != "uniform")
+    throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
+  settings.weights =
+      weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
+  settings.scale_features = args.has("--scale-features");
+  settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000));
+
+  auto app =
+      std::make_unique<deform_app::DeformApp>(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));
+  // A selection given on the command line is opened before the first frame (its errors are
+  // shown in the window, like every other); a ROI file that does not exist yet is where
+  // Ctrl+S will save.
+  if (args.has("--roi") && std::filesystem::exists(paths.roi)) app->open_selection_on_start();
+  return app;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
-  using namespace lapis;
-  try {
-    viewer::ViewerOptions options;
-    options.title = "lapis-deform";
-    std::vector<std::string> rest = viewer::parse_viewer_flags(argc, argv, options);
-    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
-      std::printf("%s", kUsage);
-      return 0;
-    }
-    std::string positional;
-    if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
-    const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
-    args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features",
-                     "--iterations", "--full-while-dragging", "--export", "--export-on-exit"});
-    // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
-    // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
-    deform_app::DeformPaths paths;
-    // The bundled meshes (external/ of the assets, extracted by scripts/setup) are the file
-    // panel's choices and the default mesh; without them, a mesh given opens all the same.
-    const bool mesh_given = args.has("--mesh") || !positional.empty();
-    try {
-      paths.bundled_dir = asset_path("external");
-    } catch (const IoError& e) {
-      if (!mesh_given) throw IoError(std::string(e.what()) + "; the bundled meshes are extracted by scripts/setup");
-    }
-    paths.mesh = args.get("--mesh", mesh_given ? positional : (paths.bundled_dir / "armadillo.off").string());
-    geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
-    if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0)
-      mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
-    paths.roi = args.get("--roi", "out/deform_selection.roi.txt");
-    paths.handles = args.get("--handles", "out/deform_selection.handles.json");
-    paths.export_mesh = args.get("--export", "out/deformed.obj");
-    paths.export_on_exit = args.has("--export-on-exit");
-
-    mesh_deform::MethodSettings settings;
-    settings.method = mesh_deform::method_from_name(args.get("--method", "implicit"));
-    const std::string weights = args.get("--weights", "cotan");
-    if (weights != "cotan" && weights != "uniform")
-      throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
-    settings.weights =
-        weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
-    settings.scale_features = args.has("--scale-features");
-    settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000));
-
-    deform_app::DeformApp app(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));
-    viewer::Viewer viewer(options);
-    // A selection given on the command line is opened before the first frame (its errors are
-    // shown in the window, like every other); a ROI file that does not exist yet is where
-    // Ctrl+S will save.
-    if (args.has("--roi") && std::filesystem::exists(paths.roi)) app.open_selection_on_start();
-    return viewer.run(app);
-  } catch (const cli::UsageError& e) {
-    std::fprintf(stderr, "lapis-deform: %s (see --help)\n", e.what());
-    return 2;
-  } catch (const Error& e) {
-    std::fprintf(stderr, "lapis-deform: error: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return lapis::viewer::app_main(argc, argv, "lapis-deform", kUsage, make_app); }

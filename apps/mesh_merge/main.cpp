@@ -1,63 +1,55 @@
 // lapis-merge [--source MESH --target MESH | --preset N] [--export PREFIX] [viewer flags]
 // Opens two meshes for Poisson merging (thesis §3.3); without meshes, the bundled dome and neck.
-#include <cstdio>
+#include <memory>
 
 #include "args.h"
 #include "bundled_meshes.h"
 #include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
+#include "lapis/viewer/app_main.h"
 #include "merge_app.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lapis-merge [--source MESH --target MESH | --preset N] [--export PREFIX] [--headless]\n"
+    "                   [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
+    "                   [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
+    "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
+    "Left-click with the current tool: 1 pair loops, 2 key correspondences, 3 fixed handles; left-drag:\n"
+    "4 moves the source with the gizmo, 5 paints a region (Shift erases) that C cuts off. Right-drag orbits,\n"
+    "middle-drag pans, wheel zooms, F frames. D switches independent / dependent mode, T transition\n"
+    "regions on / off, M merges, Tab\n"
+    "shows result or inputs, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged),\n"
+    "PREFIX_source.obj, PREFIX_target.obj, PREFIX_pairs.json and the equivalent `lapis merge` command\n"
+    "(default PREFIX out/merge); with --export the files are also written on exit. Ctrl+P screenshot,\n"
+    "Ctrl+Q quit.\n";
+
+std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string>& rest) {
   using namespace lapis;
-  try {
-    viewer::ViewerOptions options;
-    options.title = "lapis-merge";
-    const std::vector<std::string> rest = viewer::parse_viewer_flags(argc, argv, options);
-    if (!rest.empty() && (rest[0] == "--help" || rest[0] == "-h")) {
-      std::printf(
-          "usage: lapis-merge [--source MESH --target MESH | --preset N] [--export PREFIX] [--headless]\n"
-          "                   [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
-          "                   [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
-          "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
-          "Left-click with the current tool: 1 pair loops, 2 key correspondences, 3 fixed handles; left-drag:\n"
-          "4 moves the source with the gizmo, 5 paints a region (Shift erases) that C cuts off. Right-drag orbits,\n"
-          "middle-drag pans, wheel zooms, F frames. D switches independent / dependent mode, T transition\n"
-          "regions on / off, M merges, Tab\n"
-          "shows result or inputs, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged),\n"
-          "PREFIX_source.obj, PREFIX_target.obj, PREFIX_pairs.json and the equivalent `lapis merge` command\n"
-          "(default PREFIX out/merge); with --export the files are also written on exit. Ctrl+P screenshot,\n"
-          "Ctrl+Q quit.\n");
-      return 0;
-    }
-    const cli::Args args(rest);
-    args.allow_only({"--source", "--target", "--preset", "--export"});
-    merge_app::AppPaths paths;
-    paths.asset_dir = asset_path("merge").parent_path();
-    if (args.has("--export")) paths.export_prefix = args.get("--export"), paths.export_on_exit = true;
-    if (args.has("--source") != args.has("--target")) throw cli::UsageError("--source and --target go together");
-    merge_app::MeshPair meshes;
-    if (args.has("--source")) {
-      meshes.source = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(args.get("--source")));
-      meshes.target = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(args.get("--target")));
-      meshes.source_name = std::filesystem::path(args.get("--source")).filename().string();
-      meshes.target_name = std::filesystem::path(args.get("--target")).filename().string();
-    } else {
-      const long preset = args.get_int("--preset", 0, 0, static_cast<long>(merge_app::preset_names().size()) - 1);
-      meshes = merge_app::load_preset_meshes(static_cast<int>(preset), paths.asset_dir);
-    }
-    mesh_merge::MergeSetup setup;
-    setup.source = meshes.source;
-    setup.target = meshes.target;
-    if (meshes.place_source) setup.placement = mesh_merge::suggest_placement(*meshes.source, *meshes.target);
-    merge_app::MergeApp app(std::move(setup), meshes.source_name, meshes.target_name, paths);
-    viewer::Viewer viewer(options);
-    return viewer.run(app);
-  } catch (const cli::UsageError& e) {
-    std::fprintf(stderr, "lapis-merge: %s (see --help)\n", e.what());
-    return 2;
-  } catch (const Error& e) {
-    std::fprintf(stderr, "lapis-merge: error: %s\n", e.what());
-    return 1;
+  const cli::Args args(rest);
+  args.allow_only({"--source", "--target", "--preset", "--export"});
+  merge_app::AppPaths paths;
+  paths.asset_dir = asset_path("merge").parent_path();
+  if (args.has("--export")) paths.export_prefix = args.get("--export"), paths.export_on_exit = true;
+  if (args.has("--source") != args.has("--target")) throw cli::UsageError("--source and --target go together");
+  merge_app::MeshPair meshes;
+  if (args.has("--source")) {
+    meshes.source = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(args.get("--source")));
+    meshes.target = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(args.get("--target")));
+    meshes.source_name = std::filesystem::path(args.get("--source")).filename().string();
+    meshes.target_name = std::filesystem::path(args.get("--target")).filename().string();
+  } else {
+    const long preset = args.get_int("--preset", 0, 0, static_cast<long>(merge_app::preset_names().size()) - 1);
+    meshes = merge_app::load_preset_meshes(static_cast<int>(preset), paths.asset_dir);
   }
+  mesh_merge::MergeSetup setup;
+  setup.source = meshes.source;
+  setup.target = meshes.target;
+  if (meshes.place_source) setup.placement = mesh_merge::suggest_placement(*meshes.source, *meshes.target);
+  return std::make_unique<merge_app::MergeApp>(std::move(setup), meshes.source_name, meshes.target_name, paths);
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return lapis::viewer::app_main(argc, argv, "lapis-merge", kUsage, make_app); }

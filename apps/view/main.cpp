@@ -3,11 +3,11 @@
 //   lapis-view MESH [--headless] [--screenshot OUT.png] [--replay EVENTS] [--record EVENTS]
 #include <imgui.h>
 
-#include <cstdio>
+#include <memory>
 
 #include "lapis/core/error.h"
 #include "lapis/geometry/io.h"
-#include "lapis/viewer/viewer.h"
+#include "lapis/viewer/app_main.h"
 
 namespace {
 
@@ -27,24 +27,16 @@ class MeshView final : public lapis::viewer::ViewerApp {
   lapis::geometry::TriMesh mesh_;
 };
 
+constexpr const char* kUsage =
+    "usage: lapis-view MESH [--headless] [--screenshot OUT.png] [--replay EVENTS] [--record EVENTS]\n"
+    "                  [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    lapis::viewer::ViewerOptions options;
-    options.title = "lapis-view";
-    const auto rest = lapis::viewer::parse_viewer_flags(argc, argv, options);
-    if (rest.size() != 1 || rest[0] == "--help") {
-      std::printf(
-          "usage: lapis-view MESH [--headless] [--screenshot OUT.png] [--replay EVENTS] "
-          "[--record EVENTS] [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n");
-      return rest.size() == 1 ? 0 : 2;
-    }
-    MeshView app(lapis::geometry::read_mesh(rest[0]));
-    lapis::viewer::Viewer viewer(options);
-    return viewer.run(app);
-  } catch (const lapis::Error& e) {
-    std::fprintf(stderr, "lapis-view: %s\n", e.what());
-    return 1;
-  }
+  return lapis::viewer::app_main(argc, argv, "lapis-view", kUsage,
+                                 [](std::vector<std::string> rest) -> std::unique_ptr<lapis::viewer::ViewerApp> {
+                                   if (rest.size() != 1) throw lapis::UsageError("expects one MESH");
+                                   return std::make_unique<MeshView>(lapis::geometry::read_mesh(rest[0]));
+                                 });
 }

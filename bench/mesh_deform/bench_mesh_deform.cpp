@@ -132,14 +132,14 @@ json run_one(const Size& size, const std::string& method) {
     for (const Eigen::Matrix4d& T : s.drag) {
       frame.push_back(bench::time_ms([&] { d->deform(HandleTransforms{{T}, {}}); }));
       if (imp) {
-        first.push_back(imp->stats().first_solve_ms);
-        polar.push_back(imp->stats().polar_ms);
-        second.push_back(imp->stats().second_solve_ms);
+        first.push_back(imp->report().first_solve_ms);
+        polar.push_back(imp->report().polar_ms);
+        second.push_back(imp->report().second_solve_ms);
       }
       if (arap) {
-        per_it.push_back(arap->stats().ms_per_iteration());
-        rot.push_back(arap->stats().rotations_ms / arap->stats().iterations);
-        solve.push_back(arap->stats().solves_ms / arap->stats().iterations);
+        per_it.push_back(arap->report().ms_per_iteration());
+        rot.push_back(arap->report().rotations_ms / arap->report().iterations);
+        solve.push_back(arap->report().solves_ms / arap->report().iterations);
       }
     }
     r["frames"] = s.drag.size();
@@ -148,10 +148,10 @@ json run_one(const Size& size, const std::string& method) {
       r["first_solve_ms"] = bench::median(first);
       r["polar_ms"] = bench::median(polar);
       r["second_solve_ms"] = bench::median(second);
-      r["degenerate_vertices"] = imp->stats().degenerate_vertices;
-      r["basis_columns"] = imp->stats().basis_columns;
-      r["first_factor_nnz"] = imp->stats().first_factor_nnz;
-      r["second_factor_nnz"] = imp->stats().second_factor_nnz;
+      r["degenerate_vertices"] = imp->report().degenerate_vertices;
+      r["basis_columns"] = imp->report().basis_columns;
+      r["first_factor_nnz"] = imp->report().first_factor_nnz;
+      r["second_factor_nnz"] = imp->report().second_factor_nnz;
     }
     if (arap) {
       r["ms_per_iteration"] = bench::median(per_it);

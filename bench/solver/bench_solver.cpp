@@ -177,11 +177,11 @@ int main(int argc, char** argv) {
 
     Cholesky sup;
     sup.compute(A);
-    r["nnz_L"] = sup.stats().nnz_L;
-    r["ordering"] = sup.stats().ordering;
-    r["analyze_ms"] = sup.stats().analyze_ms;
-    r["factor_ms"] = sup.stats().factorize_ms;
-    r["flops"] = sup.stats().flops;
+    r["nnz_L"] = sup.report().nnz_L;
+    r["ordering"] = sup.report().ordering;
+    r["analyze_ms"] = sup.report().analyze_ms;
+    r["factor_ms"] = sup.report().factorize_ms;
+    r["flops"] = sup.report().flops;
     // Lapis' parallel supernodal solve against cholmod_solve on the same factor, interleaved.
     Cholesky by_cholmod({Backend::Cholmod, FactorKind::Supernodal, 0, /*cholmod_solve=*/true});
     by_cholmod.compute(A);
@@ -196,14 +196,14 @@ int main(int argc, char** argv) {
 
     // Simplicial and Eigen factorizations: predicted from the flop count with the rate
     // measured at the previous size; skipped above a minute.
-    const double flops = sup.stats().flops;
+    const double flops = sup.report().flops;
     std::string simplicial_cell = "skipped";
     if (simplicial_ms_per_flop == 0 || simplicial_ms_per_flop * flops < kMinuteMs) {
       Cholesky simp({Backend::Cholmod, FactorKind::Simplicial});
       simp.compute(A);
-      simplicial_ms_per_flop = simp.stats().factorize_ms / flops;
-      r["simplicial_factor_ms"] = simp.stats().factorize_ms;
-      simplicial_cell = fmt(simp.stats().factorize_ms, 0);
+      simplicial_ms_per_flop = simp.report().factorize_ms / flops;
+      r["simplicial_factor_ms"] = simp.report().factorize_ms;
+      simplicial_cell = fmt(simp.report().factorize_ms, 0);
     } else {
       r["simplicial_factor_ms"] = nullptr;
       r["simplicial_skipped"] = "predicted " + fmt(simplicial_ms_per_flop * flops / 1000, 0) + " s > 60 s";
@@ -286,8 +286,8 @@ int main(int argc, char** argv) {
       mk["modify_plus_solve3_ms"] = plus_solve;
       modify[std::to_string(k)] = mk;
       table.row({first_row ? std::to_string(N) : "", first_row ? std::to_string(n) : "",
-                 first_row ? fmt(sup.stats().nnz_L / 1e6, 1) + "M" : "", first_row ? sup.stats().ordering : "",
-                 first_row ? fmt(sup.stats().factorize_ms, 0) : "", first_row ? simplicial_cell : "",
+                 first_row ? fmt(sup.report().nnz_L / 1e6, 1) + "M" : "", first_row ? sup.report().ordering : "",
+                 first_row ? fmt(sup.report().factorize_ms, 0) : "", first_row ? simplicial_cell : "",
                  first_row ? fmt(solve3, 1) : "", first_row ? fmt(r["cholmod_solve3_ms"].get<double>(), 1) : "",
                  first_row ? fmt(simplicial_solve3, 1) : "", std::to_string(k),
                  fmt(mk["update/downdate"].get<double>(), 1), fmt(mk["refactorize"].get<double>(), 1), fmt(auto_ms, 1),
@@ -298,7 +298,7 @@ int main(int argc, char** argv) {
     // The targets at the thesis' resolution (N = 37), as ratios measured in this run.
     if (modify.contains("10")) {
       const double m10 = modify["10"]["modify_plus_solve3_ms"].get<double>();
-      r["speedup_k10_vs_refactor"] = sup.stats().factorize_ms / m10;
+      r["speedup_k10_vs_refactor"] = sup.report().factorize_ms / m10;
       if (!r["eigen_factor_ms"].is_null()) r["speedup_k10_vs_eigen"] = r["eigen_factor_ms"].get<double>() / m10;
     }
     results["sizes"].push_back(r);

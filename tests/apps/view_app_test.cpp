@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "app_runner.h"
@@ -79,4 +80,27 @@ TEST_CASE("apps: xdotool drives a real window and the recording captures it") {
 TEST_CASE("apps: lapis-view --headless without a screenshot exits once it has drawn") {
   // It used to wait for a window close that a hidden window never gets, spinning a core.
   REQUIRE(run_under_xvfb("timeout 120 " + kView + " " + kMesh + " --headless --size 320x240") == 0);
+}
+
+namespace {
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+TEST_CASE("apps: every app reports a malformed command line in one line and exits 2, --help exits 0") {
+  const fs::path dir = scratch_dir();
+  for (const std::string exe : {LAPIS_VIEW_EXE, LAPIS_DEFORM_APP_EXE, LAPIS_MERGE_APP_EXE, LAPIS_HAIR_APP_EXE}) {
+    const std::string name = fs::path(exe).filename().string();
+    CAPTURE(name);
+    const fs::path err = dir / (name + ".err");
+    // Neither needs a display: both fail or print before any window opens.
+    CHECK(run(exe + " --size 10x 2> " + err.string()) == 2);
+    const std::string text = slurp(err);
+    CHECK(text.find(name + ": viewer: --size expects WIDTHxHEIGHT") == 0);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1);
+    CHECK(run(exe + " --help > " + (dir / (name + ".help")).string()) == 0);
+    CHECK(slurp(dir / (name + ".help")).find("usage: " + name) == 0);
+  }
 }

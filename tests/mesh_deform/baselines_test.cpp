@@ -134,9 +134,9 @@ TEST_CASE("mesh_deform: ARAP energy decreases monotonically and a rigid drag sta
     ArapDeformer d(m, o);
     d.set_selection(s);
     d.deform(h);
-    CHECK(d.stats().iterations == iters);
-    CHECK(d.stats().energy <= previous * (1 + 1e-9));
-    previous = d.stats().energy;
+    CHECK(d.report().iterations == iters);
+    CHECK(d.report().energy <= previous * (1 + 1e-9));
+    previous = d.report().energy;
   }
   // All constraints moved by one rigid motion: ARAP reproduces it.
   s.roi = t::all_vertices(m);
@@ -163,8 +163,8 @@ TEST_CASE("mesh_deform: ARAP stops early at its tolerance") {
   ArapDeformer d(m, o);
   d.set_selection(s);
   d.deform(HandleTransforms{{t::rotation_about(Eigen::Vector3d::UnitX(), 30, Eigen::Vector3d(0.5, 0.5, 3.6))}, {}});
-  CHECK(d.stats().iterations > 1);
-  CHECK(d.stats().iterations < 500);
+  CHECK(d.report().iterations > 1);
+  CHECK(d.report().iterations < 500);
   CHECK_THROWS_WITH_AS(d.set_options(ArapOptions{0, 0, true}),
                        "mesh_deform::ArapDeformer::set_options(): max_iterations must be >= 1 and tolerance >= 0",
                        lapis::InvalidArgument);

@@ -107,8 +107,8 @@ TEST_CASE("mesh_deform: planar irregular mesh with degenerate vertices follows a
     const Vertices X = d.deform(HandleTransforms{{T, T}, {}});
     // A planar mesh: every interior vertex is degenerate, and the valence-2 corners get midpoints.
     // Displacing a vertex lifts its neighbours' stencils too, so about a third are displaced.
-    CHECK(d.stats().degenerate_vertices >= (25 - 2) * (25 - 2) / 4);
-    CHECK(d.stats().inserted_vertices == 2);
+    CHECK(d.report().degenerate_vertices >= (25 - 2) * (25 - 2) / 4);
+    CHECK(d.report().inserted_vertices == 2);
     CHECK(max_deviation(X, m.V, T) <= 1e-3 * t::bbox_diagonal(m.V));
   }
 }
@@ -123,7 +123,7 @@ TEST_CASE("mesh_deform: degenerate displacement scale barely changes the result 
   da.set_selection(s);
   db.set_selection(s);
   const Vertices Xa = da.deform(h), Xb = db.deform(h);
-  CHECK(da.stats().degenerate_vertices > 0);
+  CHECK(da.report().degenerate_vertices > 0);
   const double diff = (Xa - Xb).rowwise().norm().maxCoeff();
   MESSAGE("s_disp 0.2 vs 10: max difference / bbox diagonal = " << diff / t::bbox_diagonal(m.V));
   CHECK(diff <= 0.05 * t::bbox_diagonal(m.V));
@@ -202,9 +202,9 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
     const HandleTransforms h{{t::rotation_about(Eigen::Vector3d::UnitZ(), deg, Eigen::Vector3d(0.5, 0.5, 0))}, {}};
     Xg = guided.deform(h);
     Xp = plain.deform(h);
-    if (deg == 60) CHECK_FALSE(guided.stats().guided);  // below guide_angle: the plain system
+    if (deg == 60) CHECK_FALSE(guided.report().guided);  // below guide_angle: the plain system
   }
-  CHECK(guided.stats().guided);
+  CHECK(guided.report().guided);
   const double turn_g = mid_turn(m, Xg), turn_p = mid_turn(m, Xp);
   MESSAGE("mid-height turn after a 270 degree drag: guided " << turn_g << ", plain " << turn_p);
   // Half of the accumulated 270° at half the free height; the plain method sees −90°.
@@ -216,7 +216,7 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
   for (int deg = 260; deg >= 0; deg -= 10)
     Xg = guided.deform(
         HandleTransforms{{t::rotation_about(Eigen::Vector3d::UnitZ(), deg, Eigen::Vector3d(0.5, 0.5, 0))}, {}});
-  CHECK_FALSE(guided.stats().guided);
+  CHECK_FALSE(guided.report().guided);
   CHECK((Xg - m.V).norm() <= 1e-9 * m.V.norm());
 }
 
@@ -282,8 +282,8 @@ TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution fo
           {similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
           {Eigen::Vector3d(0.05 * frame, -0.1, 0.02), Eigen::Vector3d(0, 0.2 * frame, 0)}};
       const Vertices Xa = a.deform(h), Xb = b.deform(h);
-      CHECK(a.stats().basis_columns == 4 * 2 + 2);
-      CHECK(b.stats().basis_columns == 0);
+      CHECK(a.report().basis_columns == 4 * 2 + 2);
+      CHECK(b.report().basis_columns == 0);
       CHECK((Xa - Xb).norm() <= 1e-9 * Xb.norm());
     }
   }

@@ -115,11 +115,11 @@ TEST_CASE("mesh_deform: precompute runs once per selection, moving handles never
   HandleTransforms t = HandleTransforms::identity(s);
   d.deform(t);
   CHECK_FALSE(d.dirty());
-  const double setup = d.stats().setup_ms;
+  const double setup = d.report().setup_ms;
   t.regions[0](0, 3) = 0.3;
   d.deform(t);
   CHECK_FALSE(d.dirty());
-  CHECK(d.stats().setup_ms == setup);
+  CHECK(d.report().setup_ms == setup);
   d.set_selection(s);
   CHECK(d.dirty());
 }

@@ -38,8 +38,8 @@ TEST_CASE("mesh_deform: real meshes: identity, similarity and a drag of the top 
         {t::rotation_about(Eigen::Vector3d::UnitZ(), 45, top, Eigen::Vector3d(0.15 * diag, 0, 0))}, {}};
     const Vertices X = d.deform(drag);
     REQUIRE(X.allFinite());
-    MESSAGE(name << ": " << m.num_vertices() << " vertices, " << d.stats().degenerate_vertices << " degenerate, setup "
-                 << d.stats().setup_ms << " ms, frame " << d.stats().frame_ms << " ms");
+    MESSAGE(name << ": " << m.num_vertices() << " vertices, " << d.report().degenerate_vertices << " degenerate, setup "
+                 << d.report().setup_ms << " ms, frame " << d.report().frame_ms << " ms");
     NaiveLaplacianDeformer naive(m);
     naive.set_selection(s);
     const Distortion di = distortion(m, X), dn = distortion(m, naive.deform(drag));
@@ -106,12 +106,12 @@ TEST_CASE("mesh_deform: ARAP's energy never rises over the iterations on the cam
   const HandleTransforms bend{{sweep::bend(m, s.region_handles[0], 45)}, {}};
   d.deform(bend);  // cold: the start's global step, no energy yet
   d.deform(bend);
-  double last = d.stats().energy;
+  double last = d.report().energy;
   for (int it = 0; it < 30; ++it) {
     d.deform(bend);  // warm: one more local + global step from the last result
-    CHECK(d.stats().energy >= 0);
-    CHECK(d.stats().energy <= last * (1 + 1e-12));
-    last = d.stats().energy;
+    CHECK(d.report().energy >= 0);
+    CHECK(d.report().energy <= last * (1 + 1e-12));
+    last = d.report().energy;
   }
 }
 

@@ -312,7 +312,7 @@ inline void check_arap_against_cgal(const TriMesh& m, int steps, double toleranc
   const double e = max_distance(X, cgal.positions()) / diag;
   const double lapis_energy = distortion(m, X).arap_energy, cgal_energy = distortion(m, cgal.positions()).arap_energy;
   MESSAGE("arap against CGAL, both converged: "
-          << e << " of the diagonal after " << static_cast<const ArapDeformer&>(*d).stats().iterations
+          << e << " of the diagonal after " << static_cast<const ArapDeformer&>(*d).report().iterations
           << " iterations; energy " << lapis_energy << " against CGAL's " << cgal_energy);
   if (e > tolerance) CHECK_MESSAGE(lapis_energy < cgal_energy, "another minimum than CGAL's, and not a lower one");
 }
@@ -383,7 +383,7 @@ inline void check_large_twist(const TriMesh& m, int total) {
   d.set_selection(s);
   Vertices X;
   for (int deg = 10; deg <= total; deg += 10) X = d.deform(HandleTransforms{{twist(m, s.region_handles[0], deg)}, {}});
-  CHECK(d.stats().guided);
+  CHECK(d.report().guided);
   for (double level : {0.25, 0.5, 0.75}) {
     const double commanded = std::remainder(level * total, 360.0);
     if (std::abs(std::abs(commanded) - 180) < 1) continue;  // half a turn either way looks the same

@@ -41,8 +41,8 @@ TEST_CASE("solver: cholesky residual on random SPD and grid systems, every backe
       // The grid system has condition ~1e8 (ω² = 1e4 against a bi-Laplacian): the residual
       // still must be at round-off level.
       CHECK(relative_residual(*A, X, B) <= 1e-10);
-      CHECK(chol.stats().n == A->rows());
-      CHECK(chol.stats().nnz_L >= A->rows());
+      CHECK(chol.report().n == A->rows());
+      CHECK(chol.report().nnz_L >= A->rows());
     }
   }
 }
@@ -80,10 +80,10 @@ TEST_CASE("solver: the parallel supernodal solve equals cholmod_solve for any th
 TEST_CASE("solver: cholesky stats name the ordering and count the factor") {
   Cholesky chol;
   chol.compute(hair_normal_matrix(10, spread_nodes(1000, 25)));
-  CHECK(!chol.stats().ordering.empty());
-  CHECK(chol.stats().ordering != "unknown");
-  CHECK(chol.stats().flops > 0);
-  CHECK(chol.stats().nnz_L > chol.stats().nnz_A / 2);
+  CHECK(!chol.report().ordering.empty());
+  CHECK(chol.report().ordering != "unknown");
+  CHECK(chol.report().flops > 0);
+  CHECK(chol.report().nnz_L > chol.report().nnz_A / 2);
 }
 
 TEST_CASE("solver: refactorize with the same pattern and new values") {

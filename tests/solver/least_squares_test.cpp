@@ -128,7 +128,7 @@ TEST_CASE("solver: a block in the metric Dᵀ D solves like the block D A with r
   const DenseMatrix c = DenseMatrix::Random(static_cast<Eigen::Index>(fixed.size()), 3);
   const DenseMatrix x = with_metric.solve({rl, r}, c), y = plain.solve({rl, DenseMatrix(D * r)}, c);
   CHECK((x - y).norm() <= 1e-8 * (1 + y.norm()));
-  CHECK(with_metric.factor().stats().nnz_L == plain.factor().stats().nnz_L);
+  CHECK(with_metric.factor().report().nnz_L == plain.factor().report().nnz_L);
   CHECK_THROWS_WITH_AS(with_metric.add_block(A, 1.0, "bad", SparseMatrix(m, m + 1)), doctest::Contains("metric is"),
                        InvalidArgument);
   // The blocks are kept as added (the caller's copies above, the temporaries below taken),

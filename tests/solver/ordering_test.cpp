@@ -73,11 +73,11 @@ TEST_CASE("solver: skeleton nested dissection orders a wide stencil about as wel
   given.analyze(A, perm);
   given.factorize(A);
   own.compute(A);
-  CHECK(given.stats().ordering == "given");
-  CAPTURE(given.stats().nnz_L);
-  CAPTURE(own.stats().nnz_L);
+  CHECK(given.report().ordering == "given");
+  CAPTURE(given.report().nnz_L);
+  CAPTURE(own.report().nnz_L);
   // Within 25% of CHOLMOD's best (AMD or METIS on A's own, 12× denser, graph).
-  CHECK(given.stats().nnz_L <= 1.25 * own.stats().nnz_L);
+  CHECK(given.report().nnz_L <= 1.25 * own.report().nnz_L);
   std::srand(5);
   const DenseMatrix B = DenseMatrix::Random(n, 3);
   const DenseMatrix X = given.solve(B), Y = own.solve(B);
@@ -104,7 +104,7 @@ TEST_CASE("solver: A's lower triangle alone orders, factorizes and solves as the
     whole.factorize(A);
     half.analyze(lower, perm);
     half.factorize(lower);
-    CHECK(half.stats().nnz_L == whole.stats().nnz_L);
+    CHECK(half.report().nnz_L == whole.report().nnz_L);
     CHECK((half.solve(B) - whole.solve(B)).norm() <= 1e-12 * whole.solve(B).norm());
   }
 }
@@ -122,7 +122,7 @@ TEST_CASE("solver: orderings made on two threads at once equal those made one at
   const auto chosen = [&] {
     Cholesky chol;
     chol.analyze(cube);
-    return std::make_pair(std::string(chol.stats().ordering), chol.stats().nnz_L);
+    return std::make_pair(std::string(chol.report().ordering), chol.report().nnz_L);
   };
   const std::vector<int> alone = dissect();
   const auto chosen_alone = chosen();
@@ -230,7 +230,7 @@ TEST_CASE("solver: least squares ordered on a skeleton solves as CHOLMOD's order
     ls.set_fixed(fixed);
     if (with_skeleton) ls.set_ordering_skeleton(edges);
     ls.precompute();
-    CHECK((ls.factor().stats().ordering == "given") == (with_skeleton == 1));
+    CHECK((ls.factor().report().ordering == "given") == (with_skeleton == 1));
     X[with_skeleton] = ls.solve({r, DenseMatrix()}, c);
   }
   // Another elimination order rounds differently, and a bi-Laplacian held on one side is
@@ -244,7 +244,7 @@ TEST_CASE("solver: least squares ordered on a skeleton solves as CHOLMOD's order
   reference.set_fixed(fixed);
   reference.set_ordering_skeleton(edges);
   reference.precompute();
-  CHECK(reference.factor().stats().ordering == "AMD (Eigen)");
+  CHECK(reference.factor().report().ordering == "AMD (Eigen)");
   CHECK((reference.solve({r, DenseMatrix()}, c) - X[1]).norm() / X[1].norm() <= 1e-8);
 }
 

@@ -102,7 +102,7 @@ TEST_CASE("solver: a supernodal factor whose pages are populated meanwhile solve
   const DenseMatrix B = DenseMatrix::Random(A.rows(), 3);
   Cholesky cholmod({Backend::Cholmod, FactorKind::Supernodal});
   cholmod.compute(A);
-  REQUIRE(cholmod.stats().nnz_L * 8 >= static_cast<std::int64_t>(PagePopulator::kMinBytes));
+  REQUIRE(cholmod.report().nnz_L * 8 >= static_cast<std::int64_t>(PagePopulator::kMinBytes));
   const DenseMatrix Xc = cholmod.solve(B);
   Cholesky eigen({Backend::Eigen, FactorKind::Simplicial});
   eigen.compute(A);

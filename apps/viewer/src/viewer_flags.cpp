@@ -11,7 +11,7 @@ namespace lapis::viewer {
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& o) {
   std::vector<std::string> rest;
   auto value = [&](int& i, const char* flag) -> std::string {
-    if (i + 1 >= argc) throw InvalidArgument(std::string("viewer: ") + flag + " needs a value");
+    if (i + 1 >= argc) throw UsageError(std::string("viewer: ") + flag + " needs a value");
     return argv[++i];
   };
   for (int i = 1; i < argc; ++i) {
@@ -33,11 +33,11 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
     else if (a == "--size") {
       const std::string s = value(i, "--size");
       if (std::sscanf(s.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 || o.height < 64)
-        throw InvalidArgument("viewer: --size expects WIDTHxHEIGHT (at least 64x64), got '" + s + "'");
+        throw UsageError("viewer: --size expects WIDTHxHEIGHT (at least 64x64), got '" + s + "'");
     } else if (a == "--msaa") {
       const std::string s = value(i, "--msaa");
       if (std::sscanf(s.c_str(), "%d", &o.msaa_samples) != 1 || o.msaa_samples < 0 || o.msaa_samples > 16)
-        throw InvalidArgument("viewer: --msaa expects 0..16 samples per pixel, got '" + s + "'");
+        throw UsageError("viewer: --msaa expects 0..16 samples per pixel, got '" + s + "'");
     } else
       rest.push_back(a);
   }

@@ -255,8 +255,8 @@ void ArapDeformer::setup(const Layout& layout) {
     }
   m->build_handle_fields(layout);
   impl_ = std::move(m);
-  stats_ = {};
-  stats_.setup_ms = ms_since(t0);
+  report_ = {};
+  report_.setup_ms = ms_since(t0);
 }
 
 // Each iteration is a global step with the current rotations, then the rotations of its
@@ -292,17 +292,17 @@ void ArapDeformer::solve(const HandleTransforms& transforms, const Vertices& tar
     const bool converged = options_.tolerance > 0 && last_energy >= 0 &&
                            last_energy - energy <= options_.tolerance * std::max(last_energy, 1e-300);
     last_energy = energy;
-    stats_.energy = energy;
+    report_.energy = energy;
     if (converged) break;
   }
   out.resize(m.X.rows(), 3);
   for (size_t k = 0; k < m.order.size(); ++k) out.row(m.order[k]) = m.X.row(static_cast<Eigen::Index>(k));
   m.have_previous = true;
-  stats_.iterations = it;
-  stats_.rotation_fallbacks = fallbacks;
-  stats_.rotations_ms = rot_ms;
-  stats_.solves_ms = solve_ms;
-  stats_.frame_ms = ms_since(t_frame);
+  report_.iterations = it;
+  report_.rotation_fallbacks = fallbacks;
+  report_.rotations_ms = rot_ms;
+  report_.solves_ms = solve_ms;
+  report_.frame_ms = ms_since(t_frame);
 }
 
 }  // namespace lapis::mesh_deform

@@ -298,15 +298,15 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   const int parameters = 4 * m->region_handles + m->point_handles;
   if (parameters <= options_.max_basis_columns) m->build_basis();
 
-  stats_ = {};
-  stats_.free_vertices = static_cast<int>(m->free.size());
-  stats_.degenerate_vertices = w.degenerate;
-  stats_.inserted_vertices = static_cast<int>(w.inserted.size());
-  stats_.first_factor_nnz = m->first.factor().stats().nnz_L;
-  stats_.basis_columns = static_cast<int>(m->basis.cols());
-  if (options_.shearing != ShearingRemoval::None) stats_.second_factor_nnz = m->second.factor().stats().nnz_L;
+  report_ = {};
+  report_.free_vertices = static_cast<int>(m->free.size());
+  report_.degenerate_vertices = w.degenerate;
+  report_.inserted_vertices = static_cast<int>(w.inserted.size());
+  report_.first_factor_nnz = m->first.factor().report().nnz_L;
+  report_.basis_columns = static_cast<int>(m->basis.cols());
+  if (options_.shearing != ShearingRemoval::None) report_.second_factor_nnz = m->second.factor().report().nnz_L;
   impl_ = std::move(m);
-  stats_.setup_ms = ms_since(t0);
+  report_.setup_ms = ms_since(t0);
 }
 
 void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
@@ -446,7 +446,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     m.accumulated[h] = detail::unwrap_rotation(geometry::polar_rotation(L), m.accumulated[h]);
     if (options_.large_rotations && m.accumulated[h].norm() > options_.guide_angle) big.push_back(static_cast<int>(h));
   }
-  stats_.guided = !big.empty();
+  report_.guided = !big.empty();
   solver::DenseMatrix X;
   if (big.empty() && m.basis.cols() > 0) {
     X = solver::DenseMatrix(P) + m.at_identity;
@@ -463,26 +463,26 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     in.rhs.push_back(m.guide_rhs(transforms));
     X = solver::DenseMatrix(P) + m.guided->solve(in.rhs, in.fixed);
   }
-  stats_.first_solve_ms = ms_since(t0);
+  report_.first_solve_ms = ms_since(t0);
 
   if (options_.shearing == ShearingRemoval::None || preview_) {
     m.pull_back(X, targets, n0, out);
-    stats_.polar_ms = stats_.second_solve_ms = 0;
-    stats_.frame_ms = ms_since(t_frame);
+    report_.polar_ms = report_.second_solve_ms = 0;
+    report_.frame_ms = ms_since(t_frame);
     return;
   }
 
   t0 = std::chrono::steady_clock::now();  // shearing removal (§2.4.4)
   const solver::DenseMatrix rhs2 =
-      m.polar_rhs(Vertices(X), options_.shearing == ShearingRemoval::ScaleFeatures, stats_.polar_fallbacks);
-  stats_.polar_ms = ms_since(t0);
+      m.polar_rhs(Vertices(X), options_.shearing == ShearingRemoval::ScaleFeatures, report_.polar_fallbacks);
+  report_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
   const solver::DenseMatrix Y = m.second.solve({rhs2}, m.second_fixed(transforms));
   for (int v : m.free)
     if (v < n0) out.row(v) = w.mesh.V.row(v) + Y.row(v);
-  stats_.second_solve_ms = ms_since(t0);
-  stats_.frame_ms = ms_since(t_frame);
+  report_.second_solve_ms = ms_since(t0);
+  report_.frame_ms = ms_since(t_frame);
 }
 
 }  // namespace lapis::mesh_deform

@@ -16,11 +16,11 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 std::string timing_of(const Deformer& d) {
   char buf[160] = "";
   if (const auto* i = dynamic_cast<const ImplicitLaplacianDeformer*>(&d)) {
-    const ImplicitStats& s = i->stats();
+    const ImplicitReport& s = i->report();
     std::snprintf(buf, sizeof buf, "Eq. 2.8 %.0f ms, polar %.0f ms, Eq. 2.10 %.0f ms%s", s.first_solve_ms, s.polar_ms,
                   s.second_solve_ms, s.guided ? ", guided" : "");
   } else if (const auto* a = dynamic_cast<const ArapDeformer*>(&d)) {
-    const ArapStats& s = a->stats();
+    const ArapReport& s = a->report();
     std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms,
                   s.solves_ms);
   }

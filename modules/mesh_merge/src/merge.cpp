@@ -169,7 +169,7 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
 
   t0 = std::chrono::steady_clock::now();
   r.source_deformed = m.deformer->deform(tf);
-  r.solver = m.deformer->stats();
+  r.solver = m.deformer->report();
   r.timings.solve_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

@@ -269,7 +269,7 @@ Vertices deform_both(const TriMesh& src, const TriMesh& target, const std::vecto
 
   t0 = std::chrono::steady_clock::now();
   Vertices X = deformer.deform(tf);
-  r.solver = deformer.stats();
+  r.solver = deformer.report();
   r.timings.solve_ms = ms_since(t0) - r.solver.setup_ms;
   r.timings.setup_ms += r.solver.setup_ms;
   return X;

@@ -10,7 +10,7 @@ namespace lapis::solver {
 
 struct Cholesky::Impl {
   CholeskyOptions options;
-  FactorStats stats;
+  FactorReport stats;
   detail::CholmodFactor cholmod;
   detail::EigenFactor eigen;
   bool analyzed = false;
@@ -87,7 +87,7 @@ bool Cholesky::factorized() const {
 }
 
 int Cholesky::rows() const { return impl_->n; }
-const FactorStats& Cholesky::stats() const { return impl_->stats; }
+const FactorReport& Cholesky::report() const { return impl_->stats; }
 
 DenseMatrix solve_spd(const SparseMatrix& A, const DenseMatrix& B, CholeskyOptions options) {
   Cholesky chol(options);

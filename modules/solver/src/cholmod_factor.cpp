@@ -47,7 +47,7 @@ void CholmodFactor::free_factor() {
   factorized_ = false;
 }
 
-void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function,
+void CholmodFactor::analyze(const SparseMatrix& A, FactorKind kind, FactorReport& stats, const char* function,
                             int solve_threads, const std::vector<int>* ordering) {
   free_factor();
   if (symbolic_) cholmod_free_factor(&symbolic_, context_.get());
@@ -93,7 +93,7 @@ bool CholmodFactor::analyzed_for(const SparseMatrix& A) const {
   return symbolic_ && same_pattern(A, pattern_outer_, pattern_inner_);
 }
 
-void CholmodFactor::factorize(const SparseMatrix& A, FactorStats& stats, const char* function) {
+void CholmodFactor::factorize(const SparseMatrix& A, FactorReport& stats, const char* function) {
   cholmod_common* c = context_.get();
   if (!L_) {
     L_ = cholmod_copy_factor(symbolic_, c);

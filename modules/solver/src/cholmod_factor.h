@@ -24,12 +24,12 @@ class CholmodFactor {
   // stats.ordering, nnz_L, flops, analyze_ms. Keeps A's pattern to detect changes. A
   // supernodal factor's solve is scheduled here for `solve_threads` (0: OpenMP's default).
   // `ordering`, if given, replaces CHOLMOD's choice (a permutation, checked by the caller).
-  void analyze(const SparseMatrix& A, FactorKind kind, FactorStats& stats, const char* function, int solve_threads = 0,
+  void analyze(const SparseMatrix& A, FactorKind kind, FactorReport& stats, const char* function, int solve_threads = 0,
                const std::vector<int>* ordering = nullptr);
   bool analyzed_for(const SparseMatrix& A) const;
   // Numeric factorization into the analyzed structure. Throws NotPositiveDefinite naming the
   // (un-permuted) column; the factor is then unusable until the next factorize().
-  void factorize(const SparseMatrix& A, FactorStats& stats, const char* function);
+  void factorize(const SparseMatrix& A, FactorReport& stats, const char* function);
   bool factorized() const { return factorized_; }
 
   // A X = B by Lapis' own kernels (simplicial LDL' or supernodal LL'), in parallel over

@@ -14,7 +14,7 @@ namespace lapis::solver::detail {
 
 class EigenFactor {
  public:
-  void analyze(const SparseMatrix& A, FactorStats& stats) {
+  void analyze(const SparseMatrix& A, FactorReport& stats) {
     const auto t0 = std::chrono::steady_clock::now();
     ldlt_.analyzePattern(A);
     stats.analyze_ms = ms_since(t0);
@@ -25,7 +25,7 @@ class EigenFactor {
   }
   bool analyzed() const { return analyzed_; }
 
-  void factorize(const SparseMatrix& A, FactorStats& stats, const char* function) {
+  void factorize(const SparseMatrix& A, FactorReport& stats, const char* function) {
     factorized_ = false;
     const auto t0 = std::chrono::steady_clock::now();
     ldlt_.factorize(A);

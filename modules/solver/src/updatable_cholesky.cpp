@@ -65,7 +65,7 @@ SparseMatrix diagonal_columns(int n, const std::vector<std::pair<int, double>>& 
 
 struct UpdatableCholesky::Impl {
   UpdatableCholeskyOptions options;
-  FactorStats stats;
+  FactorReport stats;
   ModifyReport report;
   SparseMatrix A;
   std::vector<double> weights;
@@ -362,7 +362,7 @@ DenseMatrix UpdatableCholesky::solve(const DenseMatrix& B) const {
 
 const SparseMatrix& UpdatableCholesky::matrix() const { return impl_->A; }
 int UpdatableCholesky::rows() const { return impl_->n; }
-const FactorStats& UpdatableCholesky::stats() const { return impl_->stats; }
+const FactorReport& UpdatableCholesky::report() const { return impl_->stats; }
 const ModifyReport& UpdatableCholesky::last_report() const { return impl_->report; }
 void UpdatableCholesky::set_method(ModifyMethod method) { impl_->options.method = method; }
 

@@ -41,7 +41,7 @@ struct ViewerOptions {
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
 // --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N) and returns the arguments it did not
-// consume. Throws InvalidArgument on a flag missing its value.
+// consume. Throws UsageError on a flag missing its value or with a malformed one.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
 class Viewer;

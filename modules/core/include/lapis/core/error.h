@@ -21,6 +21,13 @@ class InvalidArgument : public Error {
   using Error::Error;
 };
 
+// A command line is malformed: an unknown flag, a missing value, a value out of its range.
+// Programs report it with their usage and exit with status 2 (see main_guard.h).
+class UsageError : public InvalidArgument {
+ public:
+  using InvalidArgument::InvalidArgument;
+};
+
 // A file could not be read or written, or its content is malformed. The message names the
 // file and the line or byte offset.
 class IoError : public Error {

@@ -32,7 +32,7 @@ struct ArapOptions {
   ArapStart cold_start = ArapStart::HandleRotations;
 };
 
-struct ArapStats {
+struct ArapReport {
   int iterations = 0;          // in the last deform()
   double energy = 0;           // Σ_i Σ_j w_ij ‖ẽ_ij − R_i e_ij‖² of the result, R_i its best rotations
   int rotation_fallbacks = 0;  // rotation fits that needed the SVD fallback (last frame)
@@ -49,7 +49,7 @@ class ArapDeformer final : public Deformer {
   ~ArapDeformer() override;
   void set_options(const ArapOptions& options);  // does not invalidate the factorization
   const ArapOptions& options() const { return options_; }
-  const ArapStats& stats() const { return stats_; }
+  const ArapReport& report() const { return report_; }
   // Forgets the previous frame (the next deform() starts from the rest mesh).
   void reset_warm_start();
   std::string name() const override { return "arap"; }
@@ -61,7 +61,7 @@ class ArapDeformer final : public Deformer {
  private:
   struct Impl;
   ArapOptions options_;
-  ArapStats stats_;
+  ArapReport report_;
   std::unique_ptr<Impl> impl_;
 };
 

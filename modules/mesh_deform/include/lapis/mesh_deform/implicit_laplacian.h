@@ -62,7 +62,7 @@ struct LaplacianBlend {
 };
 
 // What the last deform() did and cost.
-struct ImplicitStats {
+struct ImplicitReport {
   int free_vertices = 0;
   int degenerate_vertices = 0;      // displaced by Eq. 2.9 (incl. boundary variants)
   int inserted_vertices = 0;        // midpoints inserted for boundary vertices of valence < 3
@@ -87,7 +87,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
   // accumulated handle rotations).
   void set_options(const ImplicitOptions& options);
   const ImplicitOptions& options() const { return options_; }
-  const ImplicitStats& stats() const { return stats_; }
+  const ImplicitReport& report() const { return report_; }
   std::string name() const override { return "implicit"; }
 
   // §2.5's preview while dragging: with preview on, deform() stops after the first system (as
@@ -115,7 +115,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
   void build_guide(const std::vector<int>& handles);
   struct Impl;
   ImplicitOptions options_;
-  ImplicitStats stats_;
+  ImplicitReport report_;
   bool preview_ = false;
   std::vector<LaplacianBlend> blends_;
   double blend_weight_ = 0;

@@ -101,7 +101,7 @@ struct MergeResult {
   std::vector<double> transition_share;
   int refine_levels = 0;
   int roi_vertices = 0;
-  mesh_deform::ImplicitStats solver;
+  mesh_deform::ImplicitReport solver;
   MergeTimings timings;
 };
 

@@ -51,7 +51,7 @@ class Cholesky {
 
   bool factorized() const;
   int rows() const;
-  const FactorStats& stats() const;
+  const FactorReport& report() const;
 
  private:
   void analyze_with(const SparseMatrix& A, const std::vector<int>* ordering);

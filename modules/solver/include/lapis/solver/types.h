@@ -28,7 +28,7 @@ const char* to_string(Backend b);
 const char* to_string(FactorKind k);
 
 // What a factorization cost and produced.
-struct FactorStats {
+struct FactorReport {
   Backend backend = Backend::Cholmod;
   FactorKind kind = FactorKind::Supernodal;
   int n = 0;                // rows of A

@@ -73,7 +73,7 @@ class UpdatableCholesky {
   // The matrix the factor currently represents (A₀ plus all modifications), lower+upper.
   const SparseMatrix& matrix() const;
   int rows() const;
-  const FactorStats& stats() const;
+  const FactorReport& report() const;
   const ModifyReport& last_report() const;
 
   // Forces every later modification to one method (benchmarks compare them).
