@@ -258,10 +258,10 @@ TEST_CASE("apps: deform app — dragging the gizmo with xdotool moves the handle
   CAPTURE(drag.to.transpose());
 
   // Press on the arrow, pull it in small steps (a person's drag), release, export with Ctrl+E.
-  std::string actions = "xdotool mousemove --window $w " + xy(drag.from) + " sleep 0.3 mousedown 1";
+  std::string actions = "mark; xdotool mousemove --window $w " + xy(drag.from) + " sleep 0.1 mousedown 1";
   for (int k = 1; k <= 20; ++k)
     actions += " mousemove --window $w " + xy(drag.from + (drag.to - drag.from) * (k / 20.0)) + " sleep 0.03";
-  actions += " sleep 0.2 mouseup 1 sleep 0.3; xdotool key --window $w ctrl+e";
+  actions += " mouseup 1; wait_handled 0 2 || { kill $app; exit 5; }\nxdotool key --window $w ctrl+e";
   const fs::path out = dir / "dragged.obj";
   REQUIRE(run_window("--mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " + kHandles.string() +
                          " --method implicit --export " + out.string(),

@@ -59,8 +59,8 @@ std::string text_of(const fs::path& path) {
 }
 
 std::string click(const Eigen::Vector2i& p) {
-  return "xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) +
-         " sleep 0.3 click 1 sleep 0.5; ";
+  return "mark; xdotool mousemove --window $w " + std::to_string(p.x()) + " " + std::to_string(p.y()) +
+         " sleep 0.1 click 1; wait_handled 0 2 || { kill $app; exit 5; }\n";
 }
 
 // Tool 1 picks a loop on each side, then (the app switches to tool 2) a vertex on each.
@@ -285,11 +285,13 @@ TEST_CASE("apps: merge app — the gizmo moves the source along the dragged axis
       geometry::project(scene.camera, c + 0.9 * gizmo.world_size(scene.camera) * Eigen::Vector3d::UnitY());
   REQUIRE(gizmo.hit(scene.camera, grab.head<2>()) == viewer::GizmoPart::TranslateY);
   std::string drag =
-      "xdotool key --window $w 4; sleep 0.5; xdotool mousemove --window $w " + pixel(grab) + " sleep 0.3 mousedown 1";
+      "mark; xdotool key --window $w 4; wait_handled 2 0 || { kill $app; exit 5; }\nmark; xdotool mousemove --window "
+      "$w " +
+      pixel(grab) + " sleep 0.1 mousedown 1";
   for (int k = 1; k <= 12; ++k)
     drag += " mousemove --window $w " + std::to_string(std::lround(grab.x())) + " " +
             std::to_string(std::lround(grab.y()) - 5 * k) + " sleep 0.05";
-  drag += " mouseup 1; sleep 1; ";
+  drag += " mouseup 1; wait_handled 0 2 || { kill $app; exit 5; }\n";
   REQUIRE(run_under_xvfb(xdotool_session(
               "--export " + prefix.string(),
               scene.pair_and_key() + drag + "mark; xdotool key --window $w m; wait_handled 2 0;")) == 0);
@@ -316,14 +318,16 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
   const geometry::CameraMatrices cam = first_view(source, target);
   const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
   std::string paint =
-      "mark; xdotool key --window $w m; wait_handled 2 0; xdotool key --window $w 5; sleep 0.3; xdotool mousemove "
-      "--window $w " +
-      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.3 mousedown 1";
+      "mark; xdotool key --window $w m; wait_handled 2 0; mark; xdotool key --window $w 5; wait_handled 2 0; mark; "
+      "xdotool mousemove --window $w " +
+      std::to_string(std::lround(mid.x()) - 20) + " " + std::to_string(std::lround(mid.y())) + " sleep 0.1 mousedown 1";
   for (int k = 1; k <= 8; ++k)
     paint += " mousemove --window $w " + std::to_string(std::lround(mid.x()) - 20 + 5 * k) + " " +
              std::to_string(std::lround(mid.y())) + " sleep 0.05";
   paint +=
-      " mouseup 1; sleep 0.5; xdotool key --window $w c; sleep 1; mark; xdotool key --window $w m; wait_handled 2 0;";
+      " mouseup 1; wait_handled 0 2; mark; xdotool key --window $w c; wait_handled 2 0; mark; xdotool key --window $w "
+      "m; "
+      "wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) +
                          " 2> " + log.string()) == 0);
   const std::string text = text_of(log);
@@ -350,10 +354,11 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
          (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
       handle = v;
   const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
-  const std::string actions = scene.pair_and_key() +
-                              "xdotool key --window $w 3; sleep 0.3; xdotool mousemove --window $w " + pixel(h) +
-                              " sleep 0.3 click 1 sleep 0.5; xdotool key --window $w d; sleep 0.3; mark; xdotool key "
-                              "--window $w m; wait_handled 2 0;";
+  const std::string actions =
+      scene.pair_and_key() + "mark; xdotool key --window $w 3; wait_handled 2 0; mark; xdotool mousemove --window $w " +
+      pixel(h) +
+      " sleep 0.1 click 1; wait_handled 0 2; mark; xdotool key --window $w d; wait_handled 2 0; "
+      "mark; xdotool key --window $w m; wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
