@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <random>
 
 #include "lapis/core/error.h"
 #include "lapis/geometry/connectivity.h"
@@ -77,4 +78,41 @@ TEST_CASE("geometry: welding restores a split grid") {
   CHECK(grid.num_vertices() == 5);
   CHECK(grid.V(pairs_map[0], 1) == doctest::Approx(0.5));
   CHECK(pairs_map[0] == pairs_map[3]);
+}
+
+TEST_CASE("geometry: bridging two square loops makes the same triangles after any similarity") {
+  // Two rings of 12 points round a square, one unit apart: every quad between them is a unit
+  // square, both of its diagonals equally long. Rounding after a rotation makes one of them
+  // shorter by an ulp; the triangulation must not follow it.
+  TriMesh rings;
+  rings.V.resize(24, 3);
+  rings.F.resize(0, 3);
+  std::vector<int> a, b;
+  for (int k = 0; k < 12; ++k) {
+    const int side = k / 3, step = k % 3;
+    const double along = step - 1.5;  // -1.5 .. 0.5 along each side of a 4-wide square
+    const Eigen::Vector2d corner[4] = {{-1.5, -1.5}, {1.5, -1.5}, {1.5, 1.5}, {-1.5, 1.5}};
+    const Eigen::Vector2d dir[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    const Eigen::Vector2d p = corner[side] + (along + 1.5) * dir[side];
+    rings.V.row(k) << p.x(), p.y(), 0.0;
+    rings.V.row(12 + k) << p.x(), p.y(), 1.0;
+    a.push_back(k);
+    b.push_back(12 + k);
+  }
+  TriMesh reference = rings;
+  bridge_polylines(reference, a, b, true);
+  REQUIRE(reference.F.rows() == 24);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    CAPTURE(trial);
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const double scale = std::exp(3 * u(rng));
+    const Eigen::RowVector3d shift(100 * u(rng), 100 * u(rng), 100 * u(rng));
+    TriMesh moved = rings;
+    moved.V = ((scale * rings.V * R.transpose()).rowwise() + shift).eval();
+    bridge_polylines(moved, a, b, true);
+    CHECK(moved.F == reference.F);
+  }
 }

@@ -53,6 +53,11 @@ bool has_directed_edge(const Faces& F, int a, int b) {
   return false;
 }
 
+// x shorter than y by more than rounding. Lengths equal up to rounding (both diagonals of a
+// rectangle) are a tie, which the caller breaks by position along the polylines: a rule that a
+// similarity of the mesh cannot change, where `<` on rounded values flips with the last bit.
+bool shorter(double x, double y) { return x < y * (1 - 1e-9); }
+
 }  // namespace
 
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
@@ -103,7 +108,7 @@ int bridge_polylines(TriMesh& mesh, const std::vector<int>& a_in, const std::vec
   if (closed) {
     size_t best = 0;
     for (size_t j = 1; j < b.size(); ++j)
-      if ((pos(b[j]) - pos(a[0])).squaredNorm() < (pos(b[best]) - pos(a[0])).squaredNorm()) best = j;
+      if (shorter((pos(b[j]) - pos(a[0])).squaredNorm(), (pos(b[best]) - pos(a[0])).squaredNorm())) best = j;
     std::rotate(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(best), b.end());
     a.push_back(a.front());
     b.push_back(b.front());
@@ -114,8 +119,8 @@ int bridge_polylines(TriMesh& mesh, const std::vector<int>& a_in, const std::vec
   Faces strip(static_cast<Eigen::Index>(n + m - 2), 3);
   Eigen::Index t = 0;
   for (size_t i = 0, j = 0; i + 1 < n || j + 1 < m;) {
-    const bool advance_a = j + 1 == m || (i + 1 < n && (pos(a[i + 1]) - pos(b[j])).squaredNorm() <=
-                                                           (pos(a[i]) - pos(b[j + 1])).squaredNorm());
+    const bool advance_a = j + 1 == m || (i + 1 < n && !shorter((pos(a[i]) - pos(b[j + 1])).squaredNorm(),
+                                                                (pos(a[i + 1]) - pos(b[j])).squaredNorm()));
     if (advance_a) {
       strip.row(t++) << a[i], a[i + 1], b[j];
       ++i;

@@ -22,7 +22,9 @@ std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
 // global optimization). With closed = true both are cycles and b is first rotated to start
 // at its vertex nearest a[0]. The strip is oriented to match the existing faces on a's
 // edges when there are any; otherwise it lies to the left of a walking forward, with b
-// running the same way. Returns the number of triangles added.
+// running the same way. Lengths within 1e-9 (relative) of each other are ties: a's step goes
+// first, and b starts at the earliest of its nearest vertices, so a similarity of the mesh
+// never changes the triangles. Returns the number of triangles added.
 int bridge_polylines(TriMesh& mesh, const std::vector<int>& a, const std::vector<int>& b, bool closed);
 
 // Merges every vertex within tolerance of another (grid hashing, transitively), keeps the
