@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
 
 #include "fixture.h"
 #include "lapis/core/error.h"
+#include "lapis/geometry/procedural.h"
 #include "lapis/hair_sketch/stream_curve.h"
 
 using namespace hair_test;
@@ -32,6 +34,23 @@ TEST_CASE("hair_sketch: the bundled head is a closed mesh with a scalp cap above
   // Neck below, crown above the centre.
   CHECK(head.box.min().y() < head.center.y() - 1.5);
   CHECK(head.box.max().y() > head.center.y() + 0.5);
+}
+
+TEST_CASE("hair_sketch: the scalp's solid angle seen from the centre is that of its cap") {
+  // Unit sphere, scalp above y = 0.5: the centre sits a quarter up the scalp (y = 0.625),
+  // below the cap's rim circle (radius √0.75 at y = 0.5), so the rim is seen at
+  // θ = π − atan(√0.75 / 0.125) from +y and the cap spans 2π(1 − cos θ).
+  const auto sphere = lapis::geometry::make_icosphere(5);
+  const Head head = make_head(sphere, scalp_vertices_above(sphere, {0, 0.5, 0}, Eigen::Vector3d::UnitY()));
+  CHECK(head.center.y() == doctest::Approx(0.625).epsilon(0.01));
+  const double rim_below_centre = head.center.y() - 0.5;
+  const double theta = std::numbers::pi - std::atan(std::sqrt(0.75) / rim_below_centre);
+  const double expected = 2 * std::numbers::pi * (1 - std::cos(theta));
+  CHECK(head.scalp_solid_angle == doctest::Approx(expected).epsilon(0.03));
+  // No scalp: no roots, with the reason.
+  const Head bald = make_head(sphere, {});
+  CHECK(bald.scalp_solid_angle == 0);
+  CHECK_THROWS_WITH_AS(sample_roots(bald), doctest::Contains("scalp is empty"), lapis::InvalidArgument);
 }
 
 TEST_CASE("hair_sketch: roots lie on the scalp, never inside the head, deterministic per seed") {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -12,6 +13,35 @@
 #include "lapis/geometry/normals.h"
 
 namespace lapis::hair_sketch {
+
+namespace {
+
+// Where the ray from the centre in direction (θ from +y, φ about y) leaves the head, if that
+// is on the scalp; the last crossing is the outer surface even where a ray grazes an ear.
+std::optional<geometry::RayHit> scalp_hit(const Head& head, double theta, double phi) {
+  const Eigen::Vector3d d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+  auto hit = head.bvh->intersect(head.center, d, 10 * head.box.sizes().maxCoeff());
+  if (!hit || !head.scalp_face[hit->face]) return std::nullopt;
+  return hit;
+}
+
+// Solid angle of the directions from the centre that leave the head through the scalp, from
+// a 60 × 120 pass in θ, φ weighted by sin θ. It sets the sampling step of sample_roots(); it
+// is computed once per head because it is most of the cost of sampling a few hundred roots.
+double estimate_scalp_solid_angle(const Head& head) {
+  const double pi = std::numbers::pi;
+  int hits = 0, total = 0;
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 120; ++j) {
+      const double theta = (i + 0.5) * pi / 60, phi = (j + 0.5) * 2 * pi / 120;
+      const int w = static_cast<int>(1000 * std::sin(theta));
+      total += w;
+      if (scalp_hit(head, theta, phi)) hits += w;
+    }
+  return 4 * pi * hits / total;
+}
+
+}  // namespace
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> Head::closest(const Eigen::Vector3d& p) const {
   const geometry::ClosestPoint c = bvh->closest_point(p);
@@ -51,6 +81,7 @@ Head make_head(geometry::TriMesh mesh, const std::vector<int>& scalp_vertices) {
   h.face_normals = geometry::face_normals(mesh);
   h.bvh = std::make_shared<geometry::Bvh>(mesh);
   h.mesh = std::move(mesh);
+  h.scalp_solid_angle = estimate_scalp_solid_angle(h);
   return h;
 }
 
@@ -106,30 +137,16 @@ Head load_bundled_head(const std::filesystem::path& source_dir) {
 std::vector<Eigen::Vector3d> sample_roots(const Head& head, const RootOptions& options) {
   if (options.count <= 0)
     throw InvalidArgument("hair_sketch::sample_roots(): count must be positive, got " + std::to_string(options.count));
+  if (!(head.scalp_solid_angle > 0)) throw InvalidArgument("hair_sketch::sample_roots(): the scalp is empty");
   const double pi = std::numbers::pi;
   const double size = head.box.sizes().maxCoeff();
-  // Ray from the centre in direction (θ from +y, φ about y); the last crossing is the
-  // outer surface even where a ray grazes an ear.
   auto cast = [&](double theta, double phi, Eigen::Vector3d& root) {
-    const Eigen::Vector3d d(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-    const auto hit = head.bvh->intersect(head.center, d, 10 * size);
-    if (!hit || !head.scalp_face[hit->face]) return false;
+    const auto hit = scalp_hit(head, theta, phi);
+    if (!hit) return false;
     root = hit->point + options.lift * size * head.face_normals.row(hit->face).transpose();
     return !head.inside(root);
   };
-  // Fraction of directions that hit the scalp, from a coarse pass, sets the step.
-  int hits = 0, total = 0;
-  Eigen::Vector3d tmp;
-  for (int i = 0; i < 60; ++i)
-    for (int j = 0; j < 120; ++j) {
-      const double theta = (i + 0.5) * pi / 60, phi = (j + 0.5) * 2 * pi / 120;
-      const double w = std::sin(theta);
-      total += 1000 * w;
-      if (cast(theta, phi, tmp)) hits += 1000 * w;
-    }
-  if (hits == 0) throw InvalidArgument("hair_sketch::sample_roots(): the scalp is empty");
-  const double solid = 4 * pi * hits / total;
-  const double step = std::sqrt(solid / options.count);  // radians, uniform per solid angle
+  const double step = std::sqrt(head.scalp_solid_angle / options.count);  // radians, uniform per solid angle
   std::mt19937 rng(options.seed);
   std::uniform_real_distribution<double> u(-options.jitter, options.jitter);
   std::vector<Eigen::Vector3d> roots;

@@ -24,6 +24,9 @@ struct Head {
   Eigen::AlignedBox3d box;
   std::shared_ptr<const geometry::Bvh> bvh;
   geometry::Vertices face_normals;  // #F unit outward normals
+  // Steradians of the directions from `center` that leave the head through the scalp (set by
+  // make_head(); sample_roots() derives its step from it).
+  double scalp_solid_angle = 0;
 
   // Outward unit normal of the head at its point closest to p, and that point.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> closest(const Eigen::Vector3d& p) const;
