@@ -2,7 +2,7 @@
 // the field solved and the strands grown on the bundled head. The session's own paths are
 // ignored (the fuzzer must not open files it names) and the work is bounded: small parser
 // limits, a memory limit on the grid and solver, and sessions asking for more grid, roots,
-// strand length or constraint samples than below are skipped, so one input takes well
+// strand length, curve length or constraint samples than below are skipped, so one input takes well
 // under a second.
 #include <variant>
 
@@ -23,6 +23,9 @@ constexpr double kMaxUnknowns = 2000;
 constexpr int kMaxRoots = 32;
 constexpr double kMaxSegmentsPerStrand = 200;
 constexpr int kMaxSamples = 16;  // dividing curves' samples_per_side, tail segments
+// Curve length in grid spacings, over all primitives. The library takes up to 2^20 samples a
+// curve (0.1 s in release, 3 s under ASan + coverage for a replayed stroke that long).
+constexpr double kMaxCurveSpacings = 4096;
 constexpr double kMemoryLimitBytes = 256.0 * (1 << 20);
 
 const Head& bundled_head() {
@@ -30,7 +33,25 @@ const Head& bundled_head() {
   return head;
 }
 
-bool affordable(const Hairstyle& s) {
+double polyline_length(const std::vector<Eigen::Vector3d>& p) {
+  double length = 0;
+  for (size_t i = 1; i < p.size(); ++i) length += (p[i] - p[i - 1]).norm();
+  return length;
+}
+
+double curve_spacings(const Hairstyle& s, const Head& head) {
+  double length = 0;
+  for (const auto& p : s.primitives) {
+    if (const auto* c = std::get_if<StreamCurve>(&p.shape)) length += polyline_length(c->points);
+    if (const auto* d = std::get_if<DividingCurve>(&p.shape)) length += polyline_length(d->points);
+    if (const auto* t = std::get_if<Ponytail>(&p.shape))
+      for (const auto* line : {&t->spine, &t->cross_section, &t->profile_a, &t->profile_b})
+        length += polyline_length(*line);
+  }
+  return length / hairstyle_grid(head, s.settings).spacing;
+}
+
+bool affordable(const Hairstyle& s, const Head& head) {
   const auto& set = s.settings;
   if (!(set.grid.target_unknowns <= kMaxUnknowns) || set.roots.count > kMaxRoots) return false;
   if (!(set.growth.max_length <= kMaxSegmentsPerStrand * set.growth.step)) return false;
@@ -39,7 +60,7 @@ bool affordable(const Hairstyle& s) {
     if (const auto* d = std::get_if<DividingCurve>(&p.shape); d && d->samples_per_side > kMaxSamples) return false;
     if (const auto* c = std::get_if<StreamCurve>(&p.shape); c && c->tail_segments > kMaxSamples) return false;
   }
-  return true;
+  return curve_spacings(s, head) <= kMaxCurveSpacings;
 }
 
 }  // namespace
@@ -60,11 +81,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     limits.max_items = 16;
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     Hairstyle session = session_from_json(text, "<fuzz>", limits);
-    if (!affordable(session)) throw lapis::ResourceLimit("fuzz_hair_session: settings beyond the fuzzing limits");
+    if (!affordable(session, head)) throw lapis::ResourceLimit("fuzz_hair_session: settings beyond the fuzzing limits");
     session.settings.grid.memory_limit_bytes = kMemoryLimitBytes;
     session.settings.field.memory_limit_bytes = kMemoryLimitBytes;
     const Hairstyle style = session.strokes.empty() ? session : replay_strokes(session, head);
-    if (!affordable(style))
+    if (!affordable(style, head))
       throw lapis::ResourceLimit("fuzz_hair_session: replayed primitives beyond the fuzzing limits");
     (void)build_hairstyle(style, head);
   });
