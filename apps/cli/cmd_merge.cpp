@@ -96,6 +96,7 @@ nlohmann::json merge_report(const std::string& out, const geometry::TriMesh& sou
                {"max_target_displacement", q.max_target_displacement},
                {"dihedral_mean_deg", q.seam_dihedral_mean_deg},
                {"dihedral_max_deg", q.seam_dihedral_max_deg},
+               {"folded_edges", q.folded_seam_edges},
                {"target_dihedral_mean_deg", q.target_dihedral_mean_deg},
                {"target_dihedral_p95_deg", q.target_dihedral_p95_deg}};
   j["detail"] = {{"laplacian_residual", d.laplacian_residual},

@@ -34,6 +34,17 @@ TEST_CASE("mesh_merge: seam metrics see a hole, a moved target vertex and distor
   CHECK(seam_quality(tgt, holed).seam_boundary_edges >= 2);
   CHECK(!seam_quality(tgt, holed).valid());
 
+  CHECK(good.folded_seam_edges == 0);
+  MergeResult spiked = r;
+  // A strip triangle turned over faces against the surface on all three of its edges, as a
+  // spike or a notch of the zip does.
+  const int flipped = r.strip_faces[r.strip_faces.size() / 2];
+  std::swap(spiked.mesh.F(flipped, 1), spiked.mesh.F(flipped, 2));
+  const SeamQuality folded = seam_quality(tgt, spiked);
+  CHECK(folded.folded_seam_edges > 0);
+  CHECK(folded.seam_dihedral_max_deg > SeamQuality::kFoldDeg);
+  CHECK(!folded.valid());
+
   MergeResult moved = r;
   int far = 0;
   while (moved.target_map[far] < 0 || std::binary_search(r.smoothed.begin(), r.smoothed.end(), moved.target_map[far]))
