@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <numbers>
 #include <random>
 
 #include "lapis/core/error.h"
@@ -114,5 +115,63 @@ TEST_CASE("geometry: bridging two square loops makes the same triangles after an
     moved.V = ((scale * rings.V * R.transpose()).rowwise() + shift).eval();
     bridge_polylines(moved, a, b, true);
     CHECK(moved.F == reference.F);
+  }
+}
+
+namespace {
+
+// Edges of faces [first, end) whose two faces turn by more than kFoldedDihedralDeg.
+int folded_edges_from(const TriMesh& m, int first) {
+  const Connectivity conn(m);
+  auto normal = [&](int f) {
+    const Eigen::Vector3d p = m.V.row(m.F(f, 0)), q = m.V.row(m.F(f, 1)), s = m.V.row(m.F(f, 2));
+    return Eigen::Vector3d((q - p).cross(s - p).normalized());
+  };
+  std::vector<char> seen(static_cast<size_t>(conn.num_edges()), 0);
+  int folded = 0;
+  for (int f = first; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int e = conn.face_edge(f, k);
+      if (seen[e] || conn.edge_face_count(e) != 2) continue;
+      seen[e] = 1;
+      const auto [g, h] = conn.edge_faces(e);
+      folded += normal(g).dot(normal(h)) < std::cos(kFoldedDihedralDeg * std::numbers::pi / 180);
+    }
+  return folded;
+}
+
+}  // namespace
+
+TEST_CASE("geometry: bridging a jagged cut does not fold the strip against the surface beside it") {
+  // A cylinder with a gap of one row, its lower loop dense and zig-zagging up and down by most
+  // of the gap, as a cut through a scanned mesh leaves it; the upper loop coarse and shifted
+  // half a step. Shortest diagonals alone fold triangles back over the lower rim's faces.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    CAPTURE(trial);
+    const int fine = 48, coarse = 20;
+    TriMesh lower = make_cylinder(fine, 3, 1.0, 1.0), upper = make_cylinder(coarse, 3, 1.0, 1.0);
+    upper.V.col(2).array() += 1.2;
+    for (int k = 0; k < fine; ++k) {  // the top ring of `lower`
+      const double jag = 0.16 * u(rng);
+      lower.V(3 * fine + k, 2) += k % 2 ? jag : -jag;
+    }
+    for (int k = 0; k < coarse; ++k) {
+      const double phi = 2 * std::numbers::pi * (k + 0.5 + 0.3 * (u(rng) - 0.5)) / coarse;
+      upper.V.row(k) << std::cos(phi), std::sin(phi), 1.2;
+    }
+    TriMesh m;
+    m.V.resize(lower.num_vertices() + upper.num_vertices(), 3);
+    m.V << lower.V, upper.V;
+    m.F.resize(lower.num_faces() + upper.num_faces(), 3);
+    m.F << lower.F, (upper.F.array() + lower.num_vertices()).matrix();
+    std::vector<int> a, b;
+    for (int k = 0; k < fine; ++k) a.push_back(3 * fine + k);
+    for (int k = 0; k < coarse; ++k) b.push_back(lower.num_vertices() + k);
+    const int first = m.num_faces();
+    bridge_polylines(m, a, b, true);
+    CHECK(validate(m).ok());
+    CHECK(folded_edges_from(m, first) == 0);
   }
 }

@@ -46,18 +46,6 @@ void check_vertex(const TriMesh& mesh, int v, const char* fn) {
                           std::to_string(mesh.num_vertices()) + ")");
 }
 
-bool has_directed_edge(const Faces& F, int a, int b) {
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k)
-      if (F(f, k) == a && F(f, (k + 1) % 3) == b) return true;
-  return false;
-}
-
-// x shorter than y by more than rounding. Lengths equal up to rounding (both diagonals of a
-// rectangle) are a tie, which the caller breaks by position along the polylines: a rule that a
-// similarity of the mesh cannot change, where `<` on rounded values flips with the last bit.
-bool shorter(double x, double y) { return x < y * (1 - 1e-9); }
-
 }  // namespace
 
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
@@ -94,46 +82,6 @@ TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::ve
   std::vector<int> map = remove_unreferenced_vertices(out);
   if (vertex_map) *vertex_map = std::move(map);
   return out;
-}
-
-int bridge_polylines(TriMesh& mesh, const std::vector<int>& a_in, const std::vector<int>& b_in, bool closed) {
-  constexpr const char* fn = "geometry::bridge_polylines()";
-  if (a_in.size() < 2 || b_in.size() < 2)
-    throw InvalidArgument(std::string(fn) + ": polylines have " + std::to_string(a_in.size()) + " and " +
-                          std::to_string(b_in.size()) + " vertices, expected at least 2 each");
-  for (int v : a_in) check_vertex(mesh, v, fn);
-  for (int v : b_in) check_vertex(mesh, v, fn);
-  std::vector<int> a = a_in, b = b_in;
-  auto pos = [&](int v) { return mesh.V.row(v); };
-  if (closed) {
-    size_t best = 0;
-    for (size_t j = 1; j < b.size(); ++j)
-      if (shorter((pos(b[j]) - pos(a[0])).squaredNorm(), (pos(b[best]) - pos(a[0])).squaredNorm())) best = j;
-    std::rotate(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(best), b.end());
-    a.push_back(a.front());
-    b.push_back(b.front());
-  }
-  // Base orientation uses a's edges forward and b's edges backward; flip to match neighbours.
-  const bool flip = has_directed_edge(mesh.F, a[0], a[1]) || has_directed_edge(mesh.F, b[1], b[0]);
-  const size_t n = a.size(), m = b.size();
-  Faces strip(static_cast<Eigen::Index>(n + m - 2), 3);
-  Eigen::Index t = 0;
-  for (size_t i = 0, j = 0; i + 1 < n || j + 1 < m;) {
-    const bool advance_a = j + 1 == m || (i + 1 < n && !shorter((pos(a[i]) - pos(b[j + 1])).squaredNorm(),
-                                                                (pos(a[i + 1]) - pos(b[j])).squaredNorm()));
-    if (advance_a) {
-      strip.row(t++) << a[i], a[i + 1], b[j];
-      ++i;
-    } else {
-      strip.row(t++) << a[i], b[j + 1], b[j];
-      ++j;
-    }
-    if (flip) std::swap(strip(t - 1, 1), strip(t - 1, 2));
-  }
-  const Eigen::Index old = mesh.F.rows();
-  mesh.F.conservativeResize(old + t, 3);
-  mesh.F.bottomRows(t) = strip;
-  return static_cast<int>(t);
 }
 
 std::vector<int> weld_vertices(TriMesh& mesh, double tolerance) {

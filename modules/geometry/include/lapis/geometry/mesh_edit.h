@@ -16,15 +16,21 @@ TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::ve
 // Drops vertices that no face uses; returns the old-to-new map (-1 for dropped ones).
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
 
+// Two faces sharing an edge whose normals are more than this apart fold onto each other (a
+// spike or a notch), which no smooth surface has.
+inline constexpr double kFoldedDihedralDeg = 120;
+
 // Triangulates the band between polylines a and b (vertex indices into mesh.V) and appends
-// the triangles to mesh.F. Each step advances along the polyline whose next diagonal is
-// shorter (the greedy shortest-diagonal rule of Fuchs, Kedem & Uselton 1977 without the
-// global optimization). With closed = true both are cycles and b is first rotated to start
-// at its vertex nearest a[0]. The strip is oriented to match the existing faces on a's
-// edges when there are any; otherwise it lies to the left of a walking forward, with b
-// running the same way. Lengths within 1e-9 (relative) of each other are ties: a's step goes
-// first, and b starts at the earliest of its nearest vertices, so a similarity of the mesh
-// never changes the triangles. Returns the number of triangles added.
+// the triangles to mesh.F: of all strips that advance along a and b (Fuchs, Kedem & Uselton
+// 1977), the one with the fewest folded edges (against the faces already on a's and b's
+// edges, and between its own triangles) and degenerate triangles, and among those the one
+// with the shortest diagonals in total. O(|a|·|b|) time, 2·|a|·|b| bytes. With closed = true
+// both are cycles and b is first rotated to start at its vertex nearest a[0]. The strip is
+// oriented to match the existing faces on a's edges when there are any; otherwise it lies to
+// the left of a walking forward, with b running the same way. Lengths within 1e-9
+// (relative) of each other are ties, broken by position along the polylines (a's step
+// first; b starts at the earliest of its nearest vertices), so a similarity of the mesh never
+// changes the triangles. Returns the number of triangles added.
 int bridge_polylines(TriMesh& mesh, const std::vector<int>& a, const std::vector<int>& b, bool closed);
 
 // Merges every vertex within tolerance of another (grid hashing, transitively), keeps the
