@@ -133,7 +133,11 @@ int run(const std::vector<std::string>& argv) {
   emit_report(j, args);
   outputs.commit();
   if (!q.valid()) {
-    std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
+    if (q.folded_seam_edges > 0)
+      std::fprintf(stderr, "lapis merge: error: %d seam edges fold (faces turning by over %.0f degrees)\n",
+                   q.folded_seam_edges, geometry::kFoldedDihedralDeg);
+    else
+      std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
     return 1;
   }
   return 0;

@@ -42,7 +42,7 @@ TEST_CASE("mesh_merge: seam metrics see a hole, a moved target vertex and distor
   std::swap(spiked.mesh.F(flipped, 1), spiked.mesh.F(flipped, 2));
   const SeamQuality folded = seam_quality(tgt, spiked);
   CHECK(folded.folded_seam_edges > 0);
-  CHECK(folded.seam_dihedral_max_deg > SeamQuality::kFoldDeg);
+  CHECK(folded.seam_dihedral_max_deg > geometry::kFoldedDihedralDeg);
   CHECK(!folded.valid());
 
   MergeResult moved = r;

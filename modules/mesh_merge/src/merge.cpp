@@ -185,6 +185,7 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
   if (options_.smooth_iterations > 0) {
     r.smoothed = seam_band(r.mesh, r.seam_vertices, options_.smooth_rings);
     umbrella_smooth(r.mesh, r.smoothed, options_.smooth_iterations, options_.smooth_lambda);
+    unfold_seam(r.mesh, r.strip_faces, r.smoothed);
   }
   r.timings.smooth_ms = ms_since(t0);
   r.timings.total_ms = ms_since(t_total);

@@ -83,8 +83,8 @@ SeamQuality seam_quality(const TriMesh& target, const MergeResult& r) {
     for (double a : seam) sum += a;
     q.seam_dihedral_mean_deg = sum / double(seam.size());
     q.seam_dihedral_max_deg = *std::max_element(seam.begin(), seam.end());
-    q.folded_seam_edges =
-        static_cast<int>(std::count_if(seam.begin(), seam.end(), [](double a) { return a > SeamQuality::kFoldDeg; }));
+    q.folded_seam_edges = static_cast<int>(
+        std::count_if(seam.begin(), seam.end(), [](double a) { return a > geometry::kFoldedDihedralDeg; }));
   }
   std::vector<double> own = dihedral_deviation_deg(target);
   if (!own.empty()) {

@@ -379,6 +379,15 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
 
   t0 = std::chrono::steady_clock::now();
   blend_kept_band(src, sconn, target, tconn, Xt, bands, keep_source, z, r);
+  // The kept band was reconstructed to blend into the seam, and the source is deformed
+  // anyway: both may move to unfold the seam, the target outside its band may not.
+  std::vector<char> is_source(static_cast<size_t>(z.mesh.num_vertices()), 0);
+  for (int v : r.source_map)
+    if (v >= 0) is_source[v] = 1;
+  std::vector<int> movable = r.transition_vertices;
+  for (int v : seam_band(z.mesh, z.seam_vertices, 1))
+    if (is_source[v]) movable.push_back(v);
+  unfold_seam(z.mesh, z.strip_faces, movable);
   r.timings.smooth_ms = ms_since(t0);  // the band replaces the seam smoothing
   r.mesh = std::move(z.mesh);
   r.strip_faces = std::move(z.strip_faces);

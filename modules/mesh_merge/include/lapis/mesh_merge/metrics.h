@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/mesh_merge/merge.h"
 
 namespace lapis::mesh_merge {
@@ -19,10 +20,9 @@ struct SeamQuality {
       0;                              // over target vertices outside the smoothed and transition bands, / bbox diagonal
   double seam_dihedral_mean_deg = 0;  // normal deviation across strip edges
   double seam_dihedral_max_deg = 0;
-  // Strip edges whose two faces turn by more than kFoldDeg: a triangle facing against the
-  // surface beside it (a spike or a notch), which no smooth seam has.
+  // Strip edges whose two faces turn by more than geometry::kFoldedDihedralDeg: a triangle
+  // facing against the surface beside it (a spike or a notch), which no smooth seam has.
   int folded_seam_edges = 0;
-  static constexpr double kFoldDeg = 120;
   double target_dihedral_mean_deg = 0;  // the target's own interior edges, for comparison
   double target_dihedral_p95_deg = 0;
   bool valid() const {
