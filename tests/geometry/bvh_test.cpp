@@ -119,6 +119,16 @@ TEST_CASE("geometry: BVH handles degenerate input") {
   REQUIRE(hit.has_value());
   CHECK(hit->face == 0);  // ties go to the lowest face index
   CHECK(hit->t == 1.0);
+  // Far points: 1e150 away the squared distance (1e300) is finite and the answer exact; at
+  // 1e200 every squared distance overflows, and there is no nearest face to name.
+  const Bvh sphere(make_icosphere(2));
+  const ClosestPoint far = sphere.closest_point(Eigen::Vector3d(0, 1e150, 0));
+  REQUIRE(far.face >= 0);
+  CHECK(far.distance == doctest::Approx(1e150));
+  CHECK(far.point.norm() <= 1.0 + 1e-12);
+  CHECK_THROWS_WITH_AS(sphere.closest_point(Eigen::Vector3d(0, 1e200, 0)),
+                       doctest::Contains("is so far from the mesh that its squared distance overflows"),
+                       lapis::InvalidArgument);
   TriMesh bad = make_icosphere(0);
   bad.V(3, 1) = std::nan("");
   CHECK_THROWS_WITH_AS(Bvh{bad}, doctest::Contains("geometry::Bvh(): vertex 3 = ("), lapis::InvalidArgument);

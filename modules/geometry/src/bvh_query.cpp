@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "lapis/core/error.h"
+#include "lapis/core/format.h"
 #include "lapis/geometry/bvh.h"
 
 namespace lapis::geometry {
@@ -166,6 +167,11 @@ ClosestPoint Bvh::closest_point(const Eigen::Vector3d& p) const {
     stack[top++] = dl <= dr ? n.first + 1 : n.first;
     stack[top++] = dl <= dr ? n.first : n.first + 1;
   }
+  // Every squared distance overflowed: p is beyond 1e154 of every face.
+  if (best.face < 0)
+    throw InvalidArgument("geometry::Bvh::closest_point(): query point (" + format_number(p.x()) + ", " +
+                          format_number(p.y()) + ", " + format_number(p.z()) +
+                          ") is so far from the mesh that its squared distance overflows");
   best.distance = std::sqrt(best_d2);
   return best;
 }

@@ -43,7 +43,8 @@ class Bvh {
   std::optional<RayHit> intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                   double t_max = std::numeric_limits<double>::infinity()) const;
 
-  // Closest point on the surface. Throws InvalidArgument on an empty mesh.
+  // Closest point on the surface. Throws InvalidArgument on an empty mesh, a non-finite p or
+  // one so far away (beyond 1e154) that squared distances overflow.
   ClosestPoint closest_point(const Eigen::Vector3d& p) const;
 
   // For closed meshes: whether p is inside, by the majority of three ray-crossing parities
