@@ -33,6 +33,15 @@ inline constexpr double kFoldedDihedralDeg = 120;
 // changes the triangles. Returns the number of triangles added.
 int bridge_polylines(TriMesh& mesh, const std::vector<int>& a, const std::vector<int>& b, bool closed);
 
+// Triangulates the polygon through `polygon` (indices into V, in order, not repeating the
+// first; planar or nearly so, like a triangle with vertices inserted along its sides): of all
+// triangulations by diagonals, the one whose smallest angle is largest (Klincsek's O(k³)
+// program; above 160 corners the best fan, O(k²)). Near-equal angles tie to the earlier
+// corner, so a similarity of V does not change the result. Triangles keep the polygon's
+// winding. Returns k − 2 triangles. Throws InvalidArgument for fewer than 3 corners or an index
+// out of range.
+Faces triangulate_polygon(const Vertices& V, const std::vector<int>& polygon);
+
 // Merges every vertex within tolerance of another (grid hashing, transitively), keeps the
 // lowest index's position, drops faces that collapse and unreferenced vertices. Returns the
 // old-to-new vertex map.

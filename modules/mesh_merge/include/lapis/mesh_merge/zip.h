@@ -2,6 +2,9 @@
 // the target boundary, remove one band of target triangles next to each target merging loop
 // and re-triangulate the gap between the deformed source loop and the band's inner loop;
 // then smooth the seam band with a few umbrella-operator iterations (Taubin 1995 / [101]).
+// Where that band is not an annulus (the loop passes within one triangle of itself or of a
+// thin part, and removing the band would cut the target apart), the pair is zipped without
+// removing anything: the two loops are merged into one polyline and the triangles on it split.
 #pragma once
 
 #include <vector>
@@ -12,15 +15,20 @@ namespace lapis::mesh_merge {
 
 struct ZipResult {
   TriMesh mesh;                    // target part first, then the source
-  std::vector<int> target_map;     // #V_target: merged index, -1 for vertices removed with the band
-  std::vector<int> source_map;     // #V_source: merged index
-  std::vector<int> strip_faces;    // merged faces of the re-triangulated gaps
+  std::vector<int> target_map;     // #V_target: merged index, -1 for vertices removed with a band
+  std::vector<int> source_map;     // #V_source: merged index (a target vertex's where they were merged)
+  std::vector<int> strip_faces;    // merged faces of the re-triangulated gaps (zipped without a band:
+                                   // the faces on the merged loop, both sides)
   std::vector<int> seam_vertices;  // merged vertices on the strips (both sides), ascending
 };
 
-// source  the deformed source (same connectivity as the one pairs were made on). Throws
-// InvalidArgument "mesh_merge::zip_seams(): ..." when removing a band does not leave exactly
-// one inner loop for each pair (a target too coarse or too thin next to its boundary).
+// source  the deformed source (same connectivity as the one pairs were made on). A pair is
+// zipped without a band only when its source loop lies on the target loop (target_edge and
+// target_t given, as the merge's boundary conditions make it); a source point within a fifth
+// of a target edge of the edge's end becomes that target vertex. Throws InvalidArgument
+// "mesh_merge::zip_seams(): ..." for a band that is not an annulus on a pair without
+// target_edge (a transition region's rim), and for two target loops within one triangle of
+// each other.
 ZipResult zip_seams(const TriMesh& target, const TriMesh& source, const std::vector<BoundaryCorrespondence>& pairs);
 
 // Seam band: the vertices within `rings` edges of the seam vertices (the seam itself for 0).
