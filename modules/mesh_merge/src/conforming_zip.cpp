@@ -8,8 +8,6 @@
 namespace lapis::mesh_merge::detail {
 namespace {
 
-std::uint64_t directed(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
-
 // Which target vertex (loop index) each source loop point becomes, -1 for inserted points.
 std::vector<int> snap_points(const BoundaryCorrespondence& pair, int nt) {
   const size_t ns = pair.target_t.size();
@@ -54,7 +52,7 @@ ConformingSeam zip_conforming(TriMesh& mesh, const std::vector<int>& T, const st
   for (size_t i = ns; i-- > 0;)
     if (snapped[i] < 0) {
       const int j = pair.target_edge[i];
-      inserted[directed(T[static_cast<size_t>((j + 1) % nt)], T[static_cast<size_t>(j)])].push_back(S[i]);
+      inserted[directed_edge(T[static_cast<size_t>((j + 1) % nt)], T[static_cast<size_t>(j)])].push_back(S[i]);
     }
   for (size_t i = 0; i < ns; ++i) {
     const double from = loop_parameter(pair, snapped, i);
@@ -63,7 +61,7 @@ ConformingSeam zip_conforming(TriMesh& mesh, const std::vector<int>& T, const st
     std::vector<int> run;
     for (int j = static_cast<int>(std::floor(from)) + 1; j < to; ++j)
       if (!target_taken[static_cast<size_t>(j % nt)]) run.push_back(T[static_cast<size_t>(j % nt)]);
-    if (!run.empty()) inserted[directed(S[i], S[(i + 1) % ns])] = std::move(run);
+    if (!run.empty()) inserted[directed_edge(S[i], S[(i + 1) % ns])] = std::move(run);
   }
   std::unordered_map<int, int> redirect;
   for (size_t i = 0; i < ns; ++i)
@@ -75,14 +73,15 @@ ConformingSeam zip_conforming(TriMesh& mesh, const std::vector<int>& T, const st
 
   // The seam's faces: those on a loop edge, on either side (re-triangulated or not).
   std::unordered_map<std::uint64_t, char> loop_edge;
-  for (int j = 0; j < nt; ++j) loop_edge[directed(T[static_cast<size_t>((j + 1) % nt)], T[static_cast<size_t>(j)])] = 1;
-  for (size_t i = 0; i < ns; ++i) loop_edge[directed(S[i], S[(i + 1) % ns])] = 1;
+  for (int j = 0; j < nt; ++j)
+    loop_edge[directed_edge(T[static_cast<size_t>((j + 1) % nt)], T[static_cast<size_t>(j)])] = 1;
+  for (size_t i = 0; i < ns; ++i) loop_edge[directed_edge(S[i], S[(i + 1) % ns])] = 1;
   ConformingSeam seam;
   std::vector<int> touched;
   for (int f = 0; f < mesh.num_faces(); ++f) {
     bool on_loop = false, split = false;
     for (int k = 0; k < 3; ++k) {
-      const std::uint64_t e = directed(mesh.F(f, k), mesh.F(f, (k + 1) % 3));
+      const std::uint64_t e = directed_edge(mesh.F(f, k), mesh.F(f, (k + 1) % 3));
       on_loop = on_loop || loop_edge.count(e);
       split = split || inserted.count(e);
     }
@@ -96,7 +95,7 @@ ConformingSeam zip_conforming(TriMesh& mesh, const std::vector<int>& T, const st
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.F(f, k), b = mesh.F(f, (k + 1) % 3);
       polygon.push_back(merged(a));
-      if (const auto it = inserted.find(directed(a, b)); it != inserted.end())
+      if (const auto it = inserted.find(directed_edge(a, b)); it != inserted.end())
         polygon.insert(polygon.end(), it->second.begin(), it->second.end());
     }
     const geometry::Faces tris = geometry::triangulate_polygon(mesh.V, polygon);

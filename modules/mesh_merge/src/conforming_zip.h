@@ -2,6 +2,7 @@
 // to the loop is not an annulus (zip_seams() falls back to it there).
 #pragma once
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,9 @@ struct ConformingSeam {
   std::vector<int> seam_vertices;            // the merged loop (target vertices and inserted source vertices)
   std::vector<std::pair<int, int>> snapped;  // (source vertex, target vertex it became)
 };
+
+// A key for the directed edge a → b.
+inline std::uint64_t directed_edge(int a, int b) { return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b); }
 
 // Points nearer a target vertex than this fraction of the edge would leave slivers if inserted.
 inline constexpr double kSnapFraction = 0.2;

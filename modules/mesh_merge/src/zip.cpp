@@ -105,10 +105,10 @@ std::vector<int> kept_target_loop(const std::vector<int>& target_map, const TriM
   for (int f = 0; f < merged.num_faces(); ++f)
     for (int k = 0; k < 3; ++k)
       if (on_loop[static_cast<size_t>(merged.F(f, k))])
-        edges.insert((std::uint64_t(std::uint32_t(merged.F(f, k))) << 32) | std::uint32_t(merged.F(f, (k + 1) % 3)));
+        edges.insert(detail::directed_edge(merged.F(f, k), merged.F(f, (k + 1) % 3)));
   for (size_t j = 0; j < loop.size(); ++j) {
     const int a = loop[(j + 1) % loop.size()], b = loop[j];
-    if (a < 0 || b < 0 || !edges.count((std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)))
+    if (a < 0 || b < 0 || !edges.count(detail::directed_edge(a, b)))
       throw InvalidArgument(std::string(kZip) + ": target loop " + std::to_string(p) +
                             " passes within one triangle of another merging loop; the seams cannot be zipped apart");
   }
