@@ -25,7 +25,8 @@ constexpr const char* kUsage =
     "  dependent (3.3.2): the source stays where it is, only vertices within --roi-width of its\n"
     "  boundary move (0: the loop diameter) and the --handles vertices stay fixed.\n"
     "  transition (3.3.3, configuration-independent): bands of --source-width and --target-width\n"
-    "  (edge-path distance to the loop, target units; default a fifth of the target loop diameter)\n"
+    "  (edge-path distance to the loop, target units; default a fifth of the target loop\n"
+    "  diameter, shrunk until both bands are annuli)\n"
     "  overlap and blend the two meshes' details; the surface keeps the --keep mesh's band\n"
     "  (default source) and the seam is not smoothed (--smooth is ignored).\n"
     "  PAIRS.json: one entry per source boundary loop, each with its key correspondences\n"
@@ -117,7 +118,8 @@ int run(const std::vector<std::string>& argv) {
   const std::vector<mesh_merge::LoopPair> pairs = mesh_merge::read_pairs_file(args.get("--pairs"));
   if (transition) {
     // Only values the module rejects with a clearer message (<= 0) pass the flag parser as well.
-    const double suggested = mesh_merge::suggested_transition_width(target, pairs);
+    const bool both_given = args.has("--source-width") && args.has("--target-width");
+    const double suggested = both_given ? 0.0 : mesh_merge::suggested_transition_width(source, target, pairs);
     o.transition.source_width = args.get_double("--source-width", suggested, -1e300, 1e300);
     o.transition.target_width = args.get_double("--target-width", suggested, -1e300, 1e300);
   }

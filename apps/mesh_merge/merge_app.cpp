@@ -32,10 +32,10 @@ bool same_options(const mesh_merge::MergeOptions& a, const mesh_merge::MergeOpti
 }  // namespace
 
 double first_band_width(const mesh_merge::MergeSetup& s) {
-  if (!s.target) return 0.1;
+  if (!s.target || !s.source) return 0.1;
   double w = 0;
   try {
-    w = mesh_merge::suggested_transition_width(*s.target, mesh_merge::loop_pairs(s));
+    w = mesh_merge::suggested_transition_width(*s.source, *s.target, mesh_merge::loop_pairs(s));
   } catch (const Error&) {
   }
   return w > 0 ? w : 0.05 * std::max(1e-9, mesh_merge::bbox_diagonal(s.target->V));

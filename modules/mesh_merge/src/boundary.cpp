@@ -57,6 +57,8 @@ std::vector<double> cumulative_length(const Vertices& V, const std::vector<int>&
 
 }  // namespace
 
+double loop_perimeter(const Vertices& V, const std::vector<int>& loop) { return cumulative_length(V, loop).back(); }
+
 void check_merge_source(const TriMesh& source, const Connectivity& source_conn) {
   if (source_conn.boundary_loops().empty())
     fail("the source is closed (no boundary loop), expected an open merging boundary");

@@ -11,6 +11,7 @@
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/mesh_merge/constraints.h"
 #include "lapis/mesh_merge/refine.h"
+#include "lapis/mesh_merge/transition.h"
 #include "lapis/mesh_merge/zip.h"
 #include "transition_merge.h"
 
@@ -192,26 +193,57 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
   return r;
 }
 
-double suggested_transition_width(const TriMesh& target, const std::vector<LoopPair>& pairs) {
-  const Connectivity conn(target);
-  double diameters = 0;
-  int loops = 0;
+namespace {
+
+constexpr const char* kSuggest = "mesh_merge::suggested_transition_width()";
+
+// The boundary loop of `mesh` through vertex v (a pair's first key), starting at v: the band
+// is cut from there.
+std::vector<int> loop_through(const Connectivity& conn, int v, int n, const char* side) {
+  if (v < 0 || v >= n)
+    throw InvalidArgument(std::string(kSuggest) + ": " + side + " key vertex " + std::to_string(v) + " out of range");
+  for (std::vector<int> loop : conn.boundary_loops())
+    if (const auto at = std::find(loop.begin(), loop.end(), v); at != loop.end()) {
+      std::rotate(loop.begin(), at, loop.end());
+      return loop;
+    }
+  throw InvalidArgument(std::string(kSuggest) + ": " + side + " key vertex " + std::to_string(v) +
+                        " is not on a boundary loop");
+}
+
+}  // namespace
+
+double suggested_transition_width(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs) {
+  const Connectivity sconn(source), tconn(target);
+  std::vector<std::vector<int>> source_loops, target_loops;
+  double source_perimeter = 0, target_perimeter = 0;
   for (const LoopPair& p : pairs) {
     if (p.keys.empty()) continue;
-    const int t = p.keys[0].target;
-    if (t < 0 || t >= target.num_vertices())
-      throw InvalidArgument("mesh_merge::suggested_transition_width(): target key vertex " + std::to_string(t) +
-                            " out of range");
-    for (const auto& loop : conn.boundary_loops())
-      if (std::find(loop.begin(), loop.end(), t) != loop.end()) {
-        double perimeter = 0;
-        for (size_t i = 0; i < loop.size(); ++i)
-          perimeter += (target.V.row(loop[(i + 1) % loop.size()]) - target.V.row(loop[i])).norm();
-        diameters += perimeter / std::numbers::pi;
-        ++loops;
-      }
+    source_loops.push_back(loop_through(sconn, p.keys[0].source, source.num_vertices(), "source"));
+    target_loops.push_back(loop_through(tconn, p.keys[0].target, target.num_vertices(), "target"));
+    source_perimeter += loop_perimeter(source.V, source_loops.back());
+    target_perimeter += loop_perimeter(target.V, target_loops.back());
   }
-  return loops ? 0.2 * diameters / loops : 0.0;
+  if (target_loops.empty() || !(source_perimeter > 0) || !(target_perimeter > 0)) return 0.0;
+  // Widths are in target units; the merge scales the source so that its loops' perimeter is
+  // the target's (TransitionOptions), and so does the check of its bands here.
+  TriMesh scaled = source;
+  scaled.V *= target_perimeter / source_perimeter;
+  // A fifth of the loops' mean diameter (perimeter / π), shrunk until every band is an annulus
+  // whose rim lies inside its mesh: the largest band the merge accepts, within 2⁻⁸ of that start.
+  constexpr double kShrink = 0.75;
+  constexpr int kTries = 20;
+  double width = 0.2 * target_perimeter / std::numbers::pi / static_cast<double>(target_loops.size());
+  std::string why;
+  for (int k = 0; k < kTries; ++k, width *= kShrink) {
+    bool all = true;
+    for (size_t p = 0; p < target_loops.size() && all; ++p)
+      all = band_is_annulus(target, tconn, target_loops[p], width, "target", &why) &&
+            band_is_annulus(scaled, sconn, source_loops[p], width, "source", &why);
+    if (all) return width;
+  }
+  throw InvalidArgument(std::string(kSuggest) + ": no transition width down to " + format_number(width / kShrink) +
+                        " gives annular bands next to every merging loop: " + why);
 }
 
 MergeResult merge(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,

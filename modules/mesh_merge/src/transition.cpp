@@ -75,15 +75,6 @@ std::vector<double> arc_length_params(const Vertices& V, const std::vector<int>&
   return u;
 }
 
-std::pair<int, double> locate_on_loop(const std::vector<double>& params, double u) {
-  const int n = static_cast<int>(params.size());
-  int k = static_cast<int>(std::upper_bound(params.begin(), params.end(), u) - params.begin()) - 1;
-  k = std::clamp(k, 0, n - 1);
-  const double next = k + 1 < n ? params[k + 1] : 1.0;
-  const double span = next - params[k];
-  return {k, span > 0 ? std::clamp((u - params[k]) / span, 0.0, 1.0) : 0.0};
-}
-
 namespace {
 
 // §3.3.3: the band is every vertex whose shortest edge path to the merging boundary is
@@ -106,6 +97,15 @@ std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const
   if (beyond == 0 || static_cast<int>(faces.size()) == mesh.num_faces())
     fail(which, "transition band " + w + " covers the whole mesh (no face is that far from the merging loop)");
   return faces;
+}
+
+// The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
+TriMesh band_mesh(const TriMesh& mesh, const std::vector<int>& faces) {
+  TriMesh sub;
+  sub.V = mesh.V;
+  sub.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(faces[i]);
+  return sub;
 }
 
 // The band's inner rim: its boundary loop other than the merging loop, in the seam's
@@ -224,6 +224,21 @@ void embed_in_square(TransitionBand& b, const Vertices& V, const std::vector<dou
 
 }  // namespace
 
+bool band_is_annulus(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop, double width,
+                     const char* which, std::string* why) {
+  try {
+    if (loop.size() < 3) fail(which, "merging loop needs at least 3 vertices");
+    const std::string w = "of width " + format_number(width);
+    const std::vector<int> faces = band_faces(mesh, conn, loop, width, w, which);
+    const Connectivity sc(band_mesh(mesh, faces));
+    band_cut(mesh, sc, loop, band_rim(conn, sc, loop, false, w, which), w, which);
+    return true;
+  } catch (const InvalidArgument& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+}
+
 TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
                                const std::vector<double>& loop_u, double width, bool reversed, const char* which) {
   if (!(width > 0) || !std::isfinite(width))
@@ -236,11 +251,7 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
   b.loop = loop;
   b.faces = band_faces(mesh, conn, loop, width, w, which);
 
-  // The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
-  TriMesh sub;
-  sub.V = mesh.V;
-  sub.F.resize(static_cast<Eigen::Index>(b.faces.size()), 3);
-  for (size_t i = 0; i < b.faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(b.faces[i]);
+  const TriMesh sub = band_mesh(mesh, b.faces);
   const Connectivity sc(sub);
   std::vector<int> rim = band_rim(conn, sc, loop, reversed, w, which);
   std::vector<char> on_rim(static_cast<size_t>(nv), 0);

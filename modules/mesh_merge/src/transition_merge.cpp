@@ -20,12 +20,6 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double perimeter(const Vertices& V, const std::vector<int>& loop) {
-  double p = 0;
-  for (size_t i = 0; i < loop.size(); ++i) p += (V.row(loop[(i + 1) % loop.size()]) - V.row(loop[i])).norm();
-  return p;
-}
-
 // One pair's two bands and the overlap maps between them.
 struct PairBands {
   TransitionBand source, target;
@@ -77,11 +71,19 @@ void reconstruct_band(TriMesh& mesh, const std::vector<int>& unknown, const Vert
   std::vector<int> fixed;
   for (int v = 0; v < n; ++v)
     if (!is_unknown[v]) fixed.push_back(v);
+  // A vertex whose faces are all degenerate (collapsed in the zip's strip, or laid flat on the
+  // other band's rim by kept_band_spread) has no cotangent row: it takes the umbrella row and
+  // sits at its neighbours' mean instead of leaving the system singular.
   const Eigen::SparseMatrix<double> L = geometry::cotan_laplacian(mesh);
+  const Eigen::SparseMatrix<double> U = geometry::uniform_laplacian(mesh);
+  std::vector<char> umbrella(unknown.size(), 0);
   std::vector<Eigen::Triplet<double, int>> t;
-  for (size_t r = 0; r < unknown.size(); ++r)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(L, unknown[r]); it; ++it)  // L is symmetric
+  for (size_t r = 0; r < unknown.size(); ++r) {
+    umbrella[r] = !(L.coeff(unknown[r], unknown[r]) < 0);
+    const Eigen::SparseMatrix<double>& row = umbrella[r] ? U : L;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(row, unknown[r]); it; ++it)  // symmetric
       t.emplace_back(static_cast<int>(r), static_cast<int>(it.row()), it.value());
+  }
   solver::SparseMatrix rows(static_cast<Eigen::Index>(unknown.size()), n);
   rows.setFromTriplets(t.begin(), t.end());
   solver::LeastSquares ls(n);
@@ -90,7 +92,9 @@ void reconstruct_band(TriMesh& mesh, const std::vector<int>& unknown, const Vert
   ls.precompute();
   solver::DenseMatrix rhs(static_cast<Eigen::Index>(unknown.size()), 3),
       values(static_cast<Eigen::Index>(fixed.size()), 3);
-  for (size_t r = 0; r < unknown.size(); ++r) rhs.row(static_cast<Eigen::Index>(r)) = target_delta.row(unknown[r]);
+  for (size_t r = 0; r < unknown.size(); ++r)
+    rhs.row(static_cast<Eigen::Index>(r)) =
+        umbrella[r] ? Eigen::RowVector3d::Zero() : Eigen::RowVector3d(target_delta.row(unknown[r]));
   for (size_t k = 0; k < fixed.size(); ++k) values.row(static_cast<Eigen::Index>(k)) = positions.row(fixed[k]);
   const solver::DenseMatrix x = ls.solve({rhs}, values);
   for (int v : unknown) positions.row(v) = x.row(v);
@@ -155,7 +159,8 @@ Eigen::RowVector3d blend(const BandPoint& p, const Vertices& X) {
 TriMesh source_at_target_scale(const TriMesh& source, const TriMesh& target,
                                const std::vector<BoundaryCorrespondence>& corr) {
   double ps = 0, pt = 0;
-  for (const auto& c : corr) ps += perimeter(source.V, c.source_loop), pt += perimeter(target.V, c.target_loop);
+  for (const auto& c : corr)
+    ps += loop_perimeter(source.V, c.source_loop), pt += loop_perimeter(target.V, c.target_loop);
   TriMesh src = source;
   src.V = ((source.V.rowwise() - source.V.colwise().mean()) * (pt / ps)).eval();
   flip_loop_ears(src, corr);
@@ -174,35 +179,14 @@ std::vector<double> source_loop_params(const BoundaryCorrespondence& c, const st
   return su;
 }
 
-// The boundary condition of §3.3.1, moved to where the bands overlap: the source loop goes
-// onto the target band's rim (kept, fixed), at the same u.
-BoundaryCorrespondence onto_rim(const BoundaryCorrespondence& c, const std::vector<double>& su, const TriMesh& target,
-                                const std::vector<int>& rim) {
-  BoundaryCorrespondence rc;
-  rc.source_loop = c.source_loop;
-  rc.target_loop = rim;
-  const std::vector<double> rim_u = arc_length_params(target.V, rim);
-  const int nr = static_cast<int>(rc.target_loop.size());
-  rc.target_points.resize(static_cast<Eigen::Index>(su.size()), 3);
-  for (size_t i = 0; i < su.size(); ++i) {
-    const auto [k, t] = locate_on_loop(rim_u, su[i]);
-    rc.target_edge.push_back(k);
-    rc.target_t.push_back(t);
-    rc.target_points.row(static_cast<Eigen::Index>(i)) =
-        (1 - t) * target.V.row(rc.target_loop[k]) + t * target.V.row(rc.target_loop[(k + 1) % nr]);
-  }
-  return rc;
-}
-
 // Every pair's bands, cut and parameterized (u along both loops follows the key
-// correspondences), and its source loop's correspondence onto the target rim (on_rim).
+// correspondences).
 // Throws when two pairs' bands overlap or a rim lies inside another pair's band.
 std::vector<PairBands> make_bands(const TriMesh& src, const Connectivity& sconn, const TriMesh& target,
                                   const Connectivity& tconn, const std::vector<BoundaryCorrespondence>& corr,
-                                  const TransitionOptions& o, std::vector<BoundaryCorrespondence>& on_rim) {
+                                  const TransitionOptions& o) {
   const int ns = src.num_vertices(), nt = target.num_vertices();
   std::vector<PairBands> bands;
-  on_rim.assign(corr.size(), {});
   std::vector<int> band_of(static_cast<size_t>(ns + nt), -1);
   for (size_t p = 0; p < corr.size(); ++p) {
     const BoundaryCorrespondence& c = corr[p];
@@ -218,10 +202,9 @@ std::vector<PairBands> make_bands(const TriMesh& src, const Connectivity& sconn,
       }
     b.source_on_target = overlap_points(b.source, b.target);
     b.target_on_source = overlap_points(b.target, b.source);
-    on_rim[p] = onto_rim(c, su, target, b.target.rim);
     bands.push_back(std::move(b));
   }
-  // A rim inside another pair's band would move under the loop that is constrained onto it.
+  // A rim inside another pair's band would move with that band, under the kept band zipped to it.
   for (size_t p = 0; p < bands.size(); ++p)
     for (const auto& [list, offset] : {std::pair{&bands[p].source.rim, 0}, std::pair{&bands[p].target.rim, ns}})
       for (int v : *list)
@@ -275,9 +258,30 @@ Vertices deform_both(const TriMesh& src, const TriMesh& target, const std::vecto
   return X;
 }
 
+// The kept band laid over both bands before zipping: its vertex at v (0 on its loop, 1 on
+// its rim) goes to v · its own position + (1 − v) · its overlap point on the other band, whose
+// parameter there is 1 − v. Its loop then meets the other band's rim, where the seam is
+// zipped, and its rim stays: the band spans both bands, as the reconstruction (§3.3.3, "the
+// connectivity information of one transition region") will, and the strip is triangulated
+// across a closed gap rather than across a whole band.
+Vertices kept_band_spread(const Vertices& kept, const Vertices& other, const std::vector<PairBands>& bands,
+                          bool keep_source) {
+  Vertices X = kept;
+  for (const PairBands& b : bands) {
+    const TransitionBand& own = keep_source ? b.source : b.target;
+    const std::vector<BandPoint>& on_other = keep_source ? b.source_on_target : b.target_on_source;
+    for (size_t k = 0; k < own.vertices.size(); ++k) {
+      const int v = own.vertices[k];
+      const double along = own.at(v).y();
+      X.row(v) = along * kept.row(v) + (1 - along) * blend(on_other[k], other);
+    }
+  }
+  return X;
+}
+
 // §3.3.3, Fig. 3.7 (b): the surface keeps one band's connectivity; the other band goes and
-// the seam is zipped where the kept band meets the rest of the other mesh. Fills r's source
-// and target vertex maps into the zipped mesh.
+// the seam is zipped where the kept band, spread over both (kept_band_spread), meets the rest
+// of the other mesh. Fills r's source and target vertex maps into the zipped mesh.
 ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertices& Xt,
                         const std::vector<PairBands>& bands, bool keep_source, MergeResult& r) {
   const int ns = src.num_vertices(), nt = target.num_vertices();
@@ -288,8 +292,10 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
     removed.insert(removed.end(), gone.faces.begin(), gone.faces.end());
   }
   const TriMesh rest_of_other = keep_source
-                                    ? geometry::remove_faces(target, removed, &cut_map)
+                                    ? geometry::remove_faces(TriMesh{Xt, target.F}, removed, &cut_map)
                                     : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
+  const Vertices kept = keep_source ? kept_band_spread(r.source_deformed, Xt, bands, true)
+                                    : kept_band_spread(Xt, r.source_deformed, bands, false);
   for (size_t p = 0; p < bands.size(); ++p) {
     const PairBands& b = bands[p];
     if (keep_source) {
@@ -300,8 +306,8 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
       seams[p].target_loop = b.target.loop;
     }
   }
-  ZipResult z = keep_source ? zip_seams(rest_of_other, TriMesh{r.source_deformed, src.F}, seams)
-                            : zip_seams(TriMesh{Xt, target.F}, rest_of_other, seams);
+  ZipResult z = keep_source ? zip_seams(rest_of_other, TriMesh{kept, src.F}, seams)
+                            : zip_seams(TriMesh{kept, target.F}, rest_of_other, seams);
   r.target_map.assign(static_cast<size_t>(nt), -1);
   r.source_map.assign(static_cast<size_t>(ns), -1);
   for (int v = 0; v < nt; ++v) {
@@ -363,9 +369,11 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   const TriMesh src = source_at_target_scale(source, target, corr);
   const Connectivity sconn(src);
   const int ns = src.num_vertices(), nt = target.num_vertices();
-  std::vector<BoundaryCorrespondence> on_rim;
-  const std::vector<PairBands> bands = make_bands(src, sconn, target, tconn, corr, o.transition, on_rim);
-  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, on_rim, false);
+  const std::vector<PairBands> bands = make_bands(src, sconn, target, tconn, corr, o.transition);
+  // "With the same boundary condition as before" (§3.3.3): the source loop onto the target
+  // loop, as in §3.3.1. The bands then lie on either side of the seam and E_T mixes their
+  // details; the kept band is spread over both before the zip (kept_band_spread).
+  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, corr, false);
 
   const Vertices X = deform_both(src, target, bands, cons, o, r, t0);
   r.source_rest = src;

@@ -71,4 +71,7 @@ std::vector<BoundaryCorrespondence> correspond_boundaries(const TriMesh& source,
                                                           const TriMesh& target, const Connectivity& target_conn,
                                                           const std::vector<LoopPair>& pairs);
 
+// Length of the closed polyline through V's rows `loop` (the closing edge included).
+double loop_perimeter(const Vertices& V, const std::vector<int>& loop);
+
 }  // namespace lapis::mesh_merge

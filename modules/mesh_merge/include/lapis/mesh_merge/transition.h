@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,6 +44,13 @@ struct TransitionBand {
 TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop,
                                const std::vector<double>& loop_u, double width, bool reversed, const char* which);
 
+// Whether transition_band() would accept this band: it leaves part of the mesh uncovered, is an
+// annulus between the loop and one inner rim, and can be cut from loop[0] to the rim. When it
+// would not, writes transition_band()'s message (naming `which`) to *why, if given. Builds no
+// parameterization.
+bool band_is_annulus(const TriMesh& mesh, const Connectivity& conn, const std::vector<int>& loop, double width,
+                     const char* which, std::string* why = nullptr);
+
 // A point of a band as a barycentric combination of three mesh vertices.
 struct BandPoint {
   std::array<int, 3> vertices{-1, -1, -1};
@@ -54,11 +62,6 @@ struct BandPoint {
 // on the other. Parallel to from.vertices. Points that fall outside every triangle (rounding
 // at the square's edges) take the nearest triangle's clamped weights.
 std::vector<BandPoint> overlap_points(const TransitionBand& from, const TransitionBand& to);
-
-// The point at parameter u in [0, 1] along a closed polyline whose vertices have parameters
-// `params` (increasing from params[0] = 0; the closing edge runs to u = 1): the edge index k
-// (from polyline[k] to polyline[k + 1 mod n]) and the fraction t along it.
-std::pair<int, double> locate_on_loop(const std::vector<double>& params, double u);
 
 // Normalized cumulative arc length of a closed polyline: 0 at loop[0], increasing, < 1.
 std::vector<double> arc_length_params(const Vertices& V, const std::vector<int>& loop);
