@@ -456,12 +456,12 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
     });
   } else if (big.empty()) {
     const FirstSystemInput in = m.first_input(transforms);
-    X = solver::DenseMatrix(P) + m.first.solve(in.rhs, in.fixed);
+    X = solver::DenseMatrix(P) + m.first.solve(in.rhs, in.fixed, options_.refinement_steps);
   } else {
     FirstSystemInput in = m.first_input(transforms);
     if (big != m.guided_for) build_guide(big);
     in.rhs.push_back(m.guide_rhs(transforms));
-    X = solver::DenseMatrix(P) + m.guided->solve(in.rhs, in.fixed);
+    X = solver::DenseMatrix(P) + m.guided->solve(in.rhs, in.fixed, options_.refinement_steps);
   }
   report_.first_solve_ms = ms_since(t0);
 
@@ -478,7 +478,7 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   report_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  const solver::DenseMatrix Y = m.second.solve({rhs2}, m.second_fixed(transforms));
+  const solver::DenseMatrix Y = m.second.solve({rhs2}, m.second_fixed(transforms), options_.refinement_steps);
   for (int v : m.free)
     if (v < n0) out.row(v) = w.mesh.V.row(v) + Y.row(v);
   report_.second_solve_ms = ms_since(t0);
