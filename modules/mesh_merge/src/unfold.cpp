@@ -16,20 +16,89 @@ Eigen::Vector3d face_normal(const TriMesh& m, int f) {
   return (b - a).cross(c - a).normalized();
 }
 
-}  // namespace
+// How faces f and g turn against each other and their neighbours across their other edges
+// (in `conn`: rows rewritten by a flip keep their outer edges' incidences): the folded pairs
+// among them, then the smallest cosine, compared in that order.
+struct Turn {
+  int folded = 0;
+  double worst = 1;
+  // The worst turn first: a flip that trades a sharp fold for a milder one lets the umbrella
+  // steps after it finish the job (unfold_seam keeps the better of with and without flips).
+  bool better_than(const Turn& o) const { return worst != o.worst ? worst > o.worst : folded < o.folded; }
+};
 
-int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::vector<int>& movable, int max_rounds,
-                double lambda) {
+Turn turn_of(const TriMesh& m, const Connectivity& conn, int f, int g, double cos_fold) {
+  Turn t;
+  auto add = [&](int a, int b) {
+    const double c = face_normal(m, a).dot(face_normal(m, b));
+    t.folded += !(c >= cos_fold);
+    t.worst = std::min(t.worst, std::isfinite(c) ? c : -2.0);
+  };
+  add(f, g);
+  for (int h : {f, g})
+    for (int k = 0; k < 3; ++k) {
+      const int e = conn.find_edge(m.F(h, k), m.F(h, (k + 1) % 3));
+      if (e < 0) continue;
+      for (int x : conn.edge_faces(e))
+        if (x >= 0 && x != f && x != g) add(h, x);
+    }
+  return t;
+}
+
+// Flips the inner edge of two strip faces, f = (x, y, b) and g = (y, x, d) → (x, d, b),
+// (d, y, b), where that turns them and their neighbours by less than before. The strip's tiling
+// was chosen on the loops before smoothing, and a zig-zag left across a fold often has the
+// other diagonal flat. Vertices stay; each pass rebuilds the connectivity. Returns the flips.
+int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, double cos_fold) {
+  std::vector<char> in_strip(static_cast<size_t>(mesh.num_faces()), 0);
+  for (int f : strip_faces) in_strip[static_cast<size_t>(f)] = 1;
+  int flips = 0;
+  for (int pass = 0; pass < 8; ++pass) {
+    const Connectivity conn(mesh);
+    int pass_flips = 0;
+    std::vector<char> touched(static_cast<size_t>(mesh.num_faces()), 0);
+    for (int f : strip_faces)
+      for (int j = 0; j < 3; ++j) {
+        const int e = conn.face_edge(f, j);
+        const auto [p, q] = conn.edge_faces(e);
+        const int g = p == f ? q : p;
+        if (g < 0 || !in_strip[static_cast<size_t>(g)] || touched[static_cast<size_t>(f)] ||
+            touched[static_cast<size_t>(g)] || face_normal(mesh, f).dot(face_normal(mesh, g)) >= cos_fold)
+          continue;
+        const int x = mesh.F(f, j), y = mesh.F(f, (j + 1) % 3), b = mesh.F(f, (j + 2) % 3);
+        int d = -1;
+        for (int k = 0; k < 3; ++k)
+          if (mesh.F(g, k) != x && mesh.F(g, k) != y) d = mesh.F(g, k);
+        if (d < 0 || d == b || conn.find_edge(b, d) >= 0) continue;
+        const Turn before = turn_of(mesh, conn, f, g, cos_fold);
+        const Eigen::RowVector3i old_f = mesh.F.row(f), old_g = mesh.F.row(g);
+        mesh.F.row(f) << x, d, b;
+        mesh.F.row(g) << d, y, b;
+        if (!turn_of(mesh, conn, f, g, cos_fold).better_than(before)) {
+          mesh.F.row(f) = old_f, mesh.F.row(g) = old_g;
+          continue;
+        }
+        touched[static_cast<size_t>(f)] = touched[static_cast<size_t>(g)] = 1;
+        ++pass_flips;
+        break;
+      }
+    flips += pass_flips;
+    if (pass_flips == 0) break;
+  }
+  return flips;
+}
+
+// Umbrella steps on the vertices of folded strip edges' faces that may move, at most
+// max_rounds; returns the folded edges left.
+int smooth_out_folds(TriMesh& mesh, const std::vector<int>& strip_faces, const std::vector<char>& can_move,
+                     int max_rounds, double lambda, double cos_fold) {
   const Connectivity conn(mesh);
-  std::vector<char> can_move(static_cast<size_t>(mesh.num_vertices()), 0);
-  for (int v : movable) can_move[v] = 1;
   std::vector<int> edges;
   for (int f : strip_faces)
     for (int k = 0; k < 3; ++k)
       if (conn.edge_face_count(conn.face_edge(f, k)) == 2) edges.push_back(conn.face_edge(f, k));
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  const double cos_fold = std::cos(geometry::kFoldedDihedralDeg * std::numbers::pi / 180);
   auto folded_edges = [&] {
     std::vector<int> out;
     for (int e : edges) {
@@ -60,6 +129,32 @@ int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::v
     folded = folded_edges();
   }
   return static_cast<int>(folded.size());
+}
+
+}  // namespace
+
+int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::vector<int>& movable, int max_rounds,
+                double lambda) {
+  const double cos_fold = std::cos(geometry::kFoldedDihedralDeg * std::numbers::pi / 180);
+  std::vector<char> can_move(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : movable) can_move[v] = 1;
+  // Flips first, then umbrella steps; the steps can turn a fold the flips could not undo into
+  // one they can, so twice. Flips may leave more folds where nothing may move, so the umbrella
+  // steps alone are tried too, and the result with fewer folds is kept.
+  const TriMesh original = mesh;
+  int folded = 0;
+  for (int cycle = 0; cycle < 2; ++cycle) {
+    flip_folded_diagonals(mesh, strip_faces, cos_fold);
+    folded = smooth_out_folds(mesh, strip_faces, can_move, max_rounds, lambda, cos_fold);
+    if (folded == 0) return 0;
+  }
+  TriMesh unflipped = original;
+  const int without_flips = smooth_out_folds(unflipped, strip_faces, can_move, max_rounds, lambda, cos_fold);
+  if (without_flips < folded) {
+    mesh = std::move(unflipped);
+    folded = without_flips;
+  }
+  return folded;
 }
 
 }  // namespace lapis::mesh_merge

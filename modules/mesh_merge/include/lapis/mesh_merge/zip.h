@@ -40,9 +40,11 @@ std::vector<int> seam_band(const TriMesh& mesh, const std::vector<int>& seam_ver
 // out of range.
 void umbrella_smooth(TriMesh& mesh, const std::vector<int>& vertices, int iterations, double lambda);
 
-// Unfolds the seam: while some edge of strip_faces folds (its two faces turn by more than
-// geometry::kFoldedDihedralDeg), one umbrella step moves the vertices of the folded edges'
-// faces that are in `movable`; at most max_rounds steps. Returns the folded edges left.
+// Unfolds the seam: a folded edge of strip_faces (its two faces turn by more than
+// geometry::kFoldedDihedralDeg) between two strip faces is flipped where the other diagonal
+// turns them and their neighbours less (the faces keep their indices); then, while some strip
+// edge folds, one umbrella step moves the vertices of the folded edges' faces that are in
+// `movable`, at most max_rounds steps; flips and steps twice. Returns the folded edges left.
 int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::vector<int>& movable,
                 int max_rounds = 50, double lambda = 0.5);
 
