@@ -221,22 +221,4 @@ void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& targe
   report_.frame_ms = ms_since(t_frame);
 }
 
-const char* to_string(LaplacianDomain d) { return d == LaplacianDomain::Edges ? "edges" : "vertices"; }
-
-const char* to_string(CellTransform t) {
-  switch (t) {
-    case CellTransform::Rotation:
-      return "rotation";
-    case CellTransform::IsotropicScale:
-      return "isotropic";
-    case CellTransform::AnisotropicScale:
-      return "anisotropic";
-    case CellTransform::Full:
-      return "full";
-  }
-  return "?";
-}
-
-const char* to_string(ScaleFrame f) { return f == ScaleFrame::World ? "world" : "principal"; }
-
 }  // namespace lapis::mesh_deform

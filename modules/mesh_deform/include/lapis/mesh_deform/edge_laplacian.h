@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
@@ -54,6 +55,8 @@ struct EdgeLaplacianOptions {
   // Deformer contract (handles land exactly).
   bool soft_handles = false;
   double handle_weight = 1.0;  // Eq. 6
+
+  bool operator==(const EdgeLaplacianOptions&) const = default;
 };
 
 struct EdgeLaplacianReport {
@@ -97,8 +100,13 @@ class EdgeLaplacianDeformer final : public Deformer {
   std::unique_ptr<Impl> impl_;
 };
 
+// Names for command lines and reports: edges, vertices; rotation, isotropic, anisotropic,
+// full; world, principal. The *_from_name functions throw InvalidArgument naming the known ones.
 const char* to_string(LaplacianDomain d);
 const char* to_string(CellTransform t);
 const char* to_string(ScaleFrame f);
+LaplacianDomain laplacian_domain_from_name(const std::string& name);
+CellTransform cell_transform_from_name(const std::string& name);
+ScaleFrame scale_frame_from_name(const std::string& name);
 
 }  // namespace lapis::mesh_deform
