@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cell_fit.h"
+#include "edge_cell_sums.h"
 #include "lapis/core/parallel_for.h"
 #include "lapis/solver/least_squares.h"
 #include "laplacian_cells.h"
@@ -33,7 +34,11 @@ struct EdgeLaplacianDeformer::Impl {
   solver::DenseMatrix delta;                 // #rows by 3: rest Laplacian vectors
   std::vector<detail::RestCell> rest_cells;  // #rows
   std::vector<detail::CellState> state;      // #rows
-  bool have_previous = false;                // state holds the transforms of the last frame's result
+  // Edge domain: the cells' A from ring sums (edge_cell_sums.h), with each row's ω.
+  detail::Stencil stencil;
+  std::unique_ptr<detail::EdgeCellSums> sums;
+  std::vector<double> row_omega;
+  bool have_previous = false;  // state holds the transforms of the last frame's result
 
   solver::DenseMatrix solve_with_transforms(const Vertices& rest, const solver::DenseMatrix& fixed,
                                             const solver::DenseMatrix& soft_rhs) const;
@@ -108,8 +113,10 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   const auto t0 = std::chrono::steady_clock::now();
   auto m = std::make_unique<Impl>();
   const int n = mesh_.num_vertices();
-  m->cells = options_.domain == LaplacianDomain::Edges ? detail::edge_cells(mesh_, options_.weights)
-                                                       : detail::vertex_cells(mesh_, options_.weights);
+  m->stencil = detail::make_stencil(mesh_.V, mesh_.F, options_.weights);
+  const detail::Stencil& stencil = m->stencil;
+  const bool edges = options_.domain == LaplacianDomain::Edges;
+  m->cells = edges ? detail::edge_cells(stencil, options_.weights) : detail::vertex_cells(stencil);
   m->unknown.assign(static_cast<size_t>(n), 0);
   std::vector<int> fixed;
   detail::SparseRows H(n);
@@ -136,6 +143,10 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   m->ls.add_block(detail::laplacian_rows(c, m->rows, n), 1.0, "D(v') = T δ (Eq. 6)");
   if (!m->soft.empty()) m->ls.add_block(H.matrix(), options_.handle_weight, "soft handles (Eq. 6)");
   m->ls.set_fixed(fixed);
+  // DᵀD couples vertices three rings apart (edge domain) or two: ordered on the mesh's own
+  // separators, its factor has about a tenth fewer non-zeros than with CHOLMOD's choice, and
+  // the analysis takes half the time.
+  m->ls.set_ordering_skeleton(detail::edge_graph(stencil));
   try {
     m->ls.precompute();
   } catch (const NotPositiveDefinite& e) {
@@ -161,6 +172,19 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
     }
     m->rest_cells[static_cast<size_t>(r)] = detail::rest_cell(C0, principal);
   });
+  if (edges) {
+    // Uniform: every entry of a node carries its ω and the fans unit weights; cotangent: the
+    // fans carry the (clamped) weights of the neighbouring edges, as edge_cells() does.
+    const bool uniform = options_.weights == LaplacianWeights::Uniform;
+    std::vector<double> u(stencil.w.size());
+    for (size_t k = 0; k < u.size(); ++k) u[k] = uniform ? 1.0 : std::max(stencil.w[k], 0.0);
+    m->sums = std::make_unique<detail::EdgeCellSums>(m->stencil, std::move(u), mesh_.V);
+    m->row_omega.resize(static_cast<size_t>(nr));
+    for (int r = 0; r < nr; ++r) {
+      const int a = m->rows[static_cast<size_t>(r)];
+      m->row_omega[static_cast<size_t>(r)] = uniform ? c.w[static_cast<size_t>(c.offsets[a])] : 1.0;
+    }
+  }
   impl_ = std::move(m);
   report_ = {};
   report_.nodes = report_.rows = nr;

@@ -5,8 +5,7 @@
 
 namespace lapis::mesh_deform::detail {
 
-LaplacianCells vertex_cells(const geometry::TriMesh& mesh, LaplacianWeights weights) {
-  const Stencil s = make_stencil(mesh.V, mesh.F, weights);
+LaplacianCells vertex_cells(const Stencil& s) {
   LaplacianCells cells;
   cells.c = 1;
   cells.offsets = s.offsets;
@@ -18,8 +17,7 @@ LaplacianCells vertex_cells(const geometry::TriMesh& mesh, LaplacianWeights weig
   return cells;
 }
 
-LaplacianCells edge_cells(const geometry::TriMesh& mesh, LaplacianWeights weights) {
-  const Stencil s = make_stencil(mesh.V, mesh.F, weights);
+LaplacianCells edge_cells(const Stencil& s, LaplacianWeights weights) {
   LaplacianCells cells;
   cells.c = 0.5;
   cells.offsets.push_back(0);
@@ -41,6 +39,7 @@ LaplacianCells edge_cells(const geometry::TriMesh& mesh, LaplacianWeights weight
       };
       add_fan(i, j);
       add_fan(j, i);
+      cells.ends.push_back({i, j});
       cells.offsets.push_back(static_cast<int>(cells.p.size()));
     }
   return cells;
