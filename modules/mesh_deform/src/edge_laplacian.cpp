@@ -26,6 +26,11 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 // D has a row for every node whose row touches an unknown (literal Eq. 6 without the rows
 // that are constant); DᵀD (+ soft rows) is factorized once per selection.
 struct EdgeLaplacianDeformer::Impl {
+  // Vertices in spatial order (detail::spatial_order), as in ARAP: the fits and the
+  // right-hand sides gather along rows of neighbouring vertices, and a Loop-subdivided mesh's
+  // own order puts half of every ring #V/2 entries away.
+  std::vector<int> order;        // internal index -> mesh vertex
+  Vertices rest;                 // rest positions, internal order
   detail::LaplacianCells cells;  // every node of the mesh
   std::vector<int> rows;         // nodes with a row, in row order
   std::vector<char> unknown;     // #V
@@ -113,7 +118,15 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   const auto t0 = std::chrono::steady_clock::now();
   auto m = std::make_unique<Impl>();
   const int n = mesh_.num_vertices();
-  m->stencil = detail::make_stencil(mesh_.V, mesh_.F, options_.weights);
+  m->order = detail::spatial_order(mesh_.V);
+  std::vector<int> rank(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) rank[static_cast<size_t>(m->order[static_cast<size_t>(k)])] = k;
+  m->rest = mesh_.V(m->order, Eigen::all);
+  geometry::Faces F = mesh_.F;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) F(f, c) = rank[static_cast<size_t>(F(f, c))];
+  const Vertices& rest = m->rest;
+  m->stencil = detail::make_stencil(rest, F, options_.weights);
   const detail::Stencil& stencil = m->stencil;
   const bool edges = options_.domain == LaplacianDomain::Edges;
   m->cells = edges ? detail::edge_cells(stencil, options_.weights) : detail::vertex_cells(stencil);
@@ -121,7 +134,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   std::vector<int> fixed;
   detail::SparseRows H(n);
   for (int i = 0; i < n; ++i) {
-    const VertexRole r = layout.role[i];
+    const VertexRole r = layout.role[static_cast<size_t>(m->order[static_cast<size_t>(i)])];
     const bool unknown = r == VertexRole::Free || (options_.soft_handles && r != VertexRole::Fixed);
     m->unknown[static_cast<size_t>(i)] = unknown;
     if (!unknown) {
@@ -154,9 +167,9 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
                                           "not determine the free vertices (is some part of the ROI not connected to "
                                           "a handle or the fixed region?): ") +
                                   e.what(),
-                              e.column());
+                              e.column() >= 0 ? m->order[static_cast<size_t>(e.column())] : -1);
   }
-  const Vertices all_delta = detail::laplacian_vectors(c, mesh_.V);
+  const Vertices all_delta = detail::laplacian_vectors(c, rest);
   const int nr = static_cast<int>(m->rows.size());
   m->delta.resize(nr, 3);
   m->rest_cells.resize(static_cast<size_t>(nr));
@@ -167,7 +180,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
     m->delta.row(r) = all_delta.row(a);
     Eigen::Matrix3d C0 = Eigen::Matrix3d::Zero();
     for (int k = c.offsets[a]; k < c.offsets[a + 1]; ++k) {
-      const Eigen::Vector3d e = c.c * (mesh_.V.row(c.p[k]) - mesh_.V.row(c.q[k])).transpose();
+      const Eigen::Vector3d e = c.c * (rest.row(c.p[k]) - rest.row(c.q[k])).transpose();
       C0.noalias() += std::max(c.w[k], 0.0) * e * e.transpose();
     }
     m->rest_cells[static_cast<size_t>(r)] = detail::rest_cell(C0, principal);
@@ -178,7 +191,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
     const bool uniform = options_.weights == LaplacianWeights::Uniform;
     std::vector<double> u(stencil.w.size());
     for (size_t k = 0; k < u.size(); ++k) u[k] = uniform ? 1.0 : std::max(stencil.w[k], 0.0);
-    m->sums = std::make_unique<detail::EdgeCellSums>(m->stencil, std::move(u), mesh_.V);
+    m->sums = std::make_unique<detail::EdgeCellSums>(m->stencil, std::move(u), m->rest);
     m->row_omega.resize(static_cast<size_t>(nr));
     for (int r = 0; r < nr; ++r) {
       const int a = m->rows[static_cast<size_t>(r)];
@@ -197,10 +210,11 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
 // vertices; then each iteration fits every T on the current positions and solves again
 // (§4: "three to four iterations for calculating the rotation and scale matrices and
 // updating the new positions").
-void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& targets, Vertices& out) {
+void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& mesh_targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
-  const Vertices& rest = mesh_.V;
+  const Vertices& rest = m.rest;
+  const Vertices targets = mesh_targets(m.order, Eigen::all);
   const std::vector<int>& fixed_ids = m.ls.fixed();
   solver::DenseMatrix fixed(static_cast<Eigen::Index>(fixed_ids.size()), 3);
   for (size_t k = 0; k < fixed_ids.size(); ++k) fixed.row(k) = targets.row(fixed_ids[k]) - rest.row(fixed_ids[k]);
@@ -212,14 +226,14 @@ void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& targe
   double fit_ms = 0, solve_ms = 0, move = 0;
   int fallbacks = 0, it = 0;
   const double diag = (rest.colwise().maxCoeff() - rest.colwise().minCoeff()).norm();
-  out = targets;  // constrained vertices exactly on their targets
+  Vertices X = targets;  // constrained vertices exactly on their targets
   auto place = [&](const solver::DenseMatrix& d) {
     double largest = 0;
     for (Eigen::Index i = 0; i < rest.rows(); ++i) {
       if (!m.unknown[static_cast<size_t>(i)]) continue;
       const Eigen::RowVector3d x = rest.row(i) + d.row(i);
-      largest = std::max(largest, (x - out.row(i)).norm());
-      out.row(i) = x;
+      largest = std::max(largest, (x - X.row(i)).norm());
+      X.row(i) = x;
     }
     return largest;
   };
@@ -228,7 +242,7 @@ void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& targe
   solve_ms += ms_since(t0);
   while (it < options_.iterations) {
     t0 = std::chrono::steady_clock::now();
-    fallbacks += m.fit(rest, out, options_.transform, options_.frame);
+    fallbacks += m.fit(rest, X, options_.transform, options_.frame);
     fit_ms += ms_since(t0);
     t0 = std::chrono::steady_clock::now();
     move = place(m.solve_with_transforms(rest, fixed, soft_rhs));
@@ -236,6 +250,8 @@ void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& targe
     ++it;
     if (options_.tolerance > 0 && move <= options_.tolerance * diag) break;
   }
+  out.resize(X.rows(), 3);
+  out(m.order, Eigen::all) = X;
   m.have_previous = true;
   report_.iterations = it;
   report_.last_move = move;
