@@ -374,3 +374,30 @@ TEST_CASE("mesh_deform: edge Laplacian: options are validated, change the setup,
   CHECK(d.report().iterations < 100);
   CHECK(d.report().last_move <= 1e-3 * t::bbox_diagonal(m.V));
 }
+
+TEST_CASE("mesh_deform: edge Laplacian: an ROI part tied to no handle or fixed vertex is a typed error") {
+  // Two bars side by side; the second lies wholly inside the ROI with no handle on it.
+  const TriMesh bar = t::box_bar(2, 1.0, 2.0);
+  const int n = bar.num_vertices();
+  TriMesh m;
+  m.V.resize(2 * n, 3);
+  m.V << bar.V, bar.V.rowwise() + Eigen::RowVector3d(3, 0, 0);
+  m.F.resize(2 * bar.F.rows(), 3);
+  m.F << bar.F, bar.F.array() + n;
+  Selection s = t::bottom_fixed_top_handle(bar, 2, 0.1, 0.1);
+  for (int v = n; v < 2 * n; ++v) s.roi.push_back(v);
+  for (LaplacianDomain domain : {LaplacianDomain::Edges, LaplacianDomain::Vertices}) {
+    CAPTURE(std::string(to_string(domain)));
+    EdgeLaplacianDeformer d(m, options(domain, kModes[2]));
+    d.set_selection(s);
+    try {
+      d.precompute();
+      FAIL("no error");
+    } catch (const lapis::NotPositiveDefinite& e) {
+      CHECK(
+          std::string(e.what()).starts_with("mesh_deform::EdgeLaplacianDeformer::precompute(): the Laplacian rows "
+                                            "do not determine the free vertices"));
+      CHECK(e.column() >= n);  // a vertex of the second bar, in the mesh's numbering
+    }
+  }
+}

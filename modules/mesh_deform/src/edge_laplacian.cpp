@@ -19,6 +19,41 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// A vertex of a part of the unknowns (connected through the mesh's edges) that no constrained
+// vertex and no soft handle row holds, or -1. Such a part can translate freely: DᵀD is
+// singular there, yet its factorization may only meet a tiny pivot and succeed.
+int first_unanchored(const detail::Stencil& s, const std::vector<char>& unknown, const std::vector<char>& soft) {
+  const int n = s.size();
+  std::vector<char> seen(static_cast<size_t>(n), 0);
+  std::vector<int> stack;
+  for (int start = 0; start < n; ++start) {
+    if (!unknown[static_cast<size_t>(start)] || seen[static_cast<size_t>(start)]) continue;
+    bool anchored = false;
+    stack.assign(1, start);
+    seen[static_cast<size_t>(start)] = 1;
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      anchored = anchored || soft[static_cast<size_t>(i)];
+      for (int k = s.offsets[i]; k < s.offsets[i + 1]; ++k) {
+        const int j = s.nbr[k];
+        if (!unknown[static_cast<size_t>(j)]) {
+          anchored = true;
+        } else if (!seen[static_cast<size_t>(j)]) {
+          seen[static_cast<size_t>(j)] = 1;
+          stack.push_back(j);
+        }
+      }
+    }
+    if (!anchored) return start;
+  }
+  return -1;
+}
+
+constexpr const char* kUndetermined =
+    "mesh_deform::EdgeLaplacianDeformer::precompute(): the Laplacian rows do not determine the free vertices (is "
+    "some part of the ROI not connected to a handle or the fixed region?)";
+
 }  // namespace
 
 // Eq. 6 solved for displacements from the rest mesh: the right-hand side of a node's row is
@@ -160,13 +195,16 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   // separators, its factor has about a tenth fewer non-zeros than with CHOLMOD's choice, and
   // the analysis takes half the time.
   m->ls.set_ordering_skeleton(detail::edge_graph(stencil));
+  std::vector<char> is_soft(static_cast<size_t>(n), 0);
+  for (int v : m->soft) is_soft[static_cast<size_t>(v)] = 1;
+  if (const int v = first_unanchored(stencil, m->unknown, is_soft); v >= 0)
+    throw NotPositiveDefinite(std::string(kUndetermined) + ": vertex " +
+                                  std::to_string(m->order[static_cast<size_t>(v)]) + " and its part move freely",
+                              m->order[static_cast<size_t>(v)]);
   try {
     m->ls.precompute();
   } catch (const NotPositiveDefinite& e) {
-    throw NotPositiveDefinite(std::string("mesh_deform::EdgeLaplacianDeformer::precompute(): the Laplacian rows do "
-                                          "not determine the free vertices (is some part of the ROI not connected to "
-                                          "a handle or the fixed region?): ") +
-                                  e.what(),
+    throw NotPositiveDefinite(std::string(kUndetermined) + ": " + e.what(),
                               e.column() >= 0 ? m->order[static_cast<size_t>(e.column())] : -1);
   }
   const Vertices all_delta = detail::laplacian_vectors(c, rest);

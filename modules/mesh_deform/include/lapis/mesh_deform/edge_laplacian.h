@@ -73,6 +73,9 @@ struct EdgeLaplacianReport {
   double solve_ms = 0;  // back-substitutions of the last frame
 };
 
+// precompute() throws as Deformer's does, and NotPositiveDefinite
+// "mesh_deform::EdgeLaplacianDeformer::precompute(): ..." naming a vertex (column()) of a part of
+// the free vertices that no handle or fixed vertex holds.
 class EdgeLaplacianDeformer final : public Deformer {
  public:
   // Throws InvalidArgument like set_options().
