@@ -104,21 +104,26 @@ solver::DenseMatrix EdgeLaplacianDeformer::Impl::solve_with_transforms(const Ver
 int EdgeLaplacianDeformer::Impl::fit(const Vertices& rest, const Vertices& X, CellTransform transform,
                                      ScaleFrame frame) {
   const double c2 = cells.c * cells.c;
+  if (sums) sums->update(X);
+  auto cell_matrix = [&](std::ptrdiff_t r) -> Eigen::Matrix3d {
+    const int a = rows[static_cast<size_t>(r)];
+    if (sums) {
+      const auto [i, j] = cells.ends[static_cast<size_t>(a)];
+      return c2 * row_omega[static_cast<size_t>(r)] * sums->fans(i, j, X);
+    }
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    for (int k = cells.offsets[a]; k < cells.offsets[a + 1]; ++k) {
+      const double w = std::max(cells.w[k], 0.0);
+      const int p = cells.p[k], q = cells.q[k];
+      A.noalias() += (w * (X.row(p) - X.row(q)).transpose()) * (rest.row(p) - rest.row(q));
+    }
+    return c2 * A;
+  };
   auto fit_range = [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
     int fell = 0;
-    for (std::ptrdiff_t r = lo; r < hi; ++r) {
-      const int a = rows[static_cast<size_t>(r)];
-      Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-      for (int k = cells.offsets[a]; k < cells.offsets[a + 1]; ++k) {
-        const double w = std::max(cells.w[k], 0.0);
-        const int p = cells.p[k], q = cells.q[k];
-        const Eigen::Vector3d et = (X.row(p) - X.row(q)).transpose();
-        const Eigen::Vector3d e = (rest.row(p) - rest.row(q)).transpose();
-        A.noalias() += (w * et) * e.transpose();
-      }
-      fell +=
-          detail::fit_cell(c2 * A, rest_cells[static_cast<size_t>(r)], transform, frame, state[static_cast<size_t>(r)]);
-    }
+    for (std::ptrdiff_t r = lo; r < hi; ++r)
+      fell += detail::fit_cell(cell_matrix(r), rest_cells[static_cast<size_t>(r)], transform, frame,
+                               state[static_cast<size_t>(r)]);
     return fell;
   };
   return core::parallel_sum<int>(0, static_cast<std::ptrdiff_t>(rows.size()), detail::kVertexChunk, fit_range);
