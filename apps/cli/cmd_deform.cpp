@@ -11,6 +11,7 @@
 #include "command.h"
 #include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/metrics.h"
@@ -23,8 +24,10 @@ using nlohmann::json;
 using namespace lapis::mesh_deform;
 
 constexpr const char* kUsage =
-    "usage: lapis deform --mesh IN --roi ROI --handles HANDLES.json --method naive|implicit|arap\n"
+    "usage: lapis deform --mesh IN --roi ROI --handles HANDLES.json --method naive|implicit|arap|edge\n"
     "                    [--weights cotan|uniform] [--scale-features] [--iterations N]\n"
+    "                    [--domain edges|vertices] [--transform rotation|isotropic|anisotropic|full]\n"
+    "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
     "                    --out OUT.obj [--report OUT.json]\n"
     "  ROI: vertex indices, as a JSON array or whitespace-separated text; 'all' for every vertex.\n"
     "  HANDLES.json: {\"regions\": [{\"vertices\": [..], \"transforms\": [M, ...]}],\n"
@@ -32,7 +35,12 @@ constexpr const char* kUsage =
     "  with M a 4x4 matrix as 4 rows of 4 numbers applied to rest positions. Each entry of\n"
     "  \"transforms\"/\"translations\" is one frame of a drag (all handles the same frame count,\n"
     "  or 1 = held); the implicit method follows rotations accumulated over the frames.\n"
-    "  --scale-features: implicit Eq. 2.11 instead of 2.10. --iterations: ARAP per frame (10).\n"
+    "  --scale-features: implicit Eq. 2.11 instead of 2.10. --iterations: ARAP (10) or edge (4)\n"
+    "  iterations per frame. --weights: cotan by default, uniform for edge (the paper's).\n"
+    "  edge (Wang et al.): --domain edges (the paper) or vertices (its baseline); --transform of\n"
+    "  each cell, anisotropic (S R1, the paper's) by default; --frame of the scales, world axes\n"
+    "  (the paper's) or principal rest axes; --tolerance stops once no vertex moves more than T\n"
+    "  of the bbox diagonal; --warm-start starts each frame from the last one's transforms.\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
 // 'all' or a ROI file (the format is mesh_deform's, shared with the deform app).
@@ -43,17 +51,34 @@ std::vector<int> read_roi_arg(const std::string& spec, int n) {
   return out;
 }
 
+// The edge method's flags over its defaults; a bad name is a usage error naming the choices.
+void read_edge_options(const Args& args, LaplacianWeights weights, EdgeLaplacianOptions& o) {
+  try {
+    o.weights = weights;
+    o.iterations = static_cast<int>(args.get_int("--iterations", o.iterations, 1, 1000000));
+    o.domain = laplacian_domain_from_name(args.get("--domain", to_string(o.domain)));
+    o.transform = cell_transform_from_name(args.get("--transform", to_string(o.transform)));
+    o.frame = scale_frame_from_name(args.get("--frame", to_string(o.frame)));
+    o.tolerance = args.get_double("--tolerance", o.tolerance, 0, 1);
+    o.warm_start = args.has("--warm-start");
+    o.soft_handles = args.has("--soft-handles");
+  } catch (const InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95", s.p95}}; }
 
 int run(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--scale-features"});
+  const Args args(argv, {"--scale-features", "--warm-start", "--soft-handles"});
   args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
-                   "--report"});
+                   "--report", "--domain", "--transform", "--frame", "--tolerance", "--warm-start", "--soft-handles"});
   const std::string method = args.get("--method");
-  const std::string weights = args.get("--weights", "cotan");
   bool known = false;
   for (const MethodInfo& m : methods()) known = known || method == m.name;
-  if (!known) throw UsageError("--method must be naive, implicit or arap, not '" + method + "'");
+  if (!known) throw UsageError("--method must be one of " + method_names() + ", not '" + method + "'");
+  const bool edge = method_from_name(method) == Method::Edge;
+  const std::string weights = args.get("--weights", edge ? to_string(EdgeLaplacianOptions{}.weights) : "cotan");
   if (weights != "cotan" && weights != "uniform")
     throw UsageError("--weights must be cotan or uniform, not '" + weights + "'");
   const std::string out_path = args.get("--out");
@@ -67,6 +92,7 @@ int run(const std::vector<std::string>& argv) {
   settings.weights = w;
   settings.scale_features = args.has("--scale-features");
   settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000000));
+  if (edge) read_edge_options(args, w, settings.edge);
   const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
   const auto* implicit = dynamic_cast<const ImplicitLaplacianDeformer*>(d.get());
   using clock = std::chrono::steady_clock;
@@ -96,6 +122,18 @@ int run(const std::vector<std::string>& argv) {
               {"angle", summary(q.angle)},
               {"arap_energy", q.arap_energy}}}};
   if (implicit) r["degenerate_vertices"] = implicit->report().degenerate_vertices;
+  if (const auto* e = dynamic_cast<const EdgeLaplacianDeformer*>(d.get())) {
+    const EdgeLaplacianReport& er = e->report();
+    r["edge"] = {{"domain", to_string(settings.edge.domain)},
+                 {"transform", to_string(settings.edge.transform)},
+                 {"frame", to_string(settings.edge.frame)},
+                 {"iterations", er.iterations},
+                 {"rows", er.rows},
+                 {"factor_nnz", er.factor_nnz},
+                 {"last_move", er.last_move},
+                 {"fit_ms", er.fit_ms},
+                 {"solve_ms", er.solve_ms}};
+  }
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
@@ -106,7 +144,7 @@ int run(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-extern const Command kDeformCommand = {"deform", "drag handles of a mesh: implicit Laplacian, naive Laplacian or ARAP",
-                                       kUsage, run};
+extern const Command kDeformCommand = {
+    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, or ARAP", kUsage, run};
 
 }  // namespace lapis::cli

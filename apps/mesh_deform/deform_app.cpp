@@ -155,6 +155,14 @@ void DeformApp::request_solve() {
   append_bytes(key, settings_.weights);
   append_bytes(key, settings_.scale_features);
   append_bytes(key, settings_.arap_iterations);
+  // Field by field: the options struct has padding, whose bytes are not part of its value.
+  const EdgeLaplacianOptions& e = settings_.edge;
+  for (int v :
+       {static_cast<int>(e.domain), static_cast<int>(e.weights), static_cast<int>(e.transform),
+        static_cast<int>(e.frame), e.iterations, static_cast<int>(e.warm_start), static_cast<int>(e.soft_handles)})
+    append_bytes(key, v);
+  append_bytes(key, e.tolerance);
+  append_bytes(key, e.handle_weight);
   append_bytes(key, r.preview);
   append_bytes(key, r.field ? static_cast<int>(*r.field) : -1);
   for (const auto& T : r.transforms.regions) key.append(reinterpret_cast<const char*>(T.data()), sizeof(double) * 16);
@@ -357,18 +365,23 @@ bool DeformApp::export_result(viewer::Viewer& v) {
     write_roi(roi, last_->selection->roi);
     write_handles(handles, *last_->selection, last_->frame.history);
     const MethodSettings& s = last_->settings;
+    const bool edge = s.method == Method::Edge;
+    const LaplacianWeights weights = edge ? s.edge.weights : s.weights;
     std::string command = "lapis deform --mesh " + paths_.mesh.string() + " --roi " + roi.string() + " --handles " +
                           handles.string() + " --method " + method_info(s.method).name + " --weights " +
-                          (s.weights == LaplacianWeights::Cotangent ? "cotan" : "uniform") +
-                          (s.scale_features ? " --scale-features" : "") + " --iterations " +
-                          std::to_string(s.arap_iterations) + " --out OUT.obj";
+                          to_string(weights) + (s.scale_features ? " --scale-features" : "") + " --iterations " +
+                          std::to_string(edge ? s.edge.iterations : s.arap_iterations);
+    if (edge)
+      command += std::string(" --domain ") + to_string(s.edge.domain) + " --transform " + to_string(s.edge.transform) +
+                 " --frame " + to_string(s.edge.frame) + (s.edge.warm_start ? " --warm-start" : "");
+    command += " --out OUT.obj";
     nlohmann::json j = {{"mesh", paths_.mesh.string()},
                         {"roi", roi.string()},
                         {"handles", handles.string()},
                         {"method", method_info(s.method).name},
-                        {"weights", s.weights == LaplacianWeights::Cotangent ? "cotan" : "uniform"},
+                        {"weights", to_string(weights)},
                         {"scale_features", s.scale_features},
-                        {"iterations", s.arap_iterations},
+                        {"iterations", edge ? s.edge.iterations : s.arap_iterations},
                         {"frames", last_->frame.history.size()},
                         {"cli", command}};
     core::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });

@@ -116,6 +116,28 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::End();
 }
 
+namespace {
+
+// The edge-based method's choices (Wang et al.): the domain of its Laplacian, what each cell's
+// transform may do, the axes of its scales and the iterations per frame.
+void draw_edge_controls(EdgeLaplacianOptions& o) {
+  int domain = o.domain == LaplacianDomain::Edges ? 0 : 1;
+  if (ImGui::Combo("domain", &domain, "edges (the paper)\0vertices (its baseline)\0"))
+    o.domain = domain == 0 ? LaplacianDomain::Edges : LaplacianDomain::Vertices;
+  int transform = static_cast<int>(o.transform);
+  if (ImGui::Combo("cell transform", &transform, "rotation R1\0isotropic s R1\0anisotropic S R1\0R2 S R1\0"))
+    o.transform = static_cast<CellTransform>(transform);
+  if (o.transform == CellTransform::AnisotropicScale || o.transform == CellTransform::Full) {
+    int frame = o.frame == ScaleFrame::World ? 0 : 1;
+    if (ImGui::Combo("scale axes", &frame, "world x, y, z (the paper)\0principal rest axes\0"))
+      o.frame = frame == 0 ? ScaleFrame::World : ScaleFrame::RestPrincipal;
+  }
+  ImGui::SliderInt("iterations / frame", &o.iterations, 1, 20);
+  ImGui::Checkbox("warm start from the last frame", &o.warm_start);
+}
+
+}  // namespace
+
 void DeformApp::draw_method_panel(viewer::Viewer& v) {
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 330), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
@@ -128,9 +150,10 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
     ImGui::EndCombo();
   }
   if (s.method != Method::Arap) {
-    int w = s.weights == LaplacianWeights::Cotangent ? 0 : 1;
+    LaplacianWeights& weights = s.method == Method::Edge ? s.edge.weights : s.weights;
+    int w = weights == LaplacianWeights::Cotangent ? 0 : 1;
     if (ImGui::Combo("weights", &w, "cotangent\0uniform\0"))
-      s.weights = w == 0 ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
+      weights = w == 0 ? LaplacianWeights::Cotangent : LaplacianWeights::Uniform;
   }
   if (s.method == Method::Implicit) {
     ImGui::Checkbox("feature scaling (Eq. 2.11)", &s.scale_features);
@@ -141,6 +164,7 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
   if (s.method == Method::Arap) {
     ImGui::SliderInt("iterations / frame", &s.arap_iterations, 1, 50);
   }
+  if (s.method == Method::Edge) draw_edge_controls(s.edge);
   if (!(s == settings_)) settings_ = s;  // the next request sets up again
   ImGui::Separator();
   int mode = color_mode_ == ColorMode::Selection ? 0 : 1 + static_cast<int>(field_);

@@ -1,5 +1,5 @@
 // lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]
-//              [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]
+//              [--method naive|implicit|arap|edge] [--weights cotan|uniform] [--scale-features]
 //              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
@@ -16,7 +16,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]\n"
-    "                    [--method naive|implicit|arap] [--weights cotan|uniform] [--scale-features]\n"
+    "                    [--method naive|implicit|arap|edge] [--weights cotan|uniform] [--scale-features]\n"
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
     "                    [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
@@ -60,13 +60,15 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
 
   mesh_deform::MethodSettings settings;
   settings.method = mesh_deform::method_from_name(args.get("--method", "implicit"));
-  const std::string weights = args.get("--weights", "cotan");
+  const bool edge = settings.method == mesh_deform::Method::Edge;
+  const std::string weights = args.get("--weights", edge ? to_string(settings.edge.weights) : "cotan");
   if (weights != "cotan" && weights != "uniform")
     throw cli::UsageError("--weights must be cotan or uniform, not '" + weights + "'");
-  settings.weights =
-      weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
+  const auto w = weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
+  (edge ? settings.edge.weights : settings.weights) = w;
   settings.scale_features = args.has("--scale-features");
-  settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000));
+  int& iterations = edge ? settings.edge.iterations : settings.arap_iterations;
+  iterations = static_cast<int>(args.get_int("--iterations", iterations, 1, 1000));
 
   auto app =
       std::make_unique<deform_app::DeformApp>(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));

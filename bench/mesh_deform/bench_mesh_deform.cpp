@@ -1,10 +1,11 @@
 // mesh_deform benchmark: setup seconds, per-frame milliseconds of a drag, ARAP milliseconds
-// per iteration and peak memory of naive Laplacian, implicit Laplacian (thesis ch. 2) and
-// ARAP editing, against CGAL's Surface_mesh_deformation (ORIGINAL_ARAP) on the same mesh,
-// ROI and handle in the same run. Each (mesh, method) runs in its own child process so the
+// per iteration and peak memory of naive Laplacian, implicit Laplacian (thesis ch. 2), ARAP
+// and edge-based Laplacian editing (Wang et al., edge and vertex domain), against CGAL's
+// Surface_mesh_deformation (ORIGINAL_ARAP) on the same mesh, ROI and handle in the same run,
+// with the last frame's distortion. Each (mesh, method) runs in its own child process so the
 // peak memory is that method's alone.
 //
-//   bench_mesh_deform [--sizes 26k,52k,151k,416k,1m] [--implicit-large]
+//   bench_mesh_deform [--sizes 26k,52k,151k,416k,1m] [--methods naive,arap,...] [--implicit-large]
 //
 // Meshes: armadillo (26K), the mannequin-devil bust Loop-subdivided once (52K: the 50K
 // implicit target), Loop-subdivided bunny (151K) and armadillo (416K), the man
@@ -24,7 +25,9 @@
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
 #include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "lapis_bench.h"
 
@@ -109,6 +112,15 @@ json run_one(const Size& size, const std::string& method) {
     std::unique_ptr<Deformer> d;
     ImplicitLaplacianDeformer* imp = nullptr;
     ArapDeformer* arap = nullptr;
+    EdgeLaplacianDeformer* edge = nullptr;
+    if (method == "edge" || method == "edge_vertex") {
+      // The paper's defaults (S R1 on world axes, uniform weights, 4 iterations a frame);
+      // edge_vertex: the same fits on vertex cells, the paper's §4 baseline.
+      EdgeLaplacianOptions o;
+      if (method == "edge_vertex") o.domain = LaplacianDomain::Vertices;
+      d = std::make_unique<EdgeLaplacianDeformer>(m, o);
+      edge = static_cast<EdgeLaplacianDeformer*>(d.get());
+    }
     if (method == "naive") d = std::make_unique<NaiveLaplacianDeformer>(m);
     if (method == "implicit" || method == "implicit_backsub") {
       // implicit_backsub: Eq. 2.8 back-substituted every frame instead of combined from the
@@ -129,8 +141,15 @@ json run_one(const Size& size, const std::string& method) {
     d->set_selection(s.sel);
     r["setup_s"] = bench::time_ms([&] { d->precompute(); }) / 1000.0;
     std::vector<double> frame, first, polar, second, per_it, rot, solve;
+    Vertices X;
     for (const Eigen::Matrix4d& T : s.drag) {
-      frame.push_back(bench::time_ms([&] { d->deform(HandleTransforms{{T}, {}}); }));
+      frame.push_back(bench::time_ms([&] { X = d->deform(HandleTransforms{{T}, {}}); }));
+      if (edge) {
+        const EdgeLaplacianReport& e = edge->report();
+        per_it.push_back(e.frame_ms / e.iterations);
+        rot.push_back(e.fit_ms / e.iterations);
+        solve.push_back(e.solve_ms / (e.iterations + 1));  // the first solve, then one per iteration
+      }
       if (imp) {
         first.push_back(imp->report().first_solve_ms);
         polar.push_back(imp->report().polar_ms);
@@ -153,11 +172,22 @@ json run_one(const Size& size, const std::string& method) {
       r["first_factor_nnz"] = imp->report().first_factor_nnz;
       r["second_factor_nnz"] = imp->report().second_factor_nnz;
     }
-    if (arap) {
+    if (arap || edge) {
       r["ms_per_iteration"] = bench::median(per_it);
       r["local_step_ms"] = bench::median(rot);
       r["global_step_ms"] = bench::median(solve);
     }
+    if (edge) {
+      r["iterations_per_frame"] = edge->report().iterations;
+      r["rows"] = edge->report().rows;
+      r["factor_nnz"] = edge->report().factor_nnz;
+      r["last_move"] = edge->report().last_move;
+    }
+    const Distortion q = distortion(m, X);
+    r["distortion"] = {{"edge_length_mean", q.edge_length.mean},
+                       {"laplacian_length_mean", q.laplacian_length.mean},
+                       {"angle_mean", q.angle.mean},
+                       {"arap_energy", q.arap_energy}};
   }
   r["peak_rss_mib"] = bench::peak_rss_mib();
   return r;
@@ -176,17 +206,21 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::string sizes = "26k,52k,151k,416k,1m";
+  std::string only = ",naive,implicit,implicit_backsub,arap,arap_1t,cgal_arap,edge,edge_vertex,";
   bool implicit_large = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) sizes = argv[++i];
+    if (std::strcmp(argv[i], "--methods") == 0 && i + 1 < argc) only = "," + std::string(argv[++i]) + ",";
     if (std::strcmp(argv[i], "--implicit-large") == 0) implicit_large = true;
   }
   json results = json::array();
-  bench::Table table(
-      {"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "eq2.8 ms", "polar ms", "eq2.10 ms", "peak MiB"});
+  bench::Table table({"mesh", "#V", "method", "setup s", "frame ms", "ms/iter", "local ms", "solve ms", "eq2.8 ms",
+                      "polar ms", "eq2.10 ms", "factor nnz", "edge len", "peak MiB"});
   for (const Size& s : kSizes) {
     if (sizes.find(s.name) == std::string::npos) continue;
-    for (const char* method : {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap"}) {
+    for (const char* method :
+         {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap", "edge", "edge_vertex"}) {
+      if (only.find("," + std::string(method) + ",") == std::string::npos) continue;
       if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large)
         continue;
       const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
@@ -202,8 +236,11 @@ int main(int argc, char** argv) {
       const json r = json::parse(out);
       results.push_back(r);
       table.row({s.name, std::to_string(r["vertices"].get<int>()), method, field(r, "setup_s", 2), field(r, "frame_ms"),
-                 field(r, "ms_per_iteration"), field(r, "first_solve_ms"), field(r, "polar_ms"),
-                 field(r, "second_solve_ms"), field(r, "peak_rss_mib", 0)});
+                 field(r, "ms_per_iteration"), field(r, "local_step_ms"), field(r, "global_step_ms"),
+                 field(r, "first_solve_ms"), field(r, "polar_ms"), field(r, "second_solve_ms"),
+                 r.contains("factor_nnz") ? std::to_string(r["factor_nnz"].get<long>()) : "-",
+                 r.contains("distortion") ? bench::fmt(r["distortion"]["edge_length_mean"].get<double>(), 4) : "-",
+                 field(r, "peak_rss_mib", 0)});
       std::fprintf(stderr, "%s %s done\n", s.name.c_str(), method);
     }
   }

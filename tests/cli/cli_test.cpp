@@ -137,7 +137,7 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
     std::ofstream handles(d / "handles.json");
     handles << R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]]}]})";
   }
-  for (const std::string method : {"naive", "implicit", "arap"}) {
+  for (const std::string method : {"naive", "implicit", "arap", "edge"}) {
     CAPTURE(method);
     const Result r = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
                                " --handles " + (d / "handles.json").string() + " --method " + method + " --out " +
@@ -148,10 +148,33 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
     CHECK(j["frames"] == 1);
     CHECK(j["distortion"]["edge_length"]["max"].get<double>() > 0);
     CHECK(fs::file_size(d / "out.obj") > 0);
+    if (method == "edge") {
+      CHECK(j["weights"] == "uniform");  // the paper's default, not the other methods' cotan
+      CHECK(j["edge"]["iterations"] == 4);
+      CHECK(j["edge"]["domain"] == "edges");
+    }
   }
+  const Result edge_vertex = lapis_cli(
+      "deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
+      (d / "handles.json").string() + " --method edge --domain vertices --transform isotropic --frame principal" +
+      " --iterations 7 --out " + (d / "out.obj").string() + " --report " + (d / "report.json").string());
+  REQUIRE(edge_vertex.status == 0);
+  {
+    std::ifstream report(d / "report.json");
+    const auto j = nlohmann::json::parse(report);
+    CHECK(j["edge"]["domain"] == "vertices");
+    CHECK(j["edge"]["transform"] == "isotropic");
+    CHECK(j["edge"]["iterations"] == 7);
+  }
+  const Result bad_domain =
+      lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
+                (d / "handles.json").string() + " --method edge --domain faces --out x.obj");
+  CHECK(bad_domain.status == 2);
+  CHECK(bad_domain.output.find("unknown domain 'faces', expected one of edges, vertices") != std::string::npos);
   const Result bad = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
                                " --handles " + (d / "handles.json").string() + " --method magic --out x.obj");
   CHECK(bad.status == 2);
+  CHECK(bad.output.find("--method must be one of naive, implicit, arap, edge, not 'magic'") != std::string::npos);
   {
     std::ofstream roi(d / "small_roi.txt");
     roi << "1 4 7\n";

@@ -153,9 +153,10 @@ TEST_CASE("mesh_deform: per-vertex distortion is zero under rigid motion and sho
 }
 
 TEST_CASE("mesh_deform: the method list makes every method and the preview equals the first system alone") {
-  CHECK(methods().size() == 3);
+  CHECK(methods().size() == 4);
+  CHECK(method_from_name("edge") == Method::Edge);
   CHECK(method_from_name("arap") == Method::Arap);
-  CHECK_THROWS_WITH_AS(method_from_name("magic"), doctest::Contains("expected one of naive, implicit, arap"),
+  CHECK_THROWS_WITH_AS(method_from_name("magic"), doctest::Contains("expected one of naive, implicit, arap, edge"),
                        lapis::InvalidArgument);
   const TriMesh m = test::box_bar(3, 1.0, 4.0);
   const Selection sel = bar_selection(m);

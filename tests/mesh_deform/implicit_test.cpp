@@ -11,75 +11,34 @@
 using namespace lapis::mesh_deform;
 namespace t = lapis::mesh_deform::test;
 
-namespace {
-
-Eigen::Matrix4d similarity(double degrees, const Eigen::Vector3d& axis, double scale, const Eigen::Vector3d& shift) {
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.topLeftCorner<3, 3>() = scale * Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
-  T.topRightCorner<3, 1>() = shift;
-  return T;
-}
-
-double max_deviation(const Vertices& X, const Vertices& V, const Eigen::Matrix4d& T) {
-  double e = 0;
-  for (int i = 0; i < V.rows(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, V.row(i).transpose())).norm());
-  return e;
-}
-
-// The bar of Fig. 2.7: bottom 10% fixed, top 10% the handle, twisted `twist` degrees about its
-// own axis, then carried to the end of a quarter circle as long as the free part and turned
-// 90° about y to stay tangent to it.
-Eigen::Matrix4d bend_and_twist(const TriMesh& m, double twist) {
-  const double zmax = m.V.col(2).maxCoeff(), zmin = m.V.col(2).minCoeff();
-  const double z0 = zmin + 0.1 * (zmax - zmin);
-  const Eigen::Vector3d axis_point(0.5, 0.5, 0);
-  const Eigen::Matrix4d Tw = t::rotation_about(Eigen::Vector3d::UnitZ(), twist, axis_point);
-  const double free_length = 0.8 * (zmax - zmin);  // between the fixed part and the handle
-  const double radius = 2 * free_length / M_PI;
-  const Eigen::Matrix4d Bend = t::rotation_about(Eigen::Vector3d::UnitY(), 90, Eigen::Vector3d(0.5 + radius, 0.5, z0));
-  Eigen::Matrix4d Down = Eigen::Matrix4d::Identity();
-  Down(2, 3) = -free_length;
-  return Bend * Down * Tw;
-}
-
-// The whole bar as ROI, its bottom and top tenths the two region handles.
-Selection whole_bar_two_ends(const TriMesh& m) {
-  Selection s;
-  s.roi = t::all_vertices(m);
-  s.region_handles = {t::slab(m, 2, 0.0, 0.1), t::slab(m, 2, 0.9, 1.0)};
-  return s;
-}
-
-}  // namespace
-
 TEST_CASE("mesh_deform: implicit method moves every vertex by a similarity applied to all handles") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
-  const Selection s = whole_bar_two_ends(m);
+  const Selection s = t::whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
   SUBCASE("similarity, features scaled (Eq. 2.11)") {
     ImplicitOptions o;
     o.shearing = ShearingRemoval::ScaleFeatures;
     ImplicitLaplacianDeformer d(m, o);
     d.set_selection(s);
-    const Eigen::Matrix4d T = similarity(130, Eigen::Vector3d(1, 2, 0.5), 1.7, Eigen::Vector3d(3, -1, 2));
+    const Eigen::Matrix4d T = t::similarity(130, Eigen::Vector3d(1, 2, 0.5), 1.7, Eigen::Vector3d(3, -1, 2));
     HandleTransforms h{{T, T}, {}};
-    CHECK(max_deviation(d.deform(h), m.V, T) <= 1e-6 * 1.7 * diag);
+    CHECK(t::max_deviation(d.deform(h), m.V, T) <= 1e-6 * 1.7 * diag);
   }
   SUBCASE("rigid, features retained (Eq. 2.10)") {
     ImplicitLaplacianDeformer d(m);
     d.set_selection(s);
-    const Eigen::Matrix4d T = similarity(-100, Eigen::Vector3d(0, 1, 1), 1.0, Eigen::Vector3d(1, 1, 0));
+    const Eigen::Matrix4d T = t::similarity(-100, Eigen::Vector3d(0, 1, 1), 1.0, Eigen::Vector3d(1, 1, 0));
     HandleTransforms h{{T, T}, {}};
-    CHECK(max_deviation(d.deform(h), m.V, T) <= 1e-6 * diag);
+    CHECK(t::max_deviation(d.deform(h), m.V, T) <= 1e-6 * diag);
   }
   SUBCASE("first system only") {
     ImplicitOptions o;
     o.shearing = ShearingRemoval::None;
     ImplicitLaplacianDeformer d(m, o);
     d.set_selection(s);
-    const Eigen::Matrix4d T = similarity(45, Eigen::Vector3d(1, 0, 0), 0.6, Eigen::Vector3d(0, 0, 1));
+    const Eigen::Matrix4d T = t::similarity(45, Eigen::Vector3d(1, 0, 0), 0.6, Eigen::Vector3d(0, 0, 1));
     HandleTransforms h{{T, T}, {}};
-    CHECK(max_deviation(d.deform(h), m.V, T) <= 1e-6 * diag);
+    CHECK(t::max_deviation(d.deform(h), m.V, T) <= 1e-6 * diag);
   }
 }
 
@@ -96,7 +55,7 @@ TEST_CASE("mesh_deform: planar irregular mesh with degenerate vertices follows a
       centre.push_back(i);
   }
   s.region_handles = {border, centre};
-  const Eigen::Matrix4d T = similarity(35, Eigen::Vector3d::UnitZ(), 1.3, Eigen::Vector3d(0.4, -0.2, 0));
+  const Eigen::Matrix4d T = t::similarity(35, Eigen::Vector3d::UnitZ(), 1.3, Eigen::Vector3d(0.4, -0.2, 0));
   for (auto w : {LaplacianWeights::Cotangent, LaplacianWeights::Uniform}) {
     CAPTURE(to_string(w));
     ImplicitOptions o;
@@ -109,14 +68,14 @@ TEST_CASE("mesh_deform: planar irregular mesh with degenerate vertices follows a
     // Displacing a vertex lifts its neighbours' stencils too, so about a third are displaced.
     CHECK(d.report().degenerate_vertices >= (25 - 2) * (25 - 2) / 4);
     CHECK(d.report().inserted_vertices == 2);
-    CHECK(max_deviation(X, m.V, T) <= 1e-3 * t::bbox_diagonal(m.V));
+    CHECK(t::max_deviation(X, m.V, T) <= 1e-3 * t::bbox_diagonal(m.V));
   }
 }
 
 TEST_CASE("mesh_deform: degenerate displacement scale barely changes the result (Fig. 2.7)") {
   const TriMesh m = t::box_bar(4, 1.0, 5.0);
   const Selection s = t::bottom_fixed_top_handle(m, 2, 0.1, 0.1);
-  const HandleTransforms h{{bend_and_twist(m, 60)}, {}};
+  const HandleTransforms h{{t::bend_and_twist(m, 60)}, {}};
   ImplicitOptions a, b;
   b.s_disp = 10;
   ImplicitLaplacianDeformer da(m, a), db(m, b);
@@ -132,7 +91,7 @@ TEST_CASE("mesh_deform: degenerate displacement scale barely changes the result 
 TEST_CASE("mesh_deform: bar bent 90 and twisted 150 degrees: implicit and ARAP keep details, naive does not") {
   const TriMesh m = t::box_bar(5, 1.0, 6.0);
   const Selection s = t::bottom_fixed_top_handle(m, 2, 0.1, 0.1);
-  const HandleTransforms h{{bend_and_twist(m, 150)}, {}};
+  const HandleTransforms h{{t::bend_and_twist(m, 150)}, {}};
   auto run = [&](Deformer& d) {
     d.set_selection(s);
     return distortion(m, d.deform(h));
@@ -223,11 +182,11 @@ TEST_CASE("mesh_deform: a handle twisted 270 degrees over a drag is honoured by 
 TEST_CASE(
     "mesh_deform: Laplacian blend terms (E_T, thesis §3.3.3) are checked, vanish when consistent and pull when not") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
-  const Selection s = whole_bar_two_ends(m);
+  const Selection s = t::whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
   ImplicitOptions o;
   o.shearing = ShearingRemoval::None;  // E_T acts in the first system (Eq. 2.8)
-  const Eigen::Matrix4d T = similarity(60, Eigen::Vector3d(1, 1, 0), 1.3, Eigen::Vector3d(0, 2, 0));
+  const Eigen::Matrix4d T = t::similarity(60, Eigen::Vector3d(1, 1, 0), 1.3, Eigen::Vector3d(0, 2, 0));
   const HandleTransforms h{{T, T}, {}};
   ImplicitLaplacianDeformer plain(m, o);
   plain.set_selection(s);
@@ -275,11 +234,11 @@ TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution fo
     b.set_selection(s);
     for (int frame = 0; frame < 4; ++frame) {
       CAPTURE(frame);
-      Eigen::Matrix4d shear =
-          similarity(20.0 * frame, Eigen::Vector3d(1, 1, 0), 1.0 + 0.1 * frame, Eigen::Vector3d(0.3, 0, -0.2 * frame));
+      Eigen::Matrix4d shear = t::similarity(20.0 * frame, Eigen::Vector3d(1, 1, 0), 1.0 + 0.1 * frame,
+                                            Eigen::Vector3d(0.3, 0, -0.2 * frame));
       shear(0, 1) += 0.15 * frame;  // not a similarity: every entry of the 3×4 block matters
       HandleTransforms h{
-          {similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
+          {t::similarity(-15.0 * frame, Eigen::Vector3d(0, 0, 1), 1.0, Eigen::Vector3d(0.1 * frame, 0, 0)), shear},
           {Eigen::Vector3d(0.05 * frame, -0.1, 0.02), Eigen::Vector3d(0, 0.2 * frame, 0)}};
       const Vertices Xa = a.deform(h), Xb = b.deform(h);
       CHECK(a.report().basis_columns == 4 * 2 + 2);

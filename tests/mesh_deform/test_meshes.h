@@ -1,6 +1,7 @@
 // Procedural meshes and selections shared by the mesh_deform tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -148,6 +149,46 @@ inline Eigen::Matrix4d rotation_about(const Eigen::Vector3d& axis, double degree
   T.topLeftCorner<3, 3>() = R;
   T.topRightCorner<3, 1>() = centre - R * centre + t;
   return T;
+}
+
+// The bar of Fig. 2.7: bottom 10% fixed, top 10% the handle, twisted `twist` degrees about its
+// own axis, then carried to the end of a quarter circle as long as the free part and turned
+// 90° about y to stay tangent to it.
+inline Eigen::Matrix4d bend_and_twist(const TriMesh& m, double twist) {
+  const double zmax = m.V.col(2).maxCoeff(), zmin = m.V.col(2).minCoeff();
+  const double z0 = zmin + 0.1 * (zmax - zmin);
+  const Eigen::Vector3d axis_point(0.5, 0.5, 0);
+  const Eigen::Matrix4d Tw = rotation_about(Eigen::Vector3d::UnitZ(), twist, axis_point);
+  const double free_length = 0.8 * (zmax - zmin);  // between the fixed part and the handle
+  const double radius = 2 * free_length / M_PI;
+  const Eigen::Matrix4d Bend = rotation_about(Eigen::Vector3d::UnitY(), 90, Eigen::Vector3d(0.5 + radius, 0.5, z0));
+  Eigen::Matrix4d Down = Eigen::Matrix4d::Identity();
+  Down(2, 3) = -free_length;
+  return Bend * Down * Tw;
+}
+
+// Rotation by `degrees` about axis, scaled, then shifted.
+inline Eigen::Matrix4d similarity(double degrees, const Eigen::Vector3d& axis, double scale,
+                                  const Eigen::Vector3d& shift) {
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = scale * Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+  T.topRightCorner<3, 1>() = shift;
+  return T;
+}
+
+// Largest distance of X from T applied to V.
+inline double max_deviation(const Vertices& X, const Vertices& V, const Eigen::Matrix4d& T) {
+  double e = 0;
+  for (int i = 0; i < V.rows(); ++i) e = std::max(e, (X.row(i).transpose() - apply(T, V.row(i).transpose())).norm());
+  return e;
+}
+
+// The whole bar as ROI, its bottom and top tenths the two region handles.
+inline Selection whole_bar_two_ends(const TriMesh& m) {
+  Selection s;
+  s.roi = all_vertices(m);
+  s.region_handles = {slab(m, 2, 0.0, 0.1), slab(m, 2, 0.9, 1.0)};
+  return s;
 }
 
 }  // namespace lapis::mesh_deform::test

@@ -20,20 +20,6 @@ using detail::SparseRows;
 
 namespace {
 
-// The mesh's edges as an n by n pattern: the skeleton on which Eq. 2.8's normal matrix is
-// ordered (solver/ordering.h). Its columns couple vertices four rings apart, and METIS on
-// that graph took a quarter of a one-off merge; the mesh's separators, widened, do nearly as
-// well in a third of the time.
-solver::SparseMatrix edge_graph(const detail::Stencil& s) {
-  const int n = s.size();
-  solver::SparseMatrix E(n, n);
-  E.resizeNonZeros(static_cast<Eigen::Index>(s.nbr.size()));
-  std::copy(s.offsets.begin(), s.offsets.end(), E.outerIndexPtr());
-  std::copy(s.nbr.begin(), s.nbr.end(), E.innerIndexPtr());  // ascending per vertex, as stencils are
-  std::fill(E.valuePtr(), E.valuePtr() + E.nonZeros(), 1.0);
-  return E;
-}
-
 // Guide bands between the fixed region and a guided handle: 8 bands split the accumulated
 // angle into 9 steps, so up to 9π stays below π per step.
 constexpr int kGuideLevels = 8;
@@ -153,7 +139,7 @@ struct ImplicitLaplacianDeformer::Impl {
       block_T = first.add_block(std::move(rows.transform), weight_T, "M_c = W_c (Eq. 2.8)");
     if (rows.blend.rows() > 0) block_B = first.add_block(std::move(rows.blend), blend_weight, "E_T (§3.3.3)");
     first.set_fixed(constrained);
-    first.set_ordering_skeleton(edge_graph(stencil));
+    first.set_ordering_skeleton(detail::edge_graph(stencil));
     has_coherence = block_R >= 0;
     // M_c(v') and E_T's rows at the rest state; no rows when the block is absent.
     const auto at_rest = [&](int block) {
@@ -355,7 +341,7 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
   if (m.block_B >= 0) m.guided->add_block(m.first.block_matrix(m.block_B), blend_weight_, "E_T (§3.3.3)");
   m.guided->add_block(A_G, options_.guide_weight * m.weight_T, "guide bands (§2.5)");
   m.guided->set_fixed(m.constrained);
-  m.guided->set_ordering_skeleton(edge_graph(m.stencil));
+  m.guided->set_ordering_skeleton(detail::edge_graph(m.stencil));
   m.guided->precompute();
   m.guide_rest = A_G * solver::DenseMatrix(w.displaced);
   m.guided_for = handles;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 
 namespace lapis::mesh_deform {
@@ -23,6 +24,10 @@ std::string timing_of(const Deformer& d) {
     const ArapReport& s = a->report();
     std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms,
                   s.solves_ms);
+  } else if (const auto* e = dynamic_cast<const EdgeLaplacianDeformer*>(&d)) {
+    const EdgeLaplacianReport& s = e->report();
+    std::snprintf(buf, sizeof buf, "%d iterations: fits %.0f ms, solves %.0f ms, last move %.2g", s.iterations,
+                  s.fit_ms, s.solve_ms, s.last_move);
   }
   return buf;
 }

@@ -1,6 +1,7 @@
 #include "lapis/mesh_deform/methods.h"
 
 #include "lapis/mesh_deform/arap.h"
+#include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 
@@ -11,6 +12,7 @@ const std::vector<MethodInfo>& methods() {
       {Method::Naive, "naive", "naive Laplacian (Eq. 2.1)"},
       {Method::Implicit, "implicit", "implicit Laplacian (thesis ch. 2)"},
       {Method::Arap, "arap", "ARAP (Sorkine & Alexa)"},
+      {Method::Edge, "edge", "edge-based Laplacian (Wang et al.)"},
   };
   return list;
 }
@@ -21,13 +23,17 @@ const MethodInfo& method_info(Method m) {
   throw InvalidArgument("mesh_deform::method_info(): unknown method");
 }
 
-Method method_from_name(const std::string& name) {
+std::string method_names() {
   std::string known;
-  for (const auto& info : methods()) {
+  for (const auto& info : methods()) known += (known.empty() ? "" : ", ") + std::string(info.name);
+  return known;
+}
+
+Method method_from_name(const std::string& name) {
+  for (const auto& info : methods())
     if (name == info.name) return info.method;
-    known += (known.empty() ? "" : ", ") + std::string(info.name);
-  }
-  throw InvalidArgument("mesh_deform::method_from_name(): unknown method '" + name + "', expected one of " + known);
+  throw InvalidArgument("mesh_deform::method_from_name(): unknown method '" + name + "', expected one of " +
+                        method_names());
 }
 
 std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
@@ -48,6 +54,8 @@ std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
       o.max_iterations = s.arap_iterations;
       return std::make_unique<ArapDeformer>(std::move(mesh), o);
     }
+    case Method::Edge:
+      return std::make_unique<EdgeLaplacianDeformer>(std::move(mesh), s.edge);
   }
   throw InvalidArgument("mesh_deform::make_deformer(): unknown method");
 }

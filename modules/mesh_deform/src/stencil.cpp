@@ -124,6 +124,16 @@ Vertices laplacian_coordinates(const Stencil& s, const Vertices& P) {
   return D;
 }
 
+solver::SparseMatrix edge_graph(const Stencil& s) {
+  const int n = s.size();
+  solver::SparseMatrix E(n, n);
+  E.resizeNonZeros(static_cast<Eigen::Index>(s.nbr.size()));
+  std::copy(s.offsets.begin(), s.offsets.end(), E.outerIndexPtr());
+  std::copy(s.nbr.begin(), s.nbr.end(), E.innerIndexPtr());  // ascending per vertex, as stencils are
+  std::fill(E.valuePtr(), E.valuePtr() + E.nonZeros(), 1.0);
+  return E;
+}
+
 double mean_edge_length(const Stencil& s, const Vertices& P) {
   double sum = 0;
   long count = 0;

@@ -11,6 +11,7 @@
 #include "lapis/core/parallel_for.h"
 #include "lapis/geometry/tri_mesh.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
+#include "lapis/solver/types.h"
 
 namespace lapis::mesh_deform::detail {
 
@@ -67,6 +68,12 @@ void for_vertices(std::size_t n, F f) {
 // data hit the cache. Loop subdivision, for one, appends the edge midpoints, putting half of
 // every vertex's neighbours #V/2 entries away.
 std::vector<int> spatial_order(const Vertices& P);
+
+// The mesh's edges as an n by n pattern (values 1): the skeleton on which the wide-stencil
+// normal matrices are ordered (solver/ordering.h). Their columns couple vertices several rings
+// apart, and METIS on that graph costs far more; the mesh's separators, widened, do nearly as
+// well in a fraction of the time.
+solver::SparseMatrix edge_graph(const Stencil& s);
 
 // Mean edge length over the stencil's edges: the length scale that makes the soft weights of
 // terms with different units (positions vs. deformation gradients) scale invariant.

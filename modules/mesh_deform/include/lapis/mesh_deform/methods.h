@@ -8,15 +8,16 @@
 #include <vector>
 
 #include "lapis/mesh_deform/deformer.h"
+#include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
 
 namespace lapis::mesh_deform {
 
-enum class Method { Naive, Implicit, Arap };
+enum class Method { Naive, Implicit, Arap, Edge };
 
 struct MethodInfo {
   Method method;
-  const char* name;   // command-line name: naive, implicit, arap
+  const char* name;   // command-line name: naive, implicit, arap, edge
   const char* label;  // menu text
 };
 
@@ -25,18 +26,21 @@ const std::vector<MethodInfo>& methods();
 const MethodInfo& method_info(Method m);
 // Throws InvalidArgument naming the known methods.
 Method method_from_name(const std::string& name);
+// The command-line names in menu order, "naive, implicit, ...", for messages.
+std::string method_names();
 
 struct MethodSettings {
   Method method = Method::Implicit;
   LaplacianWeights weights = LaplacianWeights::Cotangent;  // naive and implicit (§2.3)
   bool scale_features = false;                             // implicit: Eq. 2.11 (R_i S_i δ_i) instead of Eq. 2.10
-  int arap_iterations = 10;  // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
+  int arap_iterations = 10;   // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
+  EdgeLaplacianOptions edge;  // the edge-based method (Wang et al.), its own weights and iterations
 
   bool operator==(const MethodSettings&) const = default;
 };
 
 // A deformer of the chosen method with these settings. Throws InvalidArgument for
-// arap_iterations < 1.
+// arap_iterations < 1 and for edge options that EdgeLaplacianDeformer::set_options() refuses.
 std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& settings);
 
 }  // namespace lapis::mesh_deform
