@@ -141,6 +141,7 @@ int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::v
   // Flips first, then umbrella steps; the steps can turn a fold the flips could not undo into
   // one they can, so twice. Flips may leave more folds where nothing may move, so the umbrella
   // steps alone are tried too, and the result with fewer folds is kept.
+  if (smooth_out_folds(mesh, strip_faces, can_move, 0, lambda, cos_fold) == 0) return 0;  // the usual case
   const TriMesh original = mesh;
   int folded = 0;
   for (int cycle = 0; cycle < 2; ++cycle) {
