@@ -251,7 +251,7 @@ DenseMatrix LeastSquares::solve(const std::vector<DenseMatrix>& rhs, const Dense
 }
 
 DenseMatrix LeastSquares::solve(const std::vector<DenseMatrix>& rhs, const DenseMatrix& fixed_values,
-                               int refinement_steps) const {
+                                int refinement_steps) const {
   const Impl& m = *impl_;
   DenseMatrix x = solve(rhs, fixed_values);
   if (refinement_steps <= 0) return x;
