@@ -200,8 +200,7 @@ void ArapDeformer::setup(const Layout& layout) {
   auto m = std::make_unique<Impl>();
   const int n = mesh_.num_vertices();
   m->order = detail::spatial_order(mesh_.V);
-  std::vector<int> rank(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) rank[m->order[k]] = k;
+  const std::vector<int> rank = detail::rank_in(m->order);
   m->rest.resize(n, 3);
   for (int k = 0; k < n; ++k) m->rest.row(k) = mesh_.V.row(m->order[k]);
   geometry::Faces F = mesh_.F;

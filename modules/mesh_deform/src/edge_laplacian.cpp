@@ -159,8 +159,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
   auto m = std::make_unique<Impl>();
   const int n = mesh_.num_vertices();
   m->order = detail::spatial_order(mesh_.V);
-  std::vector<int> rank(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) rank[static_cast<size_t>(m->order[static_cast<size_t>(k)])] = k;
+  const std::vector<int> rank = detail::rank_in(m->order);
   m->rest = mesh_.V(m->order, Eigen::all);
   geometry::Faces F = mesh_.F;
   for (Eigen::Index f = 0; f < F.rows(); ++f)

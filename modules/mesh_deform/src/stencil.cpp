@@ -52,6 +52,12 @@ std::vector<int> spatial_order(const Vertices& P) {
   return order;
 }
 
+std::vector<int> rank_in(const std::vector<int>& order) {
+  std::vector<int> rank(order.size());
+  for (size_t k = 0; k < order.size(); ++k) rank[static_cast<size_t>(order[k])] = static_cast<int>(k);
+  return rank;
+}
+
 void reweight(Stencil& s, const Vertices& P, const geometry::Faces& F, LaplacianWeights weights, ObtuseAngles obtuse) {
   const int n = s.size();
   if (weights == LaplacianWeights::Uniform) {

@@ -68,6 +68,8 @@ void for_vertices(std::size_t n, F f) {
 // data hit the cache. Loop subdivision, for one, appends the edge midpoints, putting half of
 // every vertex's neighbours #V/2 entries away.
 std::vector<int> spatial_order(const Vertices& P);
+// rank[order[k]] = k: each vertex's position in `order` (a permutation of 0 … n − 1).
+std::vector<int> rank_in(const std::vector<int>& order);
 
 // The mesh's edges as an n by n pattern (values 1): the skeleton on which the wide-stencil
 // normal matrices are ordered (solver/ordering.h). Their columns couple vertices several rings
