@@ -23,8 +23,9 @@ namespace {
 using nlohmann::json;
 using namespace lapis::mesh_deform;
 
-constexpr const char* kUsage =
-    "usage: lapis deform --mesh IN --roi ROI --handles HANDLES.json --method naive|implicit|arap|edge\n"
+// After "--method ": the choices come from the method registry (usage()).
+constexpr const char* kUsageRest =
+    "\n"
     "                    [--weights cotan|uniform] [--scale-features] [--iterations N]\n"
     "                    [--domain edges|vertices] [--transform rotation|isotropic|anisotropic|full]\n"
     "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
@@ -42,6 +43,12 @@ constexpr const char* kUsage =
     "  (the paper's) or principal rest axes; --tolerance stops once no vertex moves more than T\n"
     "  of the bbox diagonal; --warm-start starts each frame from the last one's transforms.\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
+
+const char* usage() {
+  static const std::string text =
+      "usage: lapis deform --mesh IN --roi ROI --handles HANDLES.json --method " + method_names("|") + kUsageRest;
+  return text.c_str();
+}
 
 // 'all' or a ROI file (the format is mesh_deform's, shared with the deform app).
 std::vector<int> read_roi_arg(const std::string& spec, int n) {
@@ -145,6 +152,6 @@ int run(const std::vector<std::string>& argv) {
 }  // namespace
 
 extern const Command kDeformCommand = {
-    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, or ARAP", kUsage, run};
+    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, or ARAP", usage(), run};
 
 }  // namespace lapis::cli

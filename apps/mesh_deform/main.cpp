@@ -4,19 +4,21 @@
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
 #include <memory>
+#include <string>
 
 #include "args.h"
 #include "deform_app.h"
 #include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
+#include "lapis/mesh_deform/methods.h"
 #include "lapis/viewer/app_main.h"
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]\n"
-    "                    [--method naive|implicit|arap|edge] [--weights cotan|uniform] [--scale-features]\n"
+// After the --method choices, which come from the method registry (usage()).
+constexpr const char* kUsageRest =
+    "] [--weights cotan|uniform] [--scale-features]\n"
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
     "                    [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
@@ -79,6 +81,14 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   return app;
 }
 
+const char* usage() {
+  static const std::string text =
+      "usage: lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]\n"
+      "                    [--method " +
+      lapis::mesh_deform::method_names("|") + kUsageRest;
+  return text.c_str();
+}
+
 }  // namespace
 
-int main(int argc, char** argv) { return lapis::viewer::app_main(argc, argv, "lapis-deform", kUsage, make_app); }
+int main(int argc, char** argv) { return lapis::viewer::app_main(argc, argv, "lapis-deform", usage(), make_app); }

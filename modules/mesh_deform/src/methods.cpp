@@ -23,9 +23,12 @@ const MethodInfo& method_info(Method m) {
   throw InvalidArgument("mesh_deform::method_info(): unknown method");
 }
 
-std::string method_names() {
+std::string method_names(const char* separator) {
   std::string known;
-  for (const auto& info : methods()) known += (known.empty() ? "" : ", ") + std::string(info.name);
+  for (const auto& info : methods()) {
+    if (!known.empty()) known += separator;
+    known += info.name;
+  }
   return known;
 }
 

@@ -26,8 +26,9 @@ const std::vector<MethodInfo>& methods();
 const MethodInfo& method_info(Method m);
 // Throws InvalidArgument naming the known methods.
 Method method_from_name(const std::string& name);
-// The command-line names in menu order, "naive, implicit, ...", for messages.
-std::string method_names();
+// The command-line names in menu order, "naive, implicit, ...", for messages; with separator
+// "|", "naive|implicit|...", for usage lines.
+std::string method_names(const char* separator = ", ");
 
 struct MethodSettings {
   Method method = Method::Implicit;
