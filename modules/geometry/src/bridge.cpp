@@ -34,11 +34,16 @@ std::uint64_t edge_key(int u, int v) {
   return (std::uint64_t(std::uint32_t(std::min(u, v))) << 32) | std::uint32_t(std::max(u, v));
 }
 
+// Zero for a triangle flat to rounding: its height under 1e-12 of its longest edge. Three
+// points of one straight cut lie exactly on a line in the frame they were cut in and 1e-16
+// off it in any other, where their "normal" points anywhere: without the tolerance, a
+// similarity of the mesh changed the fold and degeneracy counts and so the tiling.
 Eigen::Vector3d unit_normal(const TriMesh& m, int p, int q, int r) {
   const Eigen::Vector3d x = m.V.row(p).transpose(), y = m.V.row(q).transpose(), z = m.V.row(r).transpose();
   const Eigen::Vector3d n = (y - x).cross(z - x);
   const double len = n.norm();
-  return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+  const double longest = std::max({(y - x).squaredNorm(), (z - x).squaredNorm(), (z - y).squaredNorm()});
+  return len > 1e-12 * longest ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
 }
 
 // For each edge (u[k], u[k+1]), the unit normal of the mesh face on it (zero where none).
