@@ -64,6 +64,19 @@ std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
   return map;
 }
 
+TriMesh with_faces(const TriMesh& mesh, const std::vector<int>& faces) {
+  TriMesh out;
+  out.V = mesh.V;
+  out.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (faces[i] < 0 || faces[i] >= mesh.num_faces())
+      throw InvalidArgument("geometry::with_faces(): face " + std::to_string(faces[i]) + " is out of range [0, " +
+                            std::to_string(mesh.num_faces()) + ")");
+    out.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(faces[i]);
+  }
+  return out;
+}
+
 TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::vector<int>* vertex_map) {
   require_indices_in_range(mesh, "geometry::remove_faces()");
   std::vector<char> removed(mesh.num_faces(), 0);

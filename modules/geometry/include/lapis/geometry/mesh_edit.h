@@ -13,6 +13,10 @@ namespace lapis::geometry {
 // vertex_map, when given, receives for each old vertex its new index or -1.
 TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::vector<int>* vertex_map = nullptr);
 
+// The listed faces (in that order) over all of mesh's vertices, whose indices stay valid: a
+// region as a mesh of its own, for its connectivity and boundary loops.
+TriMesh with_faces(const TriMesh& mesh, const std::vector<int>& faces);
+
 // Drops vertices that no face uses; returns the old-to-new map (-1 for dropped ones).
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
 
