@@ -33,6 +33,8 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
   if (!(o.roi_width >= 0) || !std::isfinite(o.roi_width)) fail("roi_width must be finite and >= 0");
   for (int h : o.handles)
     if (h < 0 || h >= source.num_vertices()) fail("handle vertex " + std::to_string(h) + " out of range");
+  if (o.mode == MergeMode::OptimalBoundary)
+    fail("OptimalBoundary mode merges along a boundary it finds, not given loops: use BoundaryOptimizer::merge()");
   if (o.mode == MergeMode::Transition) {
     const TransitionOptions& t = o.transition;
     // §3.3.3: the user specifies the widths; there is no width that suits every mesh.

@@ -5,10 +5,13 @@
 #include <limits>
 #include <string>
 
+#include "cut_open.h"
 #include "lapis/core/format.h"
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/geometry/laplacian.h"
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/solver/least_squares.h"
+#include "uv_locator.h"
 
 namespace lapis::mesh_merge {
 
@@ -19,45 +22,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 [[noreturn]] void fail(const char* which, const std::string& what) {
   throw InvalidArgument(std::string(kBand) + ": the " + which + " " + what);
-}
-
-int find_root(std::vector<int>& parent, int a) {
-  while (parent[a] != a) a = parent[a] = parent[parent[a]];
-  return a;
-}
-
-// Which faces around cut vertex c lie on the side that gets the u = 1 copy. The cut edges
-// split c's fan into two groups (faces joined across non-cut edges); the group holding a face
-// that runs along the cut in its winding order (directed edge prev -> c or c -> next) lies on
-// the path's left. Seen along the loop's direction, the path's left is u = 1 when the loop
-// follows the faces' orientation, u = 0 when it runs against it (reversed).
-std::vector<char> upper_side(const Connectivity& sc, const geometry::Faces& F, const std::vector<int>& cut, size_t k,
-                             bool reversed, const char* which) {
-  const int c = cut[k];
-  const int prev = k > 0 ? cut[k - 1] : -1, next = k + 1 < cut.size() ? cut[k + 1] : -1;
-  const auto fan = sc.vertex_faces(c);
-  std::vector<int> parent(fan.size());
-  for (size_t i = 0; i < fan.size(); ++i) parent[i] = static_cast<int>(i);
-  auto slot = [&](int f) { return static_cast<int>(std::find(fan.begin(), fan.end(), f) - fan.begin()); };
-  for (int w : sc.vertex_neighbors(c)) {
-    if (w == prev || w == next) continue;
-    const auto ef = sc.edge_faces(sc.find_edge(c, w));
-    if (ef[0] >= 0 && ef[1] >= 0) parent[find_root(parent, slot(ef[0]))] = find_root(parent, slot(ef[1]));
-  }
-  int left = -1, groups = 0;
-  for (size_t i = 0; i < fan.size(); ++i) {
-    if (find_root(parent, static_cast<int>(i)) == static_cast<int>(i)) ++groups;
-    for (int j = 0; j < 3; ++j) {
-      const int a = F(fan[i], j), b = F(fan[i], (j + 1) % 3);
-      if ((a == prev && b == c) || (a == c && b == next)) left = find_root(parent, static_cast<int>(i));
-    }
-  }
-  if (groups != 2 || left < 0)
-    fail(which,
-         "transition band cannot be cut open at vertex " + std::to_string(c) + " (its faces do not form one fan)");
-  std::vector<char> upper(fan.size());
-  for (size_t i = 0; i < fan.size(); ++i) upper[i] = (find_root(parent, static_cast<int>(i)) == left) != reversed;
-  return upper;
 }
 
 }  // namespace
@@ -97,15 +61,6 @@ std::vector<int> band_faces(const TriMesh& mesh, const Connectivity& conn, const
   if (beyond == 0 || static_cast<int>(faces.size()) == mesh.num_faces())
     fail(which, "transition band " + w + " covers the whole mesh (no face is that far from the merging loop)");
   return faces;
-}
-
-// The band as a mesh of its own (same vertex indices): an annulus between the loop and the rim.
-TriMesh band_mesh(const TriMesh& mesh, const std::vector<int>& faces) {
-  TriMesh sub;
-  sub.V = mesh.V;
-  sub.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (size_t i = 0; i < faces.size(); ++i) sub.F.row(static_cast<Eigen::Index>(i)) = mesh.F.row(faces[i]);
-  return sub;
 }
 
 // The band's inner rim: its boundary loop other than the merging loop, in the seam's
@@ -166,17 +121,16 @@ std::vector<int> cut_open_domain(TransitionBand& b, const Connectivity& sc, cons
     upper_copy[k] = static_cast<int>(b.param_vertex.size());
     b.param_vertex.push_back(b.cut[k]);
   }
-  b.param_faces = F;
+  const detail::CutOpen open = detail::cut_open(sc, F, b.cut, reversed);
+  if (open.failed_at >= 0)
+    fail(which, "transition band cannot be cut open at vertex " + std::to_string(open.failed_at) +
+                    " (its faces do not form one fan)");
+  b.param_faces = open.faces;
   for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int j = 0; j < 3; ++j) b.param_faces(f, j) = b.param_of[F(f, j)];
-  for (size_t k = 0; k < b.cut.size(); ++k) {
-    const auto fan = sc.vertex_faces(b.cut[k]);
-    const std::vector<char> upper = upper_side(sc, F, b.cut, k, reversed, which);
-    for (size_t i = 0; i < fan.size(); ++i)
-      if (upper[i])
-        for (int j = 0; j < 3; ++j)
-          if (F(fan[i], j) == b.cut[k]) b.param_faces(fan[i], j) = upper_copy[k];
-  }
+    for (int j = 0; j < 3; ++j) {
+      const int v = open.faces(f, j);
+      b.param_faces(f, j) = v < nv ? b.param_of[v] : upper_copy[v - nv];
+    }
   return upper_copy;
 }
 
@@ -230,7 +184,7 @@ bool band_is_annulus(const TriMesh& mesh, const Connectivity& conn, const std::v
     if (loop.size() < 3) fail(which, "merging loop needs at least 3 vertices");
     const std::string w = "of width " + format_number(width);
     const std::vector<int> faces = band_faces(mesh, conn, loop, width, w, which);
-    const Connectivity sc(band_mesh(mesh, faces));
+    const Connectivity sc(geometry::with_faces(mesh, faces));
     band_cut(mesh, sc, loop, band_rim(conn, sc, loop, false, w, which), w, which);
     return true;
   } catch (const InvalidArgument& e) {
@@ -251,7 +205,7 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
   b.loop = loop;
   b.faces = band_faces(mesh, conn, loop, width, w, which);
 
-  const TriMesh sub = band_mesh(mesh, b.faces);
+  const TriMesh sub = geometry::with_faces(mesh, b.faces);
   const Connectivity sc(sub);
   std::vector<int> rim = band_rim(conn, sc, loop, reversed, w, which);
   std::vector<char> on_rim(static_cast<size_t>(nv), 0);
@@ -269,50 +223,20 @@ TransitionBand transition_band(const TriMesh& mesh, const Connectivity& conn, co
 }
 
 std::vector<BandPoint> overlap_points(const TransitionBand& from, const TransitionBand& to) {
-  const geometry::Faces& F = to.param_faces;
-  const int nf = static_cast<int>(F.rows());
-  const int g = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(nf)))));
-  auto cell = [g](double x) { return std::clamp(static_cast<int>(std::floor(x * g)), 0, g - 1); };
-  std::vector<std::vector<int>> cells(static_cast<size_t>(g * g));
-  for (int f = 0; f < nf; ++f) {
-    Eigen::Vector2d lo = to.uv.row(F(f, 0)), hi = lo;
-    for (int j = 1; j < 3; ++j)
-      lo = lo.cwiseMin(to.uv.row(F(f, j)).transpose()), hi = hi.cwiseMax(to.uv.row(F(f, j)).transpose());
-    for (int y = cell(lo.y()); y <= cell(hi.y()); ++y)
-      for (int x = cell(lo.x()); x <= cell(hi.x()); ++x) cells[static_cast<size_t>(y * g + x)].push_back(f);
-  }
-  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
-  // Barycentric coordinates of q in face f; false for a degenerate face.
-  auto bary = [&](int f, const Eigen::Vector2d& q, Eigen::Vector3d& w) {
-    const Eigen::Vector2d a = to.uv.row(F(f, 0)), b = to.uv.row(F(f, 1)), c = to.uv.row(F(f, 2));
-    const double det = cross(b - a, c - a);
-    if (!(std::abs(det) > 1e-14)) return false;
-    w(1) = cross(q - a, c - a) / det;
-    w(2) = cross(b - a, q - a) / det;
-    w(0) = 1 - w(1) - w(2);
-    return true;
-  };
+  const detail::UvLocator locator(to.uv, to.param_faces);
   std::vector<BandPoint> out;
   out.reserve(from.vertices.size());
   for (int v : from.vertices) {
     const Eigen::Vector2d p = from.at(v);
-    const Eigen::Vector2d q(p.x(), 1 - p.y());  // the overlap: the loop of one band is the rim of the other
-    int best = -1;
-    double best_min = -kInf;
-    Eigen::Vector3d w, best_w;
-    auto consider = [&](int f) {
-      if (bary(f, q, w) && w.minCoeff() > best_min) best_min = w.minCoeff(), best = f, best_w = w;
-    };
-    for (int f : cells[static_cast<size_t>(cell(q.y()) * g + cell(q.x()))]) consider(f);
-    if (best_min < -1e-9)
-      for (int f = 0; f < nf; ++f) consider(f);
-    if (best < 0)
+    // The overlap: the loop of one band is the rim of the other.
+    const detail::UvHit hit = locator.locate(Eigen::Vector2d(p.x(), 1 - p.y()));
+    if (hit.face < 0)
       throw InvalidArgument(
           "mesh_merge::overlap_points(): the band's parameterization has no triangle of positive area");
     BandPoint bp;
-    best_w = best_w.cwiseMax(0.0);
-    best_w /= best_w.sum();
-    for (int j = 0; j < 3; ++j) bp.vertices[j] = to.param_vertex[F(best, j)], bp.weights[j] = best_w(j);
+    Eigen::Vector3d w = hit.weights.cwiseMax(0.0);
+    w /= w.sum();
+    for (int j = 0; j < 3; ++j) bp.vertices[j] = to.param_vertex[to.param_faces(hit.face, j)], bp.weights[j] = w(j);
     out.push_back(bp);
   }
   return out;

@@ -21,6 +21,9 @@ enum class MergeMode {
   Independent,  // §3.3.1
   Dependent,    // §3.3.2
   Transition,   // §3.3.3, configuration-independent (§3.3.1 boundary conditions)
+  // §3.4: along the optimal boundary of a band around a feature (BoundaryOptimizer::merge();
+  // Merger, which merges given loops, rejects it).
+  OptimalBoundary,
 };
 
 // Whose transition band the merged surface keeps (§3.3.3 "the connectivity information of one

@@ -1,0 +1,337 @@
+// The optimal merging boundary (thesis §3.4): the loop it returns, its optimality for fixed T
+// against an independent search, its invariances, and the merge along it.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+#include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/dijkstra.h"
+#include "lapis/geometry/hole_fill.h"
+#include "lapis/geometry/mesh_edit.h"
+#include "lapis/mesh_merge/metrics.h"
+#include "lapis/mesh_merge/lscm.h"
+#include "optimal_fixtures.h"
+
+namespace lapis::mesh_merge {
+namespace {
+
+using test::bump_regions;
+using test::bump_with_ripples;
+using test::flat_target;
+
+struct BumpCase {
+  geometry::TriMesh source = bump_with_ripples(), target = flat_target();
+  BoundaryOptimizer optimizer{source, target, bump_regions(source)};
+  OptimalBoundary boundary = optimizer.optimize(optimizer.suggested_placement());
+};
+
+const BumpCase& bump_case() {
+  static const BumpCase c;
+  return c;
+}
+
+std::set<int> band_vertices(const BoundaryOptimizer& opt) {
+  std::set<int> out;
+  for (int f : opt.band_faces())
+    for (int j = 0; j < 3; ++j) out.insert(opt.source().F(f, j));
+  return out;
+}
+
+TEST_CASE("optimal boundary: a simple loop of band vertices that encloses the feature and nothing outside Ω0") {
+  const BumpCase& c = bump_case();
+  const std::vector<int>& loop = c.boundary.loop;
+  REQUIRE(loop.size() >= 3);
+  CHECK(std::set<int>(loop.begin(), loop.end()).size() == loop.size());
+  const std::set<int> band = band_vertices(c.optimizer);
+  const geometry::Connectivity conn(c.source);
+  for (size_t i = 0; i < loop.size(); ++i) {
+    CHECK(band.count(loop[i]) == 1);
+    CHECK(conn.find_edge(loop[i], loop[(i + 1) % loop.size()]) >= 0);
+  }
+  const MergeResult r = c.optimizer.merge(c.boundary);
+  std::set<int> in_rough;
+  for (int f : bump_regions(c.source).roi_faces)
+    for (int j = 0; j < 3; ++j) in_rough.insert(c.source.F(f, j));
+  for (int f : c.optimizer.feature_faces())
+    for (int j = 0; j < 3; ++j) CHECK(r.source_map[c.source.F(f, j)] >= 0);
+  for (int v = 0; v < c.source.num_vertices(); ++v)
+    if (!in_rough.count(v)) CHECK(r.source_map[v] == -1);
+}
+
+TEST_CASE("optimal boundary: never worse than the user's boundary, and each boundary step lowers E for its T") {
+  const OptimalBoundary& b = bump_case().boundary;
+  CHECK(b.energy <= b.user_energy);
+  CHECK(b.energy < 0.05 * b.user_energy);  // the ripples beyond r1 cost ∂Ω0 dearly
+  REQUIRE(b.history.size() >= 2);
+  for (size_t k = 0; k + 1 < b.history.size(); ++k) CHECK(b.history[k].step_energy <= b.history[k].energy * (1 + 1e-12));
+  CHECK(std::isnan(b.history.back().step_energy));
+  CHECK(b.energy == doctest::Approx(b.history[b.best_iteration].energy).epsilon(1e-15));
+}
+
+// Bellman–Ford over the band's universal cover (vertex, winding sheet): a closed walk from w back
+// to w that winds once around the hole, found without the cut-open graph the optimizer uses.
+double cheapest_winding_loop(const BoundaryOptimizer& opt, const Vertices& image, const geometry::Similarity3& T) {
+  const geometry::TriMesh band = geometry::with_faces(opt.source(), opt.band_faces());
+  const geometry::Connectivity conn(band);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // inside the filled hole in uv
+  for (int v : opt.inner_loop()) centre += opt.source_uv().row(v).transpose();
+  centre /= static_cast<double>(opt.inner_loop().size());
+  auto angle = [&](int v) {
+    const Eigen::Vector2d d = opt.source_uv().row(v).transpose() - centre;
+    return std::atan2(d.y(), d.x());
+  };
+  constexpr int kSheets = 5, kMid = 2;
+  const double inf = std::numeric_limits<double>::infinity();
+  double best = inf;
+  for (int w : opt.cut()) {  // every loop around the hole meets the cut
+    std::vector<double> dist(static_cast<size_t>(band.num_vertices()) * kSheets, inf);
+    dist[static_cast<size_t>(w) * kSheets + kMid] = 0;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int e = 0; e < conn.num_edges(); ++e)
+        for (int dir = 0; dir < 2; ++dir) {
+          const int a = conn.edges()[e][dir], b = conn.edges()[e][1 - dir];
+          double turn = angle(b) - angle(a);
+          const int wrap = turn > M_PI ? -1 : turn < -M_PI ? 1 : 0;  // crossing the branch cut of atan2
+          const double cost = boundary_energy(opt.source().V, image, {a, b}, T) / 2;  // the loop counts a-b twice
+          for (int s = 0; s < kSheets; ++s) {
+            const int t = s + wrap;
+            if (t < 0 || t >= kSheets || dist[a * kSheets + s] == inf) continue;
+            if (dist[a * kSheets + s] + cost < dist[b * kSheets + t] * (1 - 1e-15))
+              dist[b * kSheets + t] = dist[a * kSheets + s] + cost, changed = true;
+          }
+        }
+    }
+    best = std::min({best, dist[w * kSheets + kMid + 1], dist[w * kSheets + kMid - 1]});
+  }
+  return best;
+}
+
+TEST_CASE("optimal boundary: at fixed T the boundary step is the exact cheapest loop around the feature") {
+  const geometry::TriMesh src = bump_with_ripples(14), tgt = flat_target(20);
+  const BoundaryOptimizer opt(src, tgt, bump_regions(src));
+  const OptimalBoundary b = opt.optimize(opt.suggested_placement());
+  REQUIRE(band_vertices(opt).size() < 400);
+  for (const BoundaryIteration& it : b.history) {
+    double cost = 0;
+    const std::vector<int> loop = opt.cheapest_loop(b.image, it.transform, &cost);
+    CHECK(cost == doctest::Approx(cheapest_winding_loop(opt, b.image, it.transform)).epsilon(1e-9));
+    CHECK(cost <= boundary_energy(src.V, b.image, opt.outer_loop(), it.transform) * (1 + 1e-12));
+    CHECK(cost <= boundary_energy(src.V, b.image, opt.inner_loop(), it.transform) * (1 + 1e-12));
+  }
+}
+
+geometry::Similarity3 random_similarity(std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  geometry::Similarity3 G;
+  G.R = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+  G.s = std::pow(10.0, std::uniform_real_distribution<double>(-1, 1)(rng));
+  G.t = Eigen::Vector3d(n(rng), n(rng), n(rng));
+  return G;
+}
+
+geometry::TriMesh transformed(const geometry::TriMesh& m, const geometry::Similarity3& G) {
+  geometry::TriMesh out = m;
+  for (int v = 0; v < m.num_vertices(); ++v) out.V.row(v) = G(m.V.row(v).transpose()).transpose();
+  return out;
+}
+
+TEST_CASE("optimal boundary: a similarity of the source keeps the loop and scales the energy") {
+  const BumpCase& c = bump_case();
+  const Placement2D placement = c.optimizer.suggested_placement();
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const geometry::Similarity3 G = random_similarity(rng);
+    const BoundaryOptimizer opt(transformed(c.source, G), c.target, bump_regions(c.source));
+    const OptimalBoundary b = opt.optimize(placement);
+    CHECK(b.loop == c.boundary.loop);
+    CHECK(b.energy / G.s == doctest::Approx(c.boundary.energy).epsilon(1e-9));
+    CHECK((b.transform.linear() * G.linear() - c.boundary.transform.linear()).norm() < 1e-9);
+  }
+}
+
+TEST_CASE("optimal boundary: onto a similar copy of the filled band the energy vanishes and T is the similarity") {
+  const geometry::TriMesh src = bump_with_ripples(20);
+  const BoundaryRegions regions = bump_regions(src);
+  const BoundaryOptimizer probe(src, flat_target(), regions);
+  // D: the band with ∂Ωf filled as the optimizer fills it.
+  const std::vector<int> hole(probe.inner_loop().rbegin(), probe.inner_loop().rend());
+  const geometry::HoleFill fill = geometry::minimal_area_fill(src.V, hole);
+  geometry::TriMesh disk = geometry::with_faces(src, probe.band_faces());
+  disk.F.conservativeResize(disk.F.rows() + fill.faces.rows(), 3);
+  disk.F.bottomRows(fill.faces.rows()) = fill.faces;
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 3; ++trial) {
+    geometry::Similarity3 G = random_similarity(rng);
+    if (trial == 0) G = geometry::Similarity3();
+    const BoundaryOptimizer opt(src, transformed(disk, G), regions);
+    // The pins are the same vertices on both, so the target uv is the source uv scaled.
+    const std::array<int, 2> pins = farthest_pair(src, opt.outer_loop());
+    const Eigen::Vector2d a = opt.target_uv().row(pins[0]), d = opt.target_uv().row(pins[1]) - a.transpose();
+    Placement2D p;
+    p.scale = d.norm(), p.angle = std::atan2(d.y(), d.x()), p.offset = a;
+    const OptimalBoundary b = opt.optimize(p);
+    double edge_sq = 0;
+    for (size_t i = 0; i < b.loop.size(); ++i)
+      edge_sq += (src.V.row(b.loop[i]) - src.V.row(b.loop[(i + 1) % b.loop.size()])).squaredNorm();
+    CHECK(b.energy <= 1e-12 * G.s * edge_sq);
+    CHECK((b.transform.linear() - G.linear()).norm() < 1e-9 * G.s);
+  }
+}
+
+TEST_CASE("optimal boundary: on a bump with ripples beyond r1 the boundary stays in the flat ring") {
+  const BumpCase& c = bump_case();
+  double outer = 0, user_inner = 9;
+  for (int v : c.boundary.loop) outer = std::max(outer, test::radius_of(c.source, v));
+  for (int v : c.boundary.user_loop) user_inner = std::min(user_inner, test::radius_of(c.source, v));
+  CHECK(outer < test::kFlatRadius);
+  CHECK(user_inner > test::kFlatRadius);
+}
+
+// Largest distance of the merged feature from the best similar copy of the source feature.
+double feature_distortion(const BumpCase& c, const MergeResult& r) {
+  std::set<int> feature;
+  for (int f : c.optimizer.feature_faces())
+    for (int j = 0; j < 3; ++j) feature.insert(c.source.F(f, j));
+  Eigen::MatrixX3d from(static_cast<Eigen::Index>(feature.size()), 3), to(from.rows(), 3);
+  Eigen::Index i = 0;
+  for (int v : feature) from.row(i) = c.source.V.row(v), to.row(i++) = r.mesh.V.row(r.source_map[v]);
+  const geometry::Similarity3 T = geometry::fit_similarity(from, to);
+  double worst = 0;
+  for (i = 0; i < from.rows(); ++i) worst = std::max(worst, (T(from.row(i).transpose()) - to.row(i).transpose()).norm());
+  return worst;
+}
+
+TEST_CASE("optimal boundary: the merge along it keeps details better than along the user's boundary") {
+  const BumpCase& c = bump_case();
+  const MergeResult optimal = c.optimizer.merge(c.boundary), user = c.optimizer.merge(c.boundary, {}, true);
+  const SeamQuality q = seam_quality(c.target, optimal);
+  CHECK(q.valid());
+  CHECK(q.folded_seam_edges == 0);
+  CHECK(seam_quality(c.target, user).valid());
+  // detail_preservation() normalizes over each merge's own source part; compare the part both
+  // keep, the feature, by its distance from a similar copy of itself.
+  const DetailPreservation dp = detail_preservation(c.source, optimal), du = detail_preservation(c.source, user);
+  CHECK(dp.max_distance <= du.max_distance);
+  CHECK(feature_distortion(c, optimal) < 0.05 * feature_distortion(c, user));  // 2.6e-4 against 2.6e-2
+  // The flat target stays flat away from the bump: the seam ring lies on it.
+  for (int v : optimal.seam_vertices) CHECK(std::abs(optimal.mesh.V(v, 2)) < 0.01);
+}
+
+TEST_CASE("optimal boundary: stopping rules and the energy history") {
+  const BumpCase& c = bump_case();
+  CHECK(c.boundary.stopped_by == "fixed point");
+  const size_t n = c.boundary.history.size();
+  REQUIRE(n >= 2);
+  CHECK(c.boundary.history[n - 1].energy == c.boundary.history[n - 2].energy);
+  auto run_with = [&](const OptimalBoundaryOptions& o) {
+    return BoundaryOptimizer(c.source, c.target, bump_regions(c.source), o).optimize(c.optimizer.suggested_placement());
+  };
+  OptimalBoundaryOptions capped, loose;
+  capped.max_iterations = 1;
+  loose.relative_tolerance = 1e6;
+  const OptimalBoundary b = run_with(capped), l = run_with(loose);
+  CHECK(b.stopped_by == "iteration cap");
+  CHECK(b.history.size() == 2);
+  CHECK(l.stopped_by == "energy change");
+  CHECK(l.history.size() == 2);
+}
+
+TEST_CASE("optimal boundary: the cut is a shortest path across the band, off both borders inside") {
+  const BumpCase& c = bump_case();
+  const std::vector<int>& cut = c.optimizer.cut();
+  REQUIRE(cut.size() >= 2);
+  const std::set<int> outer(c.optimizer.outer_loop().begin(), c.optimizer.outer_loop().end());
+  const std::set<int> inner(c.optimizer.inner_loop().begin(), c.optimizer.inner_loop().end());
+  CHECK(outer.count(cut.front()) == 1);
+  CHECK(inner.count(cut.back()) == 1);
+  for (size_t i = 1; i + 1 < cut.size(); ++i) CHECK((outer.count(cut[i]) + inner.count(cut[i])) == 0);
+  double length = 0;
+  for (size_t i = 0; i + 1 < cut.size(); ++i) length += (c.source.V.row(cut[i + 1]) - c.source.V.row(cut[i])).norm();
+  const geometry::ShortestPaths d =
+      geometry::dijkstra(c.source, c.optimizer.outer_loop(), geometry::edge_length_cost(c.source));
+  double across = std::numeric_limits<double>::infinity();
+  for (int v : inner) across = std::min(across, d.distance[v]);
+  CHECK(length == doctest::Approx(across).epsilon(1e-12));
+}
+
+TEST_CASE("optimal boundary: bad regions and placements are named errors") {
+  const geometry::TriMesh src = bump_with_ripples(20), tgt = flat_target(20);
+  const BoundaryRegions good = bump_regions(src);
+  auto fails_with = [&](BoundaryRegions r, const char* what) {
+    CHECK_THROWS_WITH_AS(BoundaryOptimizer(src, tgt, r), doctest::Contains(what), InvalidArgument);
+  };
+  BoundaryRegions r = good;
+  r.feature_faces.clear();
+  fails_with(r, "Ωf is empty");
+  r = good;
+  r.feature_faces.push_back(src.num_faces());
+  fails_with(r, "out of range");
+  r = good;
+  r.roi_faces = test::faces_within(src, 0.5);
+  r.feature_faces = test::faces_within(src, 0.7);
+  fails_with(r, "is not in the rough region");
+  // The feature reaches Ω0's border along a spoke.
+  r = good;
+  for (int f : good.roi_faces) {
+    const Eigen::Vector3d c = (src.V.row(src.F(f, 0)) + src.V.row(src.F(f, 1)) + src.V.row(src.F(f, 2))) / 3;
+    if (c.x() > 0 && std::abs(c.y()) < 0.06) r.feature_faces.push_back(f);
+  }
+  fails_with(r, "touches Ω0's border");
+  // A hole in the band: Ω0 has two borders.
+  r = good;
+  std::erase_if(r.roi_faces, [&](int f) {
+    const Eigen::Vector3d c = (src.V.row(src.F(f, 0)) + src.V.row(src.F(f, 1)) + src.V.row(src.F(f, 2))) / 3;
+    return (c - Eigen::Vector3d(0.6, 0, 0)).norm() < 0.1;
+  });
+  fails_with(r, "must be an annulus");
+  // Ω1 with a hole is no disk.
+  r = good;
+  r.target_faces = test::faces_within(tgt, 1.4);
+  const std::vector<int> middle = test::faces_within(tgt, 0.3);
+  std::erase_if(r.target_faces, [&](int f) { return std::binary_search(middle.begin(), middle.end(), f); });
+  fails_with(r, "Ω1 must be a disk");
+  // A placement that puts ∂Ω0 off Ω1.
+  const BoundaryOptimizer opt(src, tgt, good);
+  Placement2D far = opt.suggested_placement();
+  far.offset += Eigen::Vector2d(2.5, 0);
+  CHECK_THROWS_WITH_AS(opt.optimize(far), doctest::Contains("maps outside the target region"), InvalidArgument);
+  MergeOptions optimal_mode;
+  optimal_mode.mode = MergeMode::OptimalBoundary;
+  CHECK_THROWS_WITH_AS(Merger(src, optimal_mode), doctest::Contains("BoundaryOptimizer::merge()"), InvalidArgument);
+}
+
+// A torus with a disk cut away is a genus-1 feature with one boundary loop (thesis Fig. 3.14):
+// the fill closes ∂Ωf, so the parameterization never sees the handle.
+TEST_CASE("optimal boundary: a feature of genus 1 merges watertight") {
+  const geometry::TriMesh torus = geometry::make_torus(64, 32, 1.0, 0.4);
+  int top = 0;  // the outer equator's point at +x
+  for (int v = 0; v < torus.num_vertices(); ++v)
+    if (torus.V(v, 0) > torus.V(top, 0)) top = v;
+  const geometry::ShortestPaths d = geometry::dijkstra(torus, {top});
+  BoundaryRegions r;
+  for (int f = 0; f < torus.num_faces(); ++f) {
+    double dist = 0;
+    for (int j = 0; j < 3; ++j) dist += d.distance[torus.F(f, j)] / 3;
+    if (dist > 0.4) r.roi_faces.push_back(f);
+    if (dist > 0.8) r.feature_faces.push_back(f);
+  }
+  // The target: a plane facing +x under the cut, its tessellation unrelated.
+  geometry::TriMesh plane = flat_target(30);
+  for (int v = 0; v < plane.num_vertices(); ++v)
+    plane.V.row(v) = Eigen::RowVector3d(1.35, plane.V(v, 0), plane.V(v, 1));
+  const BoundaryOptimizer opt(torus, plane, r);
+  const OptimalBoundary b = opt.optimize(opt.suggested_placement());
+  CHECK(b.energy < 0.5 * b.user_energy);  // 0.27 against 0.67
+  const MergeResult m = opt.merge(b);
+  const SeamQuality q = seam_quality(plane, m);
+  CHECK(q.valid());
+  CHECK(geometry::genus(m.mesh) == 1);
+  CHECK(geometry::Connectivity(m.mesh).boundary_loops().size() == 1);  // the plane's border only
+}
+
+}  // namespace
+}  // namespace lapis::mesh_merge
