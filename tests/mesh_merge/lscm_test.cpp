@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
+#include "cgal_lscm.h"
 #include "lapis/core/error.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/hole_fill.h"
@@ -53,7 +54,8 @@ TEST_CASE("lscm: a cylinder patch unrolls without stretch, and a sphere cap with
   const geometry::Connectivity cc(cylinder);
   REQUIRE(cc.boundary_loops().size() == 1);
   const Eigen::MatrixX2d uv = lscm_pinned_on_loop(cylinder, cc.boundary_loops()[0], true);
-  for (const Eigen::Vector2d& sv : face_stretches(cylinder, uv)) CHECK(sv(0) / sv(1) == doctest::Approx(1).epsilon(1e-6));
+  for (const Eigen::Vector2d& sv : face_stretches(cylinder, uv))
+    CHECK(sv(0) / sv(1) == doctest::Approx(1).epsilon(1e-6));
 
   const TriMesh cap = cut_by_plane(geometry::make_icosphere(4), {0, 0, 0.3}, {0, 0, 1}).above;
   const geometry::Connectivity sc(cap);
@@ -82,6 +84,24 @@ TEST_CASE("lscm: a similarity of the mesh leaves the pinned map unchanged") {
   CHECK(uv_area == doctest::Approx(area).epsilon(1e-12));
 }
 
+TEST_CASE("lscm: unscaled rows agree with CGAL's LSCM_parameterizer_3 on curved patches with the same pins") {
+  const TriMesh cap = cut_by_plane(geometry::make_icosphere(3), {0, 0, -0.2}, {0, 0, 1}).above;
+  TriMesh bumpy = geometry::make_irregular_grid(16, 12, 0.2, 8, 1.6, 1.2);
+  const std::array<const TriMesh*, 2> patches{&cap, &bumpy};
+  for (int v = 0; v < bumpy.num_vertices(); ++v) bumpy.V(v, 2) = 0.3 * std::sin(3 * bumpy.V(v, 0)) * bumpy.V(v, 1);
+  for (const TriMesh* m : patches) {
+    const geometry::Connectivity conn(*m);
+    const std::array<int, 2> pins = farthest_pair(*m, conn.boundary_loops()[0]);
+    const std::array<Eigen::Vector2d, 2> at{Eigen::Vector2d(0, 0.5), Eigen::Vector2d(1, 0.5)};
+    const Eigen::MatrixX2d cgal = peers::cgal_lscm(*m, pins[0], pins[1]);
+    CHECK((lscm(*m, pins, at, ConformalWeights::Unscaled) - cgal).cwiseAbs().maxCoeff() < 1e-9);
+    // Per-area rows (the paper's energy) weigh the faces differently: a different, nearby map.
+    const double apart = (lscm(*m, pins, at) - cgal).cwiseAbs().maxCoeff();
+    CHECK(apart > 1e-4);
+    CHECK(apart < 2e-2);
+  }
+}
+
 TEST_CASE("lscm: bad pins are named errors") {
   const TriMesh m = geometry::make_plane_grid(3, 3);
   const std::array<Eigen::Vector2d, 2> at{Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0)};
@@ -101,8 +121,8 @@ TEST_CASE("minimal_area_fill: n - 2 manifold triangles, exact on a convex polygo
   CHECK(!flat.fan);
   CHECK(flat.area == doctest::Approx(0.5 * 9 * std::sin(2 * M_PI / 9) * 0.6).epsilon(1e-12));
   for (int f = 0; f < flat.faces.rows(); ++f) {
-    const Eigen::Vector3d n = (V.row(flat.faces(f, 1)) - V.row(flat.faces(f, 0)))
-                                  .cross(V.row(flat.faces(f, 2)) - V.row(flat.faces(f, 0)));
+    const Eigen::Vector3d n =
+        (V.row(flat.faces(f, 1)) - V.row(flat.faces(f, 0))).cross(V.row(flat.faces(f, 2)) - V.row(flat.faces(f, 0)));
     CHECK(n.z() > 0);
   }
   // A saddle-shaped hole: the fill beats every fan.
@@ -111,7 +131,8 @@ TEST_CASE("minimal_area_fill: n - 2 manifold triangles, exact on a convex polygo
   const int k = 14;
   geometry::Vertices W(k, 3);
   for (int i = 0; i < k; ++i)
-    W.row(i) << std::cos(2 * M_PI * i / k) + u(rng), std::sin(2 * M_PI * i / k) + u(rng), 0.8 * std::cos(4 * M_PI * i / k);
+    W.row(i) << std::cos(2 * M_PI * i / k) + u(rng), std::sin(2 * M_PI * i / k) + u(rng),
+        0.8 * std::cos(4 * M_PI * i / k);
   std::vector<int> ring(k);
   for (int i = 0; i < k; ++i) ring[i] = i;
   const geometry::HoleFill fill = geometry::minimal_area_fill(W, ring);

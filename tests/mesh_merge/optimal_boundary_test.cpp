@@ -11,8 +11,8 @@
 #include "lapis/geometry/dijkstra.h"
 #include "lapis/geometry/hole_fill.h"
 #include "lapis/geometry/mesh_edit.h"
-#include "lapis/mesh_merge/metrics.h"
 #include "lapis/mesh_merge/lscm.h"
+#include "lapis/mesh_merge/metrics.h"
 #include "optimal_fixtures.h"
 
 namespace lapis::mesh_merge {
@@ -66,7 +66,8 @@ TEST_CASE("optimal boundary: never worse than the user's boundary, and each boun
   CHECK(b.energy <= b.user_energy);
   CHECK(b.energy < 0.05 * b.user_energy);  // the ripples beyond r1 cost ∂Ω0 dearly
   REQUIRE(b.history.size() >= 2);
-  for (size_t k = 0; k + 1 < b.history.size(); ++k) CHECK(b.history[k].step_energy <= b.history[k].energy * (1 + 1e-12));
+  for (size_t k = 0; k + 1 < b.history.size(); ++k)
+    CHECK(b.history[k].step_energy <= b.history[k].energy * (1 + 1e-12));
   CHECK(std::isnan(b.history.back().step_energy));
   CHECK(b.energy == doctest::Approx(b.history[b.best_iteration].energy).epsilon(1e-15));
 }
@@ -201,7 +202,8 @@ double feature_distortion(const BumpCase& c, const MergeResult& r) {
   for (int v : feature) from.row(i) = c.source.V.row(v), to.row(i++) = r.mesh.V.row(r.source_map[v]);
   const geometry::Similarity3 T = geometry::fit_similarity(from, to);
   double worst = 0;
-  for (i = 0; i < from.rows(); ++i) worst = std::max(worst, (T(from.row(i).transpose()) - to.row(i).transpose()).norm());
+  for (i = 0; i < from.rows(); ++i)
+    worst = std::max(worst, (T(from.row(i).transpose()) - to.row(i).transpose()).norm());
   return worst;
 }
 

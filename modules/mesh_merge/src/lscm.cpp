@@ -15,8 +15,8 @@ constexpr const char* kFn = "mesh_merge::lscm()";
 
 // Two rows per face: the real and imaginary part of Σ_j W_j U_j / √(2 A) with U_j = u_j + i v_j
 // and W_j = the opposite edge (p_{j+2} − p_{j+1}) as a complex number in the face's own frame
-// (Lévy et al. §3.3, Eq. 5). Unknowns [u_0..u_n-1, v_0..v_n-1]. Degenerate faces add no rows.
-solver::SparseMatrix conformal_rows(const TriMesh& mesh) {
+// (Lévy et al. §3.3). Unknowns [u_0..u_n-1, v_0..v_n-1]. Degenerate faces add no rows.
+solver::SparseMatrix conformal_rows(const TriMesh& mesh, ConformalWeights weights) {
   const int n = mesh.num_vertices();
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(static_cast<size_t>(12 * mesh.num_faces()));
@@ -28,7 +28,7 @@ solver::SparseMatrix conformal_rows(const TriMesh& mesh) {
     if (!(l1 > 0) || !(twice_area > 1e-14 * l1 * l1)) continue;
     // The face in its own frame: p0 at 0, p1 on the x axis, p2 above it.
     const Eigen::Vector2d q[3] = {{0, 0}, {l1, 0}, {e2.dot(e1) / l1, twice_area / l1}};
-    const double w = 1 / std::sqrt(twice_area);
+    const double w = weights == ConformalWeights::PerArea ? 1 / std::sqrt(twice_area) : 1.0;
     for (int j = 0; j < 3; ++j) {
       const Eigen::Vector2d W = q[(j + 2) % 3] - q[(j + 1) % 3];
       const int u = mesh.F(f, j), v = u + n;
@@ -44,7 +44,8 @@ solver::SparseMatrix conformal_rows(const TriMesh& mesh) {
 
 }  // namespace
 
-Eigen::MatrixX2d lscm(const TriMesh& mesh, std::array<int, 2> pins, std::array<Eigen::Vector2d, 2> at) {
+Eigen::MatrixX2d lscm(const TriMesh& mesh, std::array<int, 2> pins, std::array<Eigen::Vector2d, 2> at,
+                      ConformalWeights weights) {
   const int n = mesh.num_vertices();
   for (int p : pins)
     if (p < 0 || p >= n)
@@ -63,7 +64,7 @@ Eigen::MatrixX2d lscm(const TriMesh& mesh, std::array<int, 2> pins, std::array<E
     if (pin >= 0 || !used[v]) fixed.push_back(v), value.push_back(pin >= 0 ? at[pin] : 0.5 * (at[0] + at[1]));
   }
   solver::LeastSquares system(2 * n);
-  system.add_block(conformal_rows(mesh), 1.0, "LSCM conformal energy");
+  system.add_block(conformal_rows(mesh, weights), 1.0, "LSCM conformal energy");
   std::vector<int> fixed_uv = fixed;
   for (int v : fixed) fixed_uv.push_back(v + n);
   system.set_fixed(fixed_uv);

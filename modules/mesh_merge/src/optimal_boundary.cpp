@@ -126,8 +126,9 @@ void BoundaryOptimizer::find_loops() {
     return all;
   }()));
   if (rough.boundary_loops().size() != 1)
-    detail::fail_optimal("the band Ω0 \\ Ωf must be an annulus between ∂Ω0 and ∂Ωf, so Ω0 needs one boundary loop; it has " +
-                         topology_of(rough));
+    detail::fail_optimal(
+        "the band Ω0 \\ Ωf must be an annulus between ∂Ω0 and ∂Ωf, so Ω0 needs one boundary loop; it has " +
+        topology_of(rough));
   const std::vector<int>& border = rough.boundary_loops()[0];
   const std::set<int> on_border(border.begin(), border.end());
   for (int v : feature.boundary_loops()[0])

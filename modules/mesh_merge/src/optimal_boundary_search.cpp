@@ -153,9 +153,12 @@ OptimalBoundary BoundaryOptimizer::optimize(const Placement2D& placement) const 
     if (it.energy < r.energy) r.energy = it.energy, r.loop = loop, r.transform = it.transform, r.best_iteration = k;
     const double change = k > 0 ? std::abs(it.energy - r.history.back().energy) : kInf;
     r.history.push_back(it);
-    if (k > 0 && loop == previous) r.stopped_by = "fixed point";
-    else if (change <= options_.relative_tolerance * it.energy) r.stopped_by = "energy change";
-    else if (k == options_.max_iterations) r.stopped_by = "iteration cap";
+    if (k > 0 && loop == previous)
+      r.stopped_by = "fixed point";
+    else if (change <= options_.relative_tolerance * it.energy)
+      r.stopped_by = "energy change";
+    else if (k == options_.max_iterations)
+      r.stopped_by = "iteration cap";
     if (!r.stopped_by.empty()) {
       r.history.back().ms = ms_since(t_step);
       break;

@@ -18,7 +18,6 @@
 namespace lapis::mesh_merge {
 namespace {
 
-
 using geometry::Connectivity;
 
 double ms_since(std::chrono::steady_clock::time_point t0) {

@@ -20,7 +20,8 @@ UvLocator::UvLocator(const Eigen::MatrixX2d& uv, const geometry::Faces& F) : uv_
   cells_.resize(static_cast<size_t>(g_) * g_);
   for (int f = 0; f < nf; ++f) {
     Eigen::Vector2d a = uv.row(F(f, 0)), b = a;
-    for (int j = 1; j < 3; ++j) a = a.cwiseMin(uv.row(F(f, j)).transpose()), b = b.cwiseMax(uv.row(F(f, j)).transpose());
+    for (int j = 1; j < 3; ++j)
+      a = a.cwiseMin(uv.row(F(f, j)).transpose()), b = b.cwiseMax(uv.row(F(f, j)).transpose());
     for (int y = cell(a.y(), 1); y <= cell(b.y(), 1); ++y)
       for (int x = cell(a.x(), 0); x <= cell(b.x(), 0); ++x) cells_[static_cast<size_t>(y) * g_ + x].push_back(f);
   }

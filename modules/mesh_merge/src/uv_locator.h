@@ -13,9 +13,9 @@
 namespace lapis::mesh_merge::detail {
 
 struct UvHit {
-  int face = -1;                               // -1: the triangulation has no face of positive area
+  int face = -1;                                      // -1: the triangulation has no face of positive area
   Eigen::Vector3d weights = Eigen::Vector3d::Zero();  // barycentric, as computed (may be < 0 outside)
-  double min_weight = 0;                       // >= 0 inside the face (up to rounding)
+  double min_weight = 0;                              // >= 0 inside the face (up to rounding)
 };
 
 class UvLocator {

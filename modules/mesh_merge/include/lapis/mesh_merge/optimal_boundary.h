@@ -17,8 +17,8 @@
 #include <Eigen/Core>
 
 #include "lapis/geometry/polar.h"
-#include "lapis/mesh_merge/merge.h"
 #include "lapis/geometry/tri_mesh.h"
+#include "lapis/mesh_merge/merge.h"
 
 namespace lapis::geometry {
 class Connectivity;
@@ -57,13 +57,13 @@ struct OptimalBoundaryOptions {
 };
 
 struct BoundaryIteration {
-  double energy = 0;       // E(B_k, T_k)
-  double step_energy = 0;  // E(B_k+1, T_k): the boundary step's loop under the same T (<= energy;
-                           // NaN in the last entry, where the iteration stopped)
+  double energy = 0;                // E(B_k, T_k)
+  double step_energy = 0;           // E(B_k+1, T_k): the boundary step's loop under the same T (<= energy;
+                                    // NaN in the last entry, where the iteration stopped)
   geometry::Similarity3 transform;  // T_k = s_k R_k (t_k: the rigid fit's translation)
-  int loop_vertices = 0;   // |B_k|
-  double loop_length = 0;  // Σ length(e) over B_k
-  double ms = 0;           // the fit and the boundary step
+  int loop_vertices = 0;            // |B_k|
+  double loop_length = 0;           // Σ length(e) over B_k
+  double ms = 0;                    // the fit and the boundary step
 };
 
 struct OptimalBoundaryTimings {
@@ -156,12 +156,12 @@ class BoundaryOptimizer {
   std::vector<int> outer_, inner_, cut_;
   bool fill_is_fan_ = false;
   Eigen::MatrixX2d source_uv_, target_uv_;
-  TriMesh cut_band_;              // the band cut open: vertex nv + k is cut_[k]'s twin
-  std::vector<int> origin_;       // cut_band_ vertex -> source vertex
+  TriMesh cut_band_;         // the band cut open: vertex nv + k is cut_[k]'s twin
+  std::vector<int> origin_;  // cut_band_ vertex -> source vertex
   std::shared_ptr<const geometry::Connectivity> cut_conn_;
-  TriMesh target_region_;               // Ω1 alone, compact
-  std::vector<int> target_vertex_;      // its vertices' target indices
-  Eigen::MatrixX2d target_region_uv_;   // its parameterization
+  TriMesh target_region_;              // Ω1 alone, compact
+  std::vector<int> target_vertex_;     // its vertices' target indices
+  Eigen::MatrixX2d target_region_uv_;  // its parameterization
   OptimalBoundaryTimings timings_;
 };
 
