@@ -11,6 +11,7 @@
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "lapis/mesh_merge/pairs_file.h"
+#include "merge_report.h"
 
 namespace lapis::cli {
 namespace {
@@ -33,7 +34,16 @@ constexpr const char* kUsage =
     "  (0-based vertex indices, source loop forward = target loop backward):\n"
     "    {\"pairs\": [{\"keys\": [{\"source\": 12, \"target\": 830}, {\"source\": 40, \"target\": 17}]}]}\n"
     "  H.json: {\"handles\": [5, 6, 7]}. --smooth: umbrella iterations on the seam (default 3).\n"
-    "  Prints the report (timings, seam validity and smoothness, detail preservation) as JSON.\n";
+    "  Prints the report (timings, seam validity and smoothness, detail preservation) as JSON.\n"
+    "       lapis merge --mode optimal --source S --target T --regions R.json --out OUT\n"
+    "                   [--placement SCALE,DEGREES,U,V] [--max-iterations N] [--smooth N] [--report OUT.json]\n"
+    "  optimal (3.4): finds the merging boundary in the source's band between its rough region and\n"
+    "  its feature whose image on the target region changes least (Eq. 3.1), then merges along it.\n"
+    "  R.json: {\"rough\": {\"faces\": [...]}, \"feature\": {\"vertices\": [...]}, \"target\": {\"faces\": [...]}}\n"
+    "  (faces or vertices each; rough and target default to every face). --placement: the band's\n"
+    "  normalized parameterization onto the target region's (scale, rotation in degrees, offset);\n"
+    "  default: placed from where the source lies. The report gives the energy per iteration and\n"
+    "  the seam and detail metrics of the user's boundary beside the optimal one's.\n";
 
 // The merge options the flags give, but the transition widths (they default to a width
 // suggested from the meshes, read later).
@@ -45,7 +55,7 @@ mesh_merge::MergeOptions merge_options(const Args& args) {
   } else if (mode == "transition") {
     o.mode = mesh_merge::MergeMode::Transition;
   } else if (mode != "independent") {
-    throw UsageError("--mode must be independent, dependent or transition, got '" + mode + "'");
+    throw UsageError("--mode must be independent, dependent, transition or optimal, got '" + mode + "'");
   }
   const bool transition = o.mode == mesh_merge::MergeMode::Transition;
   for (const char* flag : {"--source-width", "--target-width", "--keep"})
@@ -88,26 +98,14 @@ nlohmann::json merge_report(const std::string& out, const geometry::TriMesh& sou
                      {"zip", r.timings.zip_ms},
                      {"smooth", r.timings.smooth_ms},
                      {"total", r.timings.total_ms}};
-  j["seam"] = {{"valid", q.valid()},
-               {"boundary_edges", q.seam_boundary_edges},
-               {"non_manifold_edges", q.non_manifold_edges},
-               {"non_manifold_vertices", q.non_manifold_vertices},
-               {"degenerate_faces", q.degenerate_faces},
-               {"min_strip_angle_deg", q.min_strip_angle_deg},
-               {"max_target_displacement", q.max_target_displacement},
-               {"dihedral_mean_deg", q.seam_dihedral_mean_deg},
-               {"dihedral_max_deg", q.seam_dihedral_max_deg},
-               {"folded_edges", q.folded_seam_edges},
-               {"target_dihedral_mean_deg", q.target_dihedral_mean_deg},
-               {"target_dihedral_p95_deg", q.target_dihedral_p95_deg}};
-  j["detail"] = {{"laplacian_residual", d.laplacian_residual},
-                 {"max_distance", d.max_distance},
-                 {"mean_distance", d.mean_distance}};
+  j["seam"] = seam_json(q);
+  j["detail"] = detail_json(d);
   return j;
 }
 
 int run(const std::vector<std::string>& argv) {
   const Args args(argv);
+  if (args.get("--mode", "independent") == "optimal") return run_optimal_merge(args);
   args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
                    "--source-width", "--target-width", "--keep", "--report"});
   mesh_merge::MergeOptions o = merge_options(args);
@@ -134,18 +132,20 @@ int run(const std::vector<std::string>& argv) {
   geometry::write_mesh(out, r.mesh);
   emit_report(j, args);
   outputs.commit();
-  if (!q.valid()) {
-    if (q.folded_seam_edges > 0)
-      std::fprintf(stderr, "lapis merge: error: %d seam edges fold (faces turning by over %.0f degrees)\n",
-                   q.folded_seam_edges, geometry::kFoldedDihedralDeg);
-    else
-      std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
-    return 1;
-  }
-  return 0;
+  return report_invalid_seam(q);
 }
 
 }  // namespace
+
+int report_invalid_seam(const mesh_merge::SeamQuality& q) {
+  if (q.valid()) return 0;
+  if (q.folded_seam_edges > 0)
+    std::fprintf(stderr, "lapis merge: error: %d seam edges fold (faces turning by over %.0f degrees)\n",
+                 q.folded_seam_edges, geometry::kFoldedDihedralDeg);
+  else
+    std::fprintf(stderr, "lapis merge: error: the merged seam is not watertight and manifold\n");
+  return 1;
+}
 
 extern const Command kMergeCommand = {"merge", "merge a mesh part onto another along open boundaries (Poisson merging)",
                                       kUsage, run};

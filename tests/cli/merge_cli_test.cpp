@@ -92,7 +92,7 @@ TEST_CASE("cli: lapis merge fails with one line naming the cause") {
         std::string::npos);
   const Run mode = lapis_merge("--source a --target b --pairs c --out d --mode sideways");
   CHECK(mode.status == 2);
-  CHECK(mode.output.find("--mode must be independent, dependent or transition") != std::string::npos);
+  CHECK(mode.output.find("--mode must be independent, dependent, transition or optimal") != std::string::npos);
   const Run width = lapis_merge("--source " + asset("dome.obj").string() + " --target " + asset("neck.obj").string() +
                                 " --pairs " + asset("dome_on_neck.json").string() + " --out " + (d / "x.obj").string() +
                                 " --mode transition --source-width 0");
@@ -105,5 +105,44 @@ TEST_CASE("cli: lapis merge fails with one line naming the cause") {
   const Run stray = lapis_merge("--source a --target b --pairs c --out d --target-width 0.1");
   CHECK(stray.status == 2);
   CHECK(stray.output.find("--target-width needs --mode transition") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("cli: lapis merge --mode optimal finds a cheaper boundary, merges along it and reports both") {
+  const fs::path d = scratch_dir();
+  const std::string common = "--mode optimal --source " + asset("bump.obj").string() + " --target " +
+                             asset("plate.obj").string() + " --regions " + asset("bump_regions.json").string();
+  const Run r = lapis_merge(common + " --out " + (d / "o.obj").string() + " --report " + (d / "o.json").string());
+  REQUIRE_MESSAGE(r.status == 0, r.output);
+  std::ifstream in(d / "o.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json& b = j["boundary"];
+  CHECK(b["energy"].get<double>() < 0.01 * b["user_energy"].get<double>());
+  CHECK(b["stopped_by"] == "fixed point");
+  CHECK(b["iterations"].size() >= 2);
+  CHECK(b["iterations"][0]["energy"] == b["user_energy"]);
+  CHECK(j["optimal_merge"]["seam"]["valid"] == true);
+  CHECK(j["user_boundary_merge"]["seam"]["valid"] == true);
+  CHECK(j["optimal_merge"]["detail"]["max_distance"].get<double>() <
+        j["user_boundary_merge"]["detail"]["max_distance"].get<double>());
+  CHECK(fs::file_size(d / "o.obj") > 1000);
+
+  // A given placement that leaves the plate is refused, and nothing is written.
+  const Run off = lapis_merge(common + " --placement 1,0,50,0 --out " + (d / "off.obj").string());
+  CHECK(off.status == 1);
+  CHECK(off.output.find("maps outside the target region") != std::string::npos);
+  CHECK(!fs::exists(d / "off.obj"));
+  const Run bad = lapis_merge(common + " --placement 1,0,0 --out " + (d / "bad.obj").string());
+  CHECK(bad.status == 2);
+  CHECK(bad.output.find("--placement must be SCALE,DEGREES,U,V") != std::string::npos);
+  {
+    std::ofstream regions(d / "r.json");
+    regions << "{\"feature\": {\"faces\": [1], \"vertices\": [2]}}\n";
+  }
+  const Run both =
+      lapis_merge("--mode optimal --source " + asset("bump.obj").string() + " --target " + asset("plate.obj").string() +
+                  " --regions " + (d / "r.json").string() + " --out " + (d / "b.obj").string());
+  CHECK(both.status == 1);
+  CHECK(both.output.find("needs one of \"faces\" and \"vertices\"") != std::string::npos);
   fs::remove_all(d);
 }

@@ -193,7 +193,9 @@ Placement2D BoundaryOptimizer::suggested_placement() const {
   // The rotation Q of uv making Jt Q closest to Js: the polar factor of Jtᵀ Js.
   const Eigen::Matrix2d C = Jt.transpose() * Js;
   p.angle = std::atan2(C(1, 0) - C(0, 1), C(0, 0) + C(1, 1));
-  // Put ∂Ω0's uv centroid on Ω1's vertex nearest ∂Ω0's 3D centroid.
+  // ∂Ω0's uv centroid goes on Ω1's vertex nearest ∂Ω0's 3D centroid (the user placed the source
+  // there), or else on Ω1's vertex farthest from its border in uv; at the 3D scale, or smaller
+  // until ∂Ω0 maps inside Ω1 with a margin of 15%.
   Eigen::Vector2d uv_centre = Eigen::Vector2d::Zero();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (int v : outer_) uv_centre += source_uv_.row(v).transpose(), centre += source_.V.row(v).transpose();
@@ -203,9 +205,42 @@ Placement2D BoundaryOptimizer::suggested_placement() const {
     if ((target_.V.row(v).transpose() - centre).squaredNorm() <
         (target_.V.row(nearest).transpose() - centre).squaredNorm())
       nearest = v;
+  const detail::UvLocator locator(target_region_uv_, target_region_.F);
+  auto fits = [&](Placement2D q) {
+    q.scale *= 1.15;  // a margin: the merge removes the faces under the boundary's image and one more ring
+    q.offset = Eigen::Vector2d::Zero();
+    q.offset = p(uv_centre) - q(uv_centre);
+    for (int v : outer_) {
+      const detail::UvHit hit = locator.locate_in_cell(q(source_uv_.row(v).transpose()));
+      if (hit.face < 0 || hit.min_weight < -1e-9) return false;
+    }
+    return true;
+  };
+  const double full_scale = p.scale;
+  for (const Eigen::Vector2d& at : {Eigen::Vector2d(target_uv_.row(nearest).transpose()), deepest_target_point()})
+    for (int shrink = 0; shrink < 40; ++shrink) {
+      p.scale = full_scale * std::pow(0.85, shrink);
+      p.offset = Eigen::Vector2d::Zero();
+      p.offset = at - p(uv_centre);
+      if (fits(p)) return p;
+    }
+  p.scale = full_scale;
   p.offset = Eigen::Vector2d::Zero();
   p.offset = target_uv_.row(nearest).transpose() - p(uv_centre);
   return p;
+}
+
+// The uv point of Ω1's vertex farthest (edge paths in uv) from Ω1's border.
+Eigen::Vector2d BoundaryOptimizer::deepest_target_point() const {
+  const geometry::Connectivity conn(target_region_);
+  TriMesh flat{Vertices::Zero(target_region_.num_vertices(), 3), target_region_.F};
+  flat.V.leftCols(2) = target_region_uv_;
+  const geometry::ShortestPaths d =
+      geometry::dijkstra(conn, conn.boundary_loops()[0], geometry::edge_length_cost(flat));
+  int deepest = 0;
+  for (int v = 0; v < target_region_.num_vertices(); ++v)
+    if (d.distance[v] > d.distance[deepest]) deepest = v;
+  return target_region_uv_.row(deepest).transpose();
 }
 
 OptimalBoundary optimal_boundary(const TriMesh& source, const TriMesh& target, const BoundaryRegions& regions,

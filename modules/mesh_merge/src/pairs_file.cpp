@@ -1,39 +1,23 @@
 #include "lapis/mesh_merge/pairs_file.h"
 
-#include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
 
-#include "lapis/core/atomic_file.h"
+#include "json_file.h"
 #include "lapis/core/checked_number.h"
 
 namespace lapis::mesh_merge {
 
 namespace {
 
-nlohmann::json read_json(const std::filesystem::path& path, const std::string& fn) {
-  std::ifstream in(path);
-  if (!in) throw IoError(fn + ": " + path.string() + ": cannot open file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw IoError(fn + ": " + path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-}
-
 int vertex_index(const nlohmann::json& j, const std::string& fn, const std::string& where) {
   return json_index(j, fn + ": " + where);
-}
-
-void write_json(const std::filesystem::path& path, const nlohmann::json& j) {
-  core::write_file_atomically(path, [&](std::ostream& out) { out << j.dump() << "\n"; });
 }
 
 }  // namespace
 
 std::vector<LoopPair> read_pairs_file(const std::filesystem::path& path) {
   const std::string fn = "mesh_merge::read_pairs_file()";
-  const nlohmann::json j = read_json(path, fn);
+  const nlohmann::json j = detail::read_json_file(path, fn);
   if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
     throw InvalidArgument(fn + ": " + path.string() + ": expected {\"pairs\": [{\"keys\": [...]}, ...]}");
   std::vector<LoopPair> pairs;
@@ -63,12 +47,12 @@ void write_pairs_file(const std::filesystem::path& path, const std::vector<LoopP
     for (const KeyCorrespondence& k : p.keys) keys.push_back({{"source", k.source}, {"target", k.target}});
     list.push_back({{"keys", std::move(keys)}});
   }
-  write_json(path, {{"pairs", std::move(list)}});
+  detail::write_json_file(path, {{"pairs", std::move(list)}});
 }
 
 std::vector<int> read_handles_file(const std::filesystem::path& path) {
   const std::string fn = "mesh_merge::read_handles_file()";
-  const nlohmann::json j = read_json(path, fn);
+  const nlohmann::json j = detail::read_json_file(path, fn);
   if (!j.is_object() || !j.contains("handles") || !j["handles"].is_array())
     throw InvalidArgument(fn + ": " + path.string() + ": expected {\"handles\": [vertex, ...]}");
   std::vector<int> h;
@@ -78,7 +62,7 @@ std::vector<int> read_handles_file(const std::filesystem::path& path) {
 }
 
 void write_handles_file(const std::filesystem::path& path, const std::vector<int>& handles) {
-  write_json(path, {{"handles", handles}});
+  detail::write_json_file(path, {{"handles", handles}});
 }
 
 }  // namespace lapis::mesh_merge

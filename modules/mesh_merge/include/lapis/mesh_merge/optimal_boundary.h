@@ -97,9 +97,10 @@ class BoundaryOptimizer {
   // included), and an Ω1 that is not a disk.
   BoundaryOptimizer(TriMesh source, TriMesh target, BoundaryRegions regions, OptimalBoundaryOptions options = {});
 
-  // Centres the band's parameterization on Ω1's point nearest ∂Ω0's centroid, at the band's
-  // own 3D scale, turned so that the uv axes point the same ways in space on both meshes: right
-  // when the user placed the source roughly where it goes.
+  // The band's parameterization at the band's own 3D scale, turned so that the uv axes point the
+  // same ways in space on both meshes, centred on Ω1's point nearest ∂Ω0's centroid: right when
+  // the user placed the source roughly where it goes. Where ∂Ω0 would then leave Ω1, centred on
+  // Ω1's point farthest from its border instead, and shrunk (by 0.85 at a time) until it fits.
   Placement2D suggested_placement() const;
 
   // The iteration of §3.4.3 from B_0 = ∂Ω0; returns the boundary of lowest energy seen. Throws
@@ -147,6 +148,7 @@ class BoundaryOptimizer {
   std::vector<int> faces_inside(const std::vector<int>& loop) const;
   std::vector<int> faces_under(const Eigen::MatrixX2d& polygon) const;
   Eigen::Vector3d point_at(const Eigen::Vector2d& uv) const;
+  Eigen::Vector2d deepest_target_point() const;
   void zip_onto_target(MergeResult& r, const Faces& part_faces, const std::vector<int>& part_loop,
                        const Eigen::MatrixX2d& loop_uv) const;
 
