@@ -20,7 +20,7 @@ constexpr const char* kUsage =
     "usage: lapis merge --source S --target T --pairs PAIRS.json --out OUT\n"
     "                   [--mode independent|dependent|transition] [--handles H.json] [--smooth N]\n"
     "                   [--roi-width W] [--source-width W] [--target-width W] [--keep source|target]\n"
-    "                   [--report OUT.json]\n"
+    "                   [--transition-boundary independent|dependent] [--report OUT.json]\n"
     "  Deforms the source part so its open boundary loops meet the target's and zips the seams.\n"
     "  independent (default, thesis 3.3.1): the result does not depend on where the source is;\n"
     "  dependent (3.3.2): the source stays where it is, only vertices within --roi-width of its\n"
@@ -29,7 +29,9 @@ constexpr const char* kUsage =
     "  (edge-path distance to the loop, target units; default a fifth of the target loop\n"
     "  diameter, shrunk until both bands are annuli)\n"
     "  overlap and blend the two meshes' details; the surface keeps the --keep mesh's band\n"
-    "  (default source) and the seam is not smoothed (--smooth is ignored).\n"
+    "  (default source) and the seam is not smoothed (--smooth is ignored). With\n"
+    "  --transition-boundary dependent the bands blend on 3.3.2's boundary condition instead: the\n"
+    "  source stays as placed, --roi-width and --handles as in dependent mode.\n"
     "  PAIRS.json: one entry per source boundary loop, each with its key correspondences\n"
     "  (0-based vertex indices, source loop forward = target loop backward):\n"
     "    {\"pairs\": [{\"keys\": [{\"source\": 12, \"target\": 830}, {\"source\": 40, \"target\": 17}]}]}\n"
@@ -58,15 +60,21 @@ mesh_merge::MergeOptions merge_options(const Args& args) {
     throw UsageError("--mode must be independent, dependent, transition or optimal, got '" + mode + "'");
   }
   const bool transition = o.mode == mesh_merge::MergeMode::Transition;
-  for (const char* flag : {"--source-width", "--target-width", "--keep"})
+  for (const char* flag : {"--source-width", "--target-width", "--keep", "--transition-boundary"})
     if (args.has(flag) && !transition) throw UsageError(std::string(flag) + " needs --mode transition");
+  const std::string boundary = args.get("--transition-boundary", "independent");
+  if (boundary == "dependent")
+    o.transition.configuration_dependent = true;
+  else if (boundary != "independent")
+    throw UsageError("--transition-boundary must be independent or dependent, got '" + boundary + "'");
+  const bool placed = o.mode == mesh_merge::MergeMode::Dependent || o.transition.configuration_dependent;
   const std::string keep = args.get("--keep", "source");
   if (keep == "target")
     o.transition.keep = mesh_merge::TransitionKeep::Target;
   else if (keep != "source")
     throw UsageError("--keep must be source or target, got '" + keep + "'");
   if (args.has("--handles")) {
-    if (o.mode != mesh_merge::MergeMode::Dependent) throw UsageError("--handles needs --mode dependent");
+    if (!placed) throw UsageError("--handles needs --mode dependent or --transition-boundary dependent");
     o.handles = mesh_merge::read_handles_file(args.get("--handles"));
   }
   o.smooth_iterations = static_cast<int>(args.get_int("--smooth", o.smooth_iterations, 0, 1000));
@@ -92,6 +100,7 @@ nlohmann::json merge_report(const std::string& out, const geometry::TriMesh& sou
                        {"target_width", o.transition.target_width},
                        {"weight", o.transition.weight},
                        {"keep", o.transition.keep == mesh_merge::TransitionKeep::Target ? "target" : "source"},
+                       {"boundary", o.transition.configuration_dependent ? "dependent" : "independent"},
                        {"band_vertices", r.transition_vertices.size()}};
   j["timings_ms"] = {{"setup", r.timings.setup_ms},
                      {"solve", r.timings.solve_ms},
@@ -107,7 +116,7 @@ int run(const std::vector<std::string>& argv) {
   const Args args(argv);
   if (args.get("--mode", "independent") == "optimal") return run_optimal_merge(args);
   args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
-                   "--source-width", "--target-width", "--keep", "--report"});
+                   "--source-width", "--target-width", "--keep", "--transition-boundary", "--report"});
   mesh_merge::MergeOptions o = merge_options(args);
   const bool transition = o.mode == mesh_merge::MergeMode::Transition;
   const std::string out = args.get("--out");

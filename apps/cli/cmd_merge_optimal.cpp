@@ -29,8 +29,10 @@ mesh_merge::Placement2D parse_placement(const std::string& text) {
 nlohmann::json boundary_json(const mesh_merge::OptimalBoundary& b) {
   nlohmann::json iterations = nlohmann::json::array();
   for (const mesh_merge::BoundaryIteration& it : b.history) {
-    nlohmann::json j = {{"energy", it.energy},          {"scale", it.transform.s},
-                        {"loop_vertices", it.loop_vertices}, {"loop_length", it.loop_length},
+    nlohmann::json j = {{"energy", it.energy},
+                        {"scale", it.transform.s},
+                        {"loop_vertices", it.loop_vertices},
+                        {"loop_length", it.loop_length},
                         {"ms", it.ms}};
     if (std::isfinite(it.step_energy)) j["step_energy"] = it.step_energy;
     iterations.push_back(std::move(j));

@@ -76,6 +76,22 @@ TEST_CASE("cli: lapis merge --mode transition blends a band and reports it") {
   const Run w = lapis_merge(common + " --source-width 0.05 --target-width 0.05 --out " + (d / "w.obj").string());
   CHECK_MESSAGE(w.status == 0, w.output);
   CHECK(w.output.find("\"source_width\": 0.05") != std::string::npos);
+  // On §3.3.2's boundary condition: the placed dome, its apex held.
+  {
+    std::ofstream h(d / "apex.json");
+    h << "{\"handles\": [12, 27, 67]}\n";
+  }
+  const Run dep = lapis_merge("--source " + asset("dome_placed.obj").string() + " --target " +
+                              asset("neck.obj").string() + " --pairs " + asset("dome_on_neck.json").string() +
+                              " --mode transition --transition-boundary dependent --handles " +
+                              (d / "apex.json").string() + " --out " + (d / "dep.obj").string());
+  CHECK_MESSAGE(dep.status == 0, dep.output);
+  CHECK(dep.output.find("\"boundary\": \"dependent\"") != std::string::npos);
+  const Run stray = lapis_merge("--source " + asset("dome.obj").string() + " --target " + asset("neck.obj").string() +
+                                " --pairs " + asset("dome_on_neck.json").string() +
+                                " --transition-boundary dependent --out " + (d / "s.obj").string());
+  CHECK(stray.status == 2);
+  CHECK(stray.output.find("--transition-boundary needs --mode transition") != std::string::npos);
   fs::remove_all(d);
 }
 

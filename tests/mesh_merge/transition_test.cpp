@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 
+#include "lapis/geometry/dijkstra.h"
 #include "lapis/geometry/laplacian.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "lapis/mesh_merge/transition.h"
@@ -227,6 +228,60 @@ TEST_CASE("mesh_merge: transition merging is configuration-independent") {
   }
   MESSAGE("largest difference / bbox diagonal: " << worst / bbox_diagonal(first.mesh.V));
   CHECK(worst <= tol);
+}
+
+TEST_CASE("mesh_merge: transition regions on configuration-dependent boundary conditions keep the placement") {
+  // The user's placement: the bumpy dome on top of the body, slightly too small; its apex held.
+  TriMesh src = bumpy_dome();
+  src.V *= 0.9;
+  src.V.col(2).array() += 1.85;
+  const TriMesh tgt = test::body();
+  const auto pairs = test::dome_on_body(src, tgt);
+  std::vector<int> handles;
+  for (int v = 0; v < src.num_vertices(); ++v)
+    if (src.V(v, 2) > 2.6) handles.push_back(v);
+  REQUIRE(!handles.empty());
+  MergeOptions o = transition_options();
+  o.transition.configuration_dependent = true;
+  o.handles = handles;
+  o.roi_width = 0.45;
+  const MergeResult r = merge(src, tgt, pairs, o);
+  require_valid(tgt, r);
+  CHECK(!r.transition_vertices.empty());
+  for (double tau : r.transition_share) CHECK((tau >= 0 && tau <= 1));
+  // The source stays as placed: handles exactly, and every vertex beyond the ROI and the band.
+  const geometry::Connectivity sc(src);
+  std::vector<int> loop = sc.boundary_loops()[0];
+  const geometry::ShortestPaths d = geometry::dijkstra(src, loop);
+  int far = 0;
+  for (int h : handles) CHECK(r.mesh.V.row(r.source_map[h]) == src.V.row(h));
+  for (int v = 0; v < src.num_vertices(); ++v)
+    if (d.distance[v] > 0.5 && r.source_map[v] >= 0) {
+      ++far;
+      CHECK(r.mesh.V.row(r.source_map[v]) == src.V.row(v));
+    }
+  CHECK(far > src.num_vertices() / 3);
+  // The frames are kept, so the result follows the placement: turning the source turns its top,
+  // where §3.3.1's boundary condition would give the same merge.
+  TriMesh turned = src;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::RowVector3d pivot(0, 0, 2);
+  for (int v = 0; v < src.num_vertices(); ++v) turned.V.row(v) = (src.V.row(v) - pivot) * R.transpose() + pivot;
+  const MergeResult t = merge(turned, tgt, pairs, o);
+  require_valid(tgt, t);
+  for (int h : handles) CHECK(t.mesh.V.row(t.source_map[h]) == turned.V.row(h));
+  MergeOptions independent = transition_options();
+  const MergeResult a = merge(src, tgt, pairs, independent), b = merge(turned, tgt, pairs, independent);
+  REQUIRE(a.mesh.F == b.mesh.F);
+  CHECK((a.mesh.V - b.mesh.V).cwiseAbs().maxCoeff() < 1e-6);
+  // A handle inside the source band cannot stay fixed while the band blends.
+  int inside = -1;
+  for (int v = 0; v < src.num_vertices() && inside < 0; ++v)
+    if (d.distance[v] > 0.05 && d.distance[v] < 0.2) inside = v;
+  REQUIRE(inside >= 0);
+  o.handles = {inside};
+  CHECK_THROWS_WITH_AS(merge(src, tgt, pairs, o), doctest::Contains("lies in the source transition band"),
+                       InvalidArgument);
 }
 
 TEST_CASE("mesh_merge: transition merging rejects bad widths with clear errors") {

@@ -3,12 +3,12 @@
 #include <stdexcept>
 #include <string>
 
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Two_vertices_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
-#include <CGAL/Polygon_mesh_processing/measure.h>
 
 namespace lapis::peers {
 

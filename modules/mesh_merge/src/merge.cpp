@@ -46,6 +46,10 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
   }
 }
 
+}  // namespace
+
+namespace detail {
+
 // §3.3.2: the vertices near the boundary deform, the rest of the source and the handles stay.
 std::vector<int> dependent_roi(const TriMesh& source, const Connectivity& conn, const MergeOptions& o) {
   std::vector<int> boundary;
@@ -74,7 +78,7 @@ std::vector<int> dependent_roi(const TriMesh& source, const Connectivity& conn, 
   return roi;
 }
 
-}  // namespace
+}  // namespace detail
 
 struct Merger::Impl {
   Connectivity conn_in;  // of the source as given: pairs are checked against it
@@ -111,7 +115,7 @@ Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)
   Impl& m = *impl_;
   mesh_deform::Selection sel;
   if (options_.mode == MergeMode::Dependent) {
-    sel.roi = dependent_roi(m.rest, m.conn, options_);
+    sel.roi = detail::dependent_roi(m.rest, m.conn, options_);
   } else {
     sel.roi.resize(static_cast<size_t>(m.rest.num_vertices()));
     for (int v = 0; v < m.rest.num_vertices(); ++v) sel.roi[v] = v;

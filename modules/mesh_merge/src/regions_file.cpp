@@ -19,9 +19,9 @@ std::vector<int> faces_of_region(const nlohmann::json& j, const std::string& whe
   if (!list.is_array()) fail(std::string(by_faces ? ".faces" : ".vertices") + " must be an array");
   std::vector<int> indices;
   for (size_t i = 0; i < list.size(); ++i)
-    indices.push_back(json_index(list[i], std::string(kRead) + ": " + where + (by_faces ? ".faces[" : ".vertices[") +
-                                              std::to_string(i) + "]",
-                                 by_faces ? kAnyIndex : mesh.num_vertices()));
+    indices.push_back(json_index(
+        list[i], std::string(kRead) + ": " + where + (by_faces ? ".faces[" : ".vertices[") + std::to_string(i) + "]",
+        by_faces ? kAnyIndex : mesh.num_vertices()));
   if (by_faces) return indices;
   std::vector<char> in(static_cast<size_t>(mesh.num_vertices()), 0);
   for (int v : indices) in[v] = 1;
@@ -37,8 +37,9 @@ BoundaryRegions read_regions_file(const std::filesystem::path& path, const TriMe
   const nlohmann::json j = detail::read_json_file(path, kRead);
   const std::string at = path.string() + ": ";
   if (!j.is_object() || !j.contains("feature"))
-    throw InvalidArgument(std::string(kRead) + ": " + at +
-                          "expected {\"rough\": {...}, \"feature\": {...}, \"target\": {...}} with at least \"feature\"");
+    throw InvalidArgument(
+        std::string(kRead) + ": " + at +
+        "expected {\"rough\": {...}, \"feature\": {...}, \"target\": {...}} with at least \"feature\"");
   for (const auto& [key, value] : j.items())
     if (key != "rough" && key != "feature" && key != "target")
       throw InvalidArgument(std::string(kRead) + ": " + at + "unknown region \"" + key +

@@ -213,14 +213,14 @@ std::vector<PairBands> make_bands(const TriMesh& src, const Connectivity& sconn,
   return bands;
 }
 
-// One implicit Laplacian system over both meshes (source first, then the target): the whole
-// source and the target bands deform, the target beyond its bands is the fixed region, and
+// One implicit Laplacian system over both meshes (source first, then the target): the source
+// ROI and the target bands deform, the rest of both meshes is the fixed region, and
 // E_T ties each band vertex's transformed δ to the other band's at the same (u, 1 − v).
 // Returns both meshes' deformed vertices; records the ROI, the source boundary, the solver's
 // figures and the setup and solve times (setup counted from t0) in r.
 Vertices deform_both(const TriMesh& src, const TriMesh& target, const std::vector<PairBands>& bands,
-                     const std::vector<BoundaryConstraint>& cons, const MergeOptions& o, MergeResult& r,
-                     std::chrono::steady_clock::time_point t0) {
+                     const std::vector<int>& source_roi, const std::vector<BoundaryConstraint>& cons,
+                     const MergeOptions& o, MergeResult& r, std::chrono::steady_clock::time_point t0) {
   const int ns = src.num_vertices(), nt = target.num_vertices();
   TriMesh both;
   both.V.resize(ns + nt, 3);
@@ -228,7 +228,7 @@ Vertices deform_both(const TriMesh& src, const TriMesh& target, const std::vecto
   both.F.resize(src.num_faces() + target.num_faces(), 3);
   both.F << src.F, (target.F.array() + ns).matrix();
   mesh_deform::Selection sel;
-  for (int v = 0; v < ns; ++v) sel.roi.push_back(v);
+  sel.roi = source_roi;
   std::vector<mesh_deform::LaplacianBlend> terms;
   for (const PairBands& b : bands) {
     for (int v : b.target.vertices) sel.roi.push_back(v + ns);
@@ -357,6 +357,33 @@ void blend_kept_band(const TriMesh& src, const Connectivity& sconn, const TriMes
   reconstruct_band(z.mesh, r.transition_vertices, wanted);
 }
 
+std::vector<int> every_vertex(int n) {
+  std::vector<int> all(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v) all[v] = v;
+  return all;
+}
+
+// §3.3.2's ROI, widened to the source bands, which E_T must be free to deform; a handle in a
+// band is an error.
+std::vector<int> dependent_roi_with_bands(const TriMesh& src, const Connectivity& sconn,
+                                          const std::vector<PairBands>& bands, const MergeOptions& o) {
+  std::vector<char> in(static_cast<size_t>(src.num_vertices()), 0);
+  for (int v : dependent_roi(src, sconn, o)) in[v] = 1;
+  std::vector<char> handle(in.size(), 0);
+  for (int h : o.handles) handle[h] = 1;
+  for (const PairBands& b : bands)
+    for (int v : b.source.vertices) {
+      if (handle[v])
+        throw InvalidArgument("mesh_merge::merge(): handle vertex " + std::to_string(v) +
+                              " lies in the source transition band; narrow the band or move the handle");
+      in[v] = 1;
+    }
+  std::vector<int> roi;
+  for (int v = 0; v < src.num_vertices(); ++v)
+    if (in[v]) roi.push_back(v);
+  return roi;
+}
+
 }  // namespace
 
 MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
@@ -366,16 +393,21 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   const Connectivity tconn(target);
   const std::vector<BoundaryCorrespondence> corr =
       correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
-  const TriMesh src = source_at_target_scale(source, target, corr);
+  const bool dependent = o.transition.configuration_dependent;
+  // §3.3.2 keeps the user's placement; §3.3.1 may bring the source to the target's scale.
+  TriMesh src = dependent ? source : source_at_target_scale(source, target, corr);
+  if (dependent) flip_loop_ears(src, corr);
   const Connectivity sconn(src);
   const int ns = src.num_vertices(), nt = target.num_vertices();
   const std::vector<PairBands> bands = make_bands(src, sconn, target, tconn, corr, o.transition);
   // "With the same boundary condition as before" (§3.3.3): the source loop onto the target
-  // loop, as in §3.3.1. The bands then lie on either side of the seam and E_T mixes their
-  // details; the kept band is spread over both before the zip (kept_band_spread).
-  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, corr, false);
+  // loop, as in §3.3.1 (frames turned) or §3.3.2 (frames kept). The bands then lie on either
+  // side of the seam and E_T mixes their details; the kept band is spread over both before the
+  // zip (kept_band_spread).
+  const std::vector<BoundaryConstraint> cons = boundary_constraints(src, target, corr, dependent);
+  const std::vector<int> source_roi = dependent ? dependent_roi_with_bands(src, sconn, bands, o) : every_vertex(ns);
 
-  const Vertices X = deform_both(src, target, bands, cons, o, r, t0);
+  const Vertices X = deform_both(src, target, bands, source_roi, cons, o, r, t0);
   r.source_rest = src;
   r.source_deformed = X.topRows(ns);
 

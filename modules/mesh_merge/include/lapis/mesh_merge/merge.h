@@ -42,6 +42,12 @@ struct TransitionOptions {
   double target_width = 0;
   double weight = 0.1;  // w_T of E_T, §3.3.3 ("w_T = 0.1 in our experiments")
   TransitionKeep keep = TransitionKeep::Source;
+  // §3.3.3 on §3.3.2's boundary condition: the source stays where the user placed it (its
+  // scale too, so the widths are in both meshes' shared units), the boundary frames are kept
+  // (R_i = I, positions and s_i change), only source vertices within MergeOptions::roi_width of
+  // the loops and the source band move, and MergeOptions::handles stay fixed. false: §3.3.1's
+  // (the result does not depend on the source's placement).
+  bool configuration_dependent = false;
 };
 
 // Eq. 2.11: the merged part's features scale with the boundary (§2.4.4 calls it necessary for
@@ -73,8 +79,9 @@ struct MergeOptions {
   int refine_levels = 2;
   // Dependent mode (§3.3.2): ROI = source vertices within roi_width (edge-path distance) of the
   // source boundary; 0 picks the mean boundary loop diameter (perimeter / π).
-  double roi_width = 0;
-  std::vector<int> handles;  // source vertices kept exactly where they are (Dependent mode)
+  double roi_width = 0;      // also Transition mode with transition.configuration_dependent
+  std::vector<int> handles;  // source vertices kept exactly where they are (Dependent mode, and
+                             // Transition mode with transition.configuration_dependent)
   // Transition mode (§3.3.3). Seam smoothing and boundary refinement are not applied in that
   // mode: the transition band replaces the smoothing, which "filters out geometry details".
   TransitionOptions transition;
