@@ -20,7 +20,7 @@ constexpr const char* kUsage =
     "usage: lapis merge --source S --target T --pairs PAIRS.json --out OUT\n"
     "                   [--mode independent|dependent|transition] [--handles H.json] [--smooth N]\n"
     "                   [--roi-width W] [--source-width W] [--target-width W] [--keep source|target]\n"
-    "                   [--transition-boundary independent|dependent] [--report OUT.json]\n"
+    "                   [--transition-boundary independent|dependent] [--features F.json] [--report OUT.json]\n"
     "  Deforms the source part so its open boundary loops meet the target's and zips the seams.\n"
     "  independent (default, thesis 3.3.1): the result does not depend on where the source is;\n"
     "  dependent (3.3.2): the source stays where it is, only vertices within --roi-width of its\n"
@@ -35,6 +35,8 @@ constexpr const char* kUsage =
     "  PAIRS.json: one entry per source boundary loop, each with its key correspondences\n"
     "  (0-based vertex indices, source loop forward = target loop backward):\n"
     "    {\"pairs\": [{\"keys\": [{\"source\": 12, \"target\": 830}, {\"source\": 40, \"target\": 17}]}]}\n"
+    "  F.json (independent mode, 3.5): {\"features\": [[40, 41, 42, 57], ...]}, source vertex lists that keep\n"
+    "  their shape, each moved by one similarity.\n"
     "  H.json: {\"handles\": [5, 6, 7]}. --smooth: umbrella iterations on the seam (default 3).\n"
     "  Prints the report (timings, seam validity and smoothness, detail preservation) as JSON.\n"
     "       lapis merge --mode optimal --source S --target T --regions R.json --out OUT\n"
@@ -77,6 +79,10 @@ mesh_merge::MergeOptions merge_options(const Args& args) {
     if (!placed) throw UsageError("--handles needs --mode dependent or --transition-boundary dependent");
     o.handles = mesh_merge::read_handles_file(args.get("--handles"));
   }
+  if (args.has("--features")) {
+    if (o.mode != mesh_merge::MergeMode::Independent) throw UsageError("--features needs --mode independent");
+    o.features = mesh_merge::read_features_file(args.get("--features"));
+  }
   o.smooth_iterations = static_cast<int>(args.get_int("--smooth", o.smooth_iterations, 0, 1000));
   o.roi_width = args.get_double("--roi-width", 0.0, 0.0, 1e300);
   return o;
@@ -94,6 +100,7 @@ nlohmann::json merge_report(const std::string& out, const geometry::TriMesh& sou
   j["source_vertices"] = source.num_vertices();
   j["roi_vertices"] = r.roi_vertices;
   j["boundary_refine_levels"] = r.refine_levels;
+  j["features"] = o.features.size();
   j["degenerate_vertices"] = r.solver.degenerate_vertices;
   if (transition)
     j["transition"] = {{"source_width", o.transition.source_width},
@@ -116,7 +123,7 @@ int run(const std::vector<std::string>& argv) {
   const Args args(argv);
   if (args.get("--mode", "independent") == "optimal") return run_optimal_merge(args);
   args.allow_only({"--source", "--target", "--pairs", "--out", "--mode", "--handles", "--smooth", "--roi-width",
-                   "--source-width", "--target-width", "--keep", "--transition-boundary", "--report"});
+                   "--source-width", "--target-width", "--keep", "--transition-boundary", "--features", "--report"});
   mesh_merge::MergeOptions o = merge_options(args);
   const bool transition = o.mode == mesh_merge::MergeMode::Transition;
   const std::string out = args.get("--out");

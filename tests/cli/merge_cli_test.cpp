@@ -49,6 +49,31 @@ TEST_CASE("cli: lapis merge writes a watertight merge and its report") {
                   (d / "handles.json").string() + " --out " + (d / "dep.obj").string());
   CHECK_MESSAGE(dep.status == 0, dep.output);
   CHECK(dep.output.find("\"mode\": \"dependent\"") != std::string::npos);
+
+  // A feature (§3.5): the dome's top, read off the OBJ's vertex lines.
+  {
+    std::ifstream obj(asset("dome.obj"));
+    std::ofstream f(d / "features.json");
+    f << "{\"features\": [[";
+    int index = 0, written = 0;
+    for (std::string line; std::getline(obj, line);) {
+      if (line.rfind("v ", 0) != 0) continue;
+      double x, y, z;
+      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z) == 3 && z > 0.8) f << (written++ ? ", " : "") << index;
+      ++index;
+    }
+    f << "]]}\n";
+    REQUIRE(written >= 4);
+  }
+  const Run feat = lapis_merge("--source " + asset("dome.obj").string() + " " + common + " --features " +
+                               (d / "features.json").string() + " --out " + (d / "f.obj").string());
+  CHECK_MESSAGE(feat.status == 0, feat.output);
+  CHECK(feat.output.find("\"features\": 1") != std::string::npos);
+  const Run feat_dep =
+      lapis_merge("--source " + asset("dome.obj").string() + " " + common + " --mode dependent --features " +
+                  (d / "features.json").string() + " --out " + (d / "fd.obj").string());
+  CHECK(feat_dep.status == 2);
+  CHECK(feat_dep.output.find("--features needs --mode independent") != std::string::npos);
   fs::remove_all(d);
 }
 

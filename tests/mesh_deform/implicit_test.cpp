@@ -2,6 +2,7 @@
 // large bend + twist against the baselines, shearing removal.
 #include <doctest/doctest.h>
 
+#include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/metrics.h"
@@ -246,4 +247,37 @@ TEST_CASE("mesh_deform: the precomputed handle basis equals back-substitution fo
       CHECK((Xa - Xb).norm() <= 1e-9 * Xb.norm());
     }
   }
+}
+
+// Largest distance of X's rows `part` from the best similar copy of V's, over V's bbox diagonal.
+double non_similarity(const Vertices& V, const Vertices& X, const std::vector<int>& part) {
+  Eigen::MatrixX3d from(static_cast<Eigen::Index>(part.size()), 3), to(from.rows(), 3);
+  for (Eigen::Index i = 0; i < from.rows(); ++i) from.row(i) = V.row(part[i]), to.row(i) = X.row(part[i]);
+  const lapis::geometry::Similarity3 T = lapis::geometry::fit_similarity(from, to);
+  double worst = 0;
+  for (Eigen::Index i = 0; i < from.rows(); ++i)
+    worst = std::max(worst, (T(from.row(i).transpose()) - to.row(i).transpose()).norm());
+  return worst / t::bbox_diagonal(V);
+}
+
+TEST_CASE("mesh_deform: a group sharing one gradient (thesis §3.5) moves as one while the bar bends around it") {
+  const TriMesh m = t::box_bar(5, 1.0, 6.0);
+  const Selection s = t::bottom_fixed_top_handle(m, 2, 0.1, 0.1);
+  const HandleTransforms h{{t::bend_and_twist(m, 60)}, {}};
+  const std::vector<int> middle = t::slab(m, 2, 0.4, 0.6);
+  ImplicitLaplacianDeformer plain(m), grouped(m);
+  plain.set_selection(s);
+  grouped.set_shared_gradients({middle});
+  grouped.set_selection(s);
+  const Vertices a = plain.deform(h), b = grouped.deform(h);
+  const double bent = non_similarity(m.V, a, middle), kept = non_similarity(m.V, b, middle);
+  MESSAGE("middle fifth off a similarity: " << bent << " bent, " << kept << " with a shared gradient");
+  CHECK(bent > 0.01);
+  CHECK(kept < 0.05 * bent);
+  // The handles still go where they are put, and identity handles still return the rest mesh.
+  for (int v : s.region_handles[0])
+    CHECK((b.row(v).transpose() - apply(h.regions[0], m.V.row(v).transpose())).norm() < 1e-9);
+  CHECK((grouped.deform(HandleTransforms::identity(s)) - m.V).cwiseAbs().maxCoeff() < 1e-9);
+  CHECK_THROWS_WITH_AS(grouped.set_shared_gradients({middle, {middle[0], middle[1], middle[2], middle[3]}}),
+                       doctest::Contains("and in group"), lapis::InvalidArgument);
 }

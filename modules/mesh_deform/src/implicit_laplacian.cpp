@@ -57,12 +57,17 @@ struct ImplicitLaplacianDeformer::Impl {
   std::vector<Eigen::Vector3d> accumulated;  // per region handle: rotation vector over the drag
   std::vector<int> guided_for;               // handles the guide system was built for
   std::unique_ptr<solver::LeastSquares> guided;
-  std::vector<int> guide_rows;                  // vertex of each guide constraint
-  solver::DenseMatrix guide_weights;            // φ_k at each guide vertex (rows) per handle
-  solver::DenseMatrix guide_rest;               // M_c(v') of the guide rows
-  solver::DenseMatrix transform_rest;           // M_c(v') of the transformation-constraint rows
-  solver::DenseMatrix blend_rest;               // E_T rows (§3.3.3) at the rest state
-  solver::DenseMatrix delta;                    // D V at the free vertices (Eq. 2.10 rows)
+  std::vector<int> guide_rows;         // vertex of each guide constraint
+  solver::DenseMatrix guide_weights;   // φ_k at each guide vertex (rows) per handle
+  solver::DenseMatrix guide_rest;      // M_c(v') of the guide rows
+  solver::DenseMatrix transform_rest;  // M_c(v') of the transformation-constraint rows
+  solver::DenseMatrix blend_rest;      // E_T rows (§3.3.3) at the rest state
+  solver::DenseMatrix delta;           // D V at the free vertices (Eq. 2.10 rows)
+  // Shared-gradient groups (§3.5) in Eq. 2.10/2.11: each group's edges, held to the group's one
+  // transformation, and a member whose (shared) M_i gives it.
+  int block_F = -1;
+  std::vector<std::array<int, 2>> group_edges;
+  std::vector<int> group_edge_group, group_probe;
   std::vector<Eigen::Quaterniond> polar_start;  // per free vertex: last frame's R_i (§2.4.4)
   // Eq. 2.8 as X = X_I + Φ C (options.max_basis_columns): X_I the solution for identity
   // transforms, Φ one column per handle parameter, C the parameters' change from identity.
@@ -81,6 +86,7 @@ struct ImplicitLaplacianDeformer::Impl {
   void pull_back(const solver::DenseMatrix& X, const Vertices& targets, int n0, Vertices& out) const;
   solver::DenseMatrix polar_rhs(const Vertices& X, bool scale, int& fallbacks);
   solver::DenseMatrix second_fixed(const HandleTransforms& transforms) const;
+  solver::DenseMatrix group_edge_rhs(const Vertices& X, bool scale) const;
 
   FirstSystemInput first_input(const HandleTransforms& transforms) const {
     const Vertices& P = w.displaced;
@@ -114,7 +120,7 @@ struct ImplicitLaplacianDeformer::Impl {
 
   // Eq. 2.8's blocks (first_system_rows), assembled and factorized.
   void build_first_system(const ImplicitOptions& options, const std::vector<LaplacianBlend>& blends,
-                          double blend_weight) {
+                          double blend_weight, const std::vector<std::vector<int>>& shared) {
     const Vertices& P = w.displaced;
     const int n = w.mesh.num_vertices();
     // §2.4.3: the Laplacian of the displaced mesh, so a displaced vertex's δ points along its
@@ -123,6 +129,7 @@ struct ImplicitLaplacianDeformer::Impl {
     detail::reweight(stencil, P, w.mesh.F, options.weights);
     const Vertices deltaP = detail::laplacian_coordinates(stencil, P);
     G = detail::gradient_stencils(stencil, P, w.active);
+    if (!shared.empty()) detail::share_gradients(G, P, shared, w.active);
     const double h = detail::mean_edge_length(stencil, w.mesh.V);
     detail::FirstSystemRows rows = detail::first_system_rows(w, stencil, G, deltaP, free, constrained, blends);
     transform_vertex = std::move(rows.transform_vertex);
@@ -153,7 +160,7 @@ struct ImplicitLaplacianDeformer::Impl {
 
   // Eq. 2.10/2.11 on the undisplaced mesh: the rotations carry the deformation, the rest
   // Laplacian the details.
-  void build_second_system(LaplacianWeights weights) {
+  void build_second_system(LaplacianWeights weights, const std::vector<std::vector<int>>& shared, double group_weight) {
     const int n = w.mesh.num_vertices();
     detail::Stencil s0 = w.stencil;
     detail::reweight(s0, w.mesh.V, w.mesh.F, weights);
@@ -161,9 +168,39 @@ struct ImplicitLaplacianDeformer::Impl {
     for (int i : free) detail::add_laplacian_row(D, s0, i);
     second = solver::LeastSquares(n);
     second.add_block(D.matrix(), 1.0, "D(v) = R S δ (Eq. 2.10/2.11)");
+    if (!shared.empty()) add_group_edges(shared, group_weight);
     second.set_fixed(constrained);
     delta = second.block_matrix(0) * solver::DenseMatrix(w.mesh.V);
     second.precompute();
+  }
+
+  // A shared gradient transforms a group's Laplacian coordinates alike, but Eq. 2.10/2.11 would
+  // still bend the group with its surroundings through its border; its edges, held to the
+  // group's transformation, make it move as one.
+  void add_group_edges(const std::vector<std::vector<int>>& shared, double group_weight) {
+    const int n = w.mesh.num_vertices();
+    std::vector<int> group_of(static_cast<size_t>(n), -1);
+    for (size_t f = 0; f < shared.size(); ++f) {
+      for (int v : shared[f]) group_of[v] = static_cast<int>(f);
+      group_probe.push_back(-1);
+    }
+    SparseRows E(n);
+    for (int i = 0; i < n; ++i) {
+      const int f = group_of[i];
+      if (f < 0 || !w.active[i]) continue;
+      if (group_probe[f] < 0) group_probe[f] = i;
+      for (int k = w.stencil.offsets[i]; k < w.stencil.offsets[i + 1]; ++k) {
+        const int j = w.stencil.nbr[k];
+        if (j <= i || group_of[j] != f) continue;
+        E.begin_row();
+        E.add(j, 1.0);
+        E.add(i, -1.0);
+        group_edges.push_back({i, j});
+        group_edge_group.push_back(f);
+      }
+    }
+    if (!group_edges.empty())
+      block_F = second.add_block(E.matrix(), group_weight, "shared-gradient group edges (§3.5)");
   }
 
   // X_I and Φ. Parameter column 4h + b of region handle h enters coordinate a with weight
@@ -226,9 +263,9 @@ void ImplicitLaplacianDeformer::set_options(const ImplicitOptions& options) {
   if (!(options.degenerate_condition > 1))
     throw InvalidArgument(std::string(fn) + ": degenerate_condition must be > 1");
   if (!(options.s_disp > 0) || !(options.coherence_weight > 0) || !(options.transform_weight > 0) ||
-      !(options.guide_weight > 0))
+      !(options.guide_weight > 0) || !(options.group_weight > 0))
     throw InvalidArgument(std::string(fn) +
-                          ": s_disp, coherence_weight, transform_weight and guide_weight must be > 0");
+                          ": s_disp, coherence_weight, transform_weight, guide_weight and group_weight must be > 0");
   options_ = options;
   mark_dirty();
 }
@@ -248,6 +285,27 @@ void ImplicitLaplacianDeformer::set_laplacian_blends(std::vector<LaplacianBlend>
   }
   blends_ = std::move(blends);
   blend_weight_ = weight;
+  mark_dirty();
+}
+
+void ImplicitLaplacianDeformer::set_shared_gradients(std::vector<std::vector<int>> groups) {
+  constexpr const char* fn = "mesh_deform::ImplicitLaplacianDeformer::set_shared_gradients()";
+  std::vector<int> group_of(static_cast<size_t>(mesh_.num_vertices()), -1);
+  for (size_t f = 0; f < groups.size(); ++f) {
+    if (groups[f].size() < 4)
+      throw InvalidArgument(std::string(fn) + ": group " + std::to_string(f) + " has " +
+                            std::to_string(groups[f].size()) + " vertices; a gradient needs at least 4");
+    for (int v : groups[f]) {
+      if (v < 0 || v >= mesh_.num_vertices())
+        throw InvalidArgument(std::string(fn) + ": group " + std::to_string(f) + ": vertex " + std::to_string(v) +
+                              " is out of range [0, " + std::to_string(mesh_.num_vertices()) + ")");
+      if (group_of[v] >= 0)
+        throw InvalidArgument(std::string(fn) + ": vertex " + std::to_string(v) + " is in group " +
+                              std::to_string(group_of[v]) + " and in group " + std::to_string(f));
+      group_of[v] = static_cast<int>(f);
+    }
+  }
+  shared_ = std::move(groups);
   mark_dirty();
 }
 
@@ -273,11 +331,12 @@ void ImplicitLaplacianDeformer::setup(const Layout& layout) {
   // Eq. 2.10/2.11's system is built and factorized beside Eq. 2.8's: the first system's
   // ordering (nested dissection, CAMD) runs on one core and would leave the other idle. The
   // second reads w, free and constrained and writes only second and delta.
-  const auto first = [&] { m->build_first_system(options_, blends_, blend_weight_); };
+  const auto first = [&] { m->build_first_system(options_, blends_, blend_weight_, shared_); };
   if (options_.shearing == ShearingRemoval::None)
     first();
   else
-    solver::side_by_side(first, [&m = *m, weights = options_.weights] { m.build_second_system(weights); });
+    solver::side_by_side(first,
+                         [&m = *m, this] { m.build_second_system(options_.weights, shared_, options_.group_weight); });
 
   m->region_handles = layout.num_region_handles;
   m->point_handles = layout.num_point_handles;
@@ -406,6 +465,25 @@ solver::DenseMatrix ImplicitLaplacianDeformer::Impl::polar_rhs(const Vertices& X
   return rhs;
 }
 
+// Each group edge's displacement difference under the group's transformation (s) R, from its
+// shared M_i at X: (s R − I)(v_j − v_i).
+solver::DenseMatrix ImplicitLaplacianDeformer::Impl::group_edge_rhs(const Vertices& X, bool scale) const {
+  std::vector<Eigen::Matrix3d> change(group_probe.size(), Eigen::Matrix3d::Zero());
+  for (size_t f = 0; f < group_probe.size(); ++f) {
+    if (group_probe[f] < 0) continue;
+    const Eigen::Matrix3d M = G.gradient(group_probe[f], X);
+    const Eigen::Matrix3d R = geometry::polar_rotation(M);
+    change[f] = (scale ? M.norm() / std::sqrt(3.0) : 1.0) * R - Eigen::Matrix3d::Identity();
+  }
+  solver::DenseMatrix rhs(static_cast<Eigen::Index>(group_edges.size()), 3);
+  for (size_t e = 0; e < group_edges.size(); ++e) {
+    const auto [i, j] = group_edges[e];
+    rhs.row(static_cast<Eigen::Index>(e)) =
+        (change[group_edge_group[e]] * (w.mesh.V.row(j) - w.mesh.V.row(i)).transpose()).transpose();
+  }
+  return rhs;
+}
+
 // The second system's constrained displacements: each constrained vertex where its handle puts it.
 solver::DenseMatrix ImplicitLaplacianDeformer::Impl::second_fixed(const HandleTransforms& transforms) const {
   solver::DenseMatrix fixed(constrained.size(), 3);
@@ -464,7 +542,10 @@ void ImplicitLaplacianDeformer::solve(const HandleTransforms& transforms, const 
   report_.polar_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  const solver::DenseMatrix Y = m.second.solve({rhs2}, m.second_fixed(transforms), options_.refinement_steps);
+  std::vector<solver::DenseMatrix> rhs_blocks{rhs2};
+  if (m.block_F >= 0)
+    rhs_blocks.push_back(m.group_edge_rhs(Vertices(X), options_.shearing == ShearingRemoval::ScaleFeatures));
+  const solver::DenseMatrix Y = m.second.solve(rhs_blocks, m.second_fixed(transforms), options_.refinement_steps);
   for (int v : m.free)
     if (v < n0) out.row(v) = w.mesh.V.row(v) + Y.row(v);
   report_.second_solve_ms = ms_since(t0);

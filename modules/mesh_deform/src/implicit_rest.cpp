@@ -238,4 +238,74 @@ GradientStencils gradient_stencils(const Stencil& s, const Vertices& P, const st
   return G;
 }
 
+namespace {
+
+// Up to kSharedAnchors vertices of the group, each the farthest from those picked before (the
+// first: the group's first vertex), so the fit sees the whole group.
+std::vector<int> spread_anchors(const Vertices& P, const std::vector<int>& group) {
+  if (group.size() <= static_cast<size_t>(kSharedAnchors)) return group;
+  std::vector<double> gap(group.size(), std::numeric_limits<double>::infinity());
+  std::vector<int> anchors;
+  size_t next = 0;
+  while (anchors.size() < static_cast<size_t>(kSharedAnchors)) {
+    anchors.push_back(group[next]);
+    const Eigen::RowVector3d a = P.row(group[next]);
+    size_t far = 0;
+    for (size_t k = 0; k < group.size(); ++k) {
+      gap[k] = std::min(gap[k], (P.row(group[k]) - a).squaredNorm());
+      if (gap[k] > gap[far]) far = k;
+    }
+    next = far;
+  }
+  return anchors;
+}
+
+}  // namespace
+
+void share_gradients(GradientStencils& G, const Vertices& P, const std::vector<std::vector<int>>& groups,
+                     const std::vector<char>& active) {
+  const int n = static_cast<int>(G.offsets.size()) - 1;
+  std::vector<int> group_of(static_cast<size_t>(n), -1);
+  std::vector<std::vector<int>> anchors;
+  std::vector<std::vector<Eigen::Vector3d>> weights;
+  for (size_t f = 0; f < groups.size(); ++f) {
+    for (int v : groups[f])
+      if (active[v]) group_of[v] = static_cast<int>(f);
+    anchors.push_back(spread_anchors(P, groups[f]));
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : anchors.back()) c += P.row(v).transpose();
+    c /= static_cast<double>(anchors.back().size());
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (int v : anchors.back()) scatter += (P.row(v).transpose() - c) * (P.row(v) - c.transpose());
+    // As for a 1-ring: a flat group gets a Tikhonov-regularized inverse.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(scatter);
+    Eigen::Vector3d lam = es.eigenvalues();
+    for (int a = 0; a < 3; ++a) lam(a) = std::max(lam(a), 1e-12 * std::max(lam(2), 1e-300));
+    const Eigen::Matrix3d inv = es.eigenvectors() * lam.cwiseInverse().asDiagonal() * es.eigenvectors().transpose();
+    weights.emplace_back();
+    for (int v : anchors.back()) weights.back().push_back(inv * (P.row(v).transpose() - c));
+  }
+  GradientStencils out;
+  out.offsets.assign(static_cast<size_t>(n) + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    const int f = group_of[i];
+    const int count = f >= 0 ? static_cast<int>(anchors[f].size()) : G.offsets[i + 1] - G.offsets[i];
+    out.offsets[i + 1] = out.offsets[i] + count;
+  }
+  out.vertex.reserve(static_cast<size_t>(out.offsets[n]));
+  out.g.reserve(static_cast<size_t>(out.offsets[n]));
+  for (int i = 0; i < n; ++i) {
+    const int f = group_of[i];
+    if (f >= 0) {
+      out.vertex.insert(out.vertex.end(), anchors[f].begin(), anchors[f].end());
+      out.g.insert(out.g.end(), weights[f].begin(), weights[f].end());
+    } else {
+      out.vertex.insert(out.vertex.end(), G.vertex.begin() + G.offsets[i], G.vertex.begin() + G.offsets[i + 1]);
+      out.g.insert(out.g.end(), G.g.begin() + G.offsets[i], G.g.begin() + G.offsets[i + 1]);
+    }
+  }
+  G = std::move(out);
+}
+
 }  // namespace lapis::mesh_deform::detail

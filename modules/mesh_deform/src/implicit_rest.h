@@ -49,6 +49,16 @@ struct GradientStencils {
 // gets a Tikhonov-regularized inverse so the system stays defined.
 GradientStencils gradient_stencils(const Stencil& s, const Vertices& P, const std::vector<char>& active);
 
+// Thesis §3.5: every active vertex of a group takes the group's one deformation gradient,
+// implicitly defined like a 1-ring's (Eq. 2.3–2.5) but over the group: the least-squares linear
+// map from the rest group about its centroid to the deformed one, M_F = Σ_j ṽ_j g_jᵀ with
+// g_j = (Σ p pᵀ)⁻¹ (p_j − c). Fitted on at most kSharedAnchors of the group's vertices, spread
+// by farthest-point sampling, so each of the group's rows holds that many unknowns (the
+// normal matrix a dense block of their size) however large the group.
+constexpr int kSharedAnchors = 128;
+void share_gradients(GradientStencils& G, const Vertices& P, const std::vector<std::vector<int>>& groups,
+                     const std::vector<char>& active);
+
 // λ_max / λ_min of V_i V_iᵀ (Eq. 2.5), +inf when singular.
 double stencil_condition(const Stencil& s, const Vertices& P, int i);
 

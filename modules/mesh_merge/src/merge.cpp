@@ -33,6 +33,12 @@ void check_options(const TriMesh& source, const MergeOptions& o) {
   if (!(o.roi_width >= 0) || !std::isfinite(o.roi_width)) fail("roi_width must be finite and >= 0");
   for (int h : o.handles)
     if (h < 0 || h >= source.num_vertices()) fail("handle vertex " + std::to_string(h) + " out of range");
+  if (!o.features.empty() && o.mode != MergeMode::Independent)
+    fail("features (§3.5) need Independent mode; Dependent mode keeps parts fixed through handles");
+  for (size_t f = 0; f < o.features.size(); ++f)
+    for (int v : o.features[f])
+      if (v < 0 || v >= source.num_vertices())
+        fail("feature " + std::to_string(f) + ": vertex " + std::to_string(v) + " out of range");
   if (o.mode == MergeMode::OptimalBoundary)
     fail("OptimalBoundary mode merges along a boundary it finds, not given loops: use BoundaryOptimizer::merge()");
   if (o.mode == MergeMode::Transition) {
@@ -128,6 +134,12 @@ Merger::Merger(TriMesh source, MergeOptions options) : source_(std::move(source)
       sel.region_handles.push_back({v});
     }
   m.deformer = std::make_unique<mesh_deform::ImplicitLaplacianDeformer>(m.rest, options_.implicit);
+  for (size_t f = 0; f < options_.features.size(); ++f)
+    for (int v : options_.features[f])
+      if (m.handle_of[v] >= 0)
+        throw InvalidArgument(std::string(kFn) + ": feature " + std::to_string(f) + ": vertex " + std::to_string(v) +
+                              " lies on the merging boundary");
+  m.deformer->set_shared_gradients(options_.features);  // refinement only appended vertices
   m.deformer->set_selection(std::move(sel));
   m.deformer->precompute();
   precompute_ms_ = ms_since(t0);

@@ -65,4 +65,25 @@ void write_handles_file(const std::filesystem::path& path, const std::vector<int
   detail::write_json_file(path, {{"handles", handles}});
 }
 
+std::vector<std::vector<int>> read_features_file(const std::filesystem::path& path) {
+  const std::string fn = "mesh_merge::read_features_file()";
+  const nlohmann::json j = detail::read_json_file(path, fn);
+  if (!j.is_object() || !j.contains("features") || !j["features"].is_array())
+    throw InvalidArgument(fn + ": " + path.string() + ": expected {\"features\": [[vertex, ...], ...]}");
+  std::vector<std::vector<int>> features;
+  for (size_t f = 0; f < j["features"].size(); ++f) {
+    const auto& list = j["features"][f];
+    const std::string where = path.string() + ": features[" + std::to_string(f) + "]";
+    if (!list.is_array()) throw InvalidArgument(fn + ": " + where + " must be an array of vertex indices");
+    features.emplace_back();
+    for (size_t k = 0; k < list.size(); ++k)
+      features.back().push_back(vertex_index(list[k], fn, where + "[" + std::to_string(k) + "]"));
+  }
+  return features;
+}
+
+void write_features_file(const std::filesystem::path& path, const std::vector<std::vector<int>>& features) {
+  detail::write_json_file(path, {{"features", features}});
+}
+
 }  // namespace lapis::mesh_merge

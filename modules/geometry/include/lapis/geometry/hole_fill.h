@@ -11,9 +11,9 @@
 namespace lapis::geometry {
 
 struct HoleFill {
-  Faces faces;      // indices into V, then V.rows() + i for added.row(i)
-  Vertices added;   // the centroid of a fan fill; empty for the area-minimal fill
-  double area = 0;  // total area of `faces`
+  Faces faces;       // indices into V, then V.rows() + i for added.row(i)
+  Vertices added;    // the centroid of a fan fill; empty for the area-minimal fill
+  double area = 0;   // total area of `faces`
   bool fan = false;  // the loop was longer than max_exact_corners: a centroid fan instead
 };
 

@@ -57,6 +57,9 @@ struct ImplicitOptions {
   // One step takes that to ~1e-11 for one more back-substitution and product per system.
   // 0 for interactive editing, where a frame's rounding is far below what the eye sees.
   int refinement_steps = 0;
+  // Weight of a shared-gradient group's edge rows (set_shared_gradients, thesis §3.5) in Eq.
+  // 2.10/2.11, against the Laplacian rows' 1: how firmly the group keeps its shape.
+  double group_weight = 100;
 };
 
 // One extra least-squares row of the first system: vertex's transformed Laplacian coordinate
@@ -111,6 +114,18 @@ class ImplicitLaplacianDeformer final : public Deformer {
   // for w <= 0 or NaN, a vertex out of range, or a weight that is not finite.
   void set_laplacian_blends(std::vector<LaplacianBlend> blends, double weight);
 
+  // Thesis §3.5: each group of vertices (a feature) shares one deformation gradient, implicitly
+  // defined over the group as a 1-ring's is over the 1-ring (the least-squares linear map of the
+  // rest group onto the deformed one, fitted on at most 128 of its vertices spread over it), so
+  // every Laplacian coordinate of the feature is transformed alike and the feature moves by one
+  // transformation (after §2.4.4's shear removal, a similarity) instead of bending with its
+  // surroundings: Eq. 2.10/2.11 also holds the group's edges to that transformation (weight
+  // options.group_weight), without which the group would still bend with its surroundings
+  // through its border. Marks the deformer dirty. Throws InvalidArgument
+  // "mesh_deform::ImplicitLaplacianDeformer::set_shared_gradients(): ..." for a group of fewer
+  // than 4 vertices, a vertex out of range or in two groups.
+  void set_shared_gradients(std::vector<std::vector<int>> groups);
+
   // Original vertices the last setup found degenerate or displaced (§2.4.3), ascending.
   std::vector<int> degenerate_vertices() const;
 
@@ -126,6 +141,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
   bool preview_ = false;
   std::vector<LaplacianBlend> blends_;
   double blend_weight_ = 0;
+  std::vector<std::vector<int>> shared_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -82,6 +82,11 @@ struct MergeOptions {
   double roi_width = 0;      // also Transition mode with transition.configuration_dependent
   std::vector<int> handles;  // source vertices kept exactly where they are (Dependent mode, and
                              // Transition mode with transition.configuration_dependent)
+  // §3.5, Independent mode: source features (vertex lists) that keep their shape. Each shares
+  // one deformation gradient implicitly defined over it, so it is "subject to a transformation
+  // rather than being completely fixed like in configuration-dependent merging" — the result
+  // stays independent of the source's placement. Features may not touch the merging boundary.
+  std::vector<std::vector<int>> features;
   // Transition mode (§3.3.3). Seam smoothing and boundary refinement are not applied in that
   // mode: the transition band replaces the smoothing, which "filters out geometry details".
   TransitionOptions transition;

@@ -3,6 +3,7 @@
 // merge` reads them and the merge app writes them, so both sides share one format:
 //   {"pairs": [{"keys": [{"source": 12, "target": 830}, {"source": 40, "target": 17}]}]}
 //   {"handles": [5, 6, 7]}
+//   {"features": [[40, 41, 42, 57], [300, 301, 302, 318]]}   (§3.5, independent mode)
 #pragma once
 
 #include <filesystem>
@@ -23,5 +24,9 @@ void write_pairs_file(const std::filesystem::path& path, const std::vector<LoopP
 // Same conventions, "mesh_merge::read_handles_file()".
 std::vector<int> read_handles_file(const std::filesystem::path& path);
 void write_handles_file(const std::filesystem::path& path, const std::vector<int>& handles);
+
+// Same conventions, "mesh_merge::read_features_file()": one vertex list per feature.
+std::vector<std::vector<int>> read_features_file(const std::filesystem::path& path);
+void write_features_file(const std::filesystem::path& path, const std::vector<std::vector<int>>& features);
 
 }  // namespace lapis::mesh_merge
