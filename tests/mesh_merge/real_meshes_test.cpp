@@ -6,7 +6,9 @@
 
 #include <Eigen/Geometry>
 
+#include "lapis/geometry/dijkstra.h"
 #include "lapis/mesh_merge/metrics.h"
+#include "lapis/mesh_merge/optimal_boundary.h"
 #include "merge_fixtures.h"
 
 using namespace lapis;
@@ -254,4 +256,57 @@ TEST_CASE("mesh_merge: real meshes: a fold the strip's tiling left is flipped ou
   CHECK(q.folded_seam_edges == 0);
   CHECK(q.valid());
   CHECK(geometry::validate(r.mesh).ok());
+}
+
+namespace {
+
+// Faces whose three corners lie within `fraction` of the bounding-box diagonal (edge paths) of
+// the vertex extreme along `axis` (sign +1: largest coordinate).
+std::vector<int> geodesic_disk(const TriMesh& m, int axis, double sign, double fraction) {
+  int centre = 0;
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (sign * m.V(v, axis) > sign * m.V(centre, axis)) centre = v;
+  const geometry::ShortestPaths d = geometry::dijkstra(m, {centre});
+  const double radius = fraction * (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
+  std::vector<int> faces;
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (std::max({d.distance[m.F(f, 0)], d.distance[m.F(f, 1)], d.distance[m.F(f, 2)]}) < radius) faces.push_back(f);
+  return faces;
+}
+
+}  // namespace
+
+// Cross-object cases where the merge along the optimal boundary first folded its seam (the
+// dragon onto the diplodocus) or the suggested placement let the hole reach Ω1's border (the
+// camel onto the elephant).
+TEST_CASE("mesh_merge: real meshes: optimal boundaries of one mesh's part on another") {
+  struct Case {
+    const char* source;
+    int axis;
+    double sign, feature, rough;
+    const char* target;
+    int target_axis;
+    double target_sign, region;
+  };
+  for (const Case& c :
+       {Case{"camel", 0, 1, 0.05, 0.1, "elephant", 1, 1, 0.15}, Case{"dino", 2, 1, 0.04, 0.08, "cactus", 0, 1, 0.1},
+        Case{"ChineseDragon-10kv", 0, 1, 0.05, 0.1, "diplodocus", 1, 1, 0.15},
+        Case{"man", 1, 1, 0.03, 0.06, "mannequin-devil", 1, 1, 0.1}}) {
+    const std::string name = c.source;
+    CAPTURE(name);
+    const TriMesh src = load(c.source), tgt = load(c.target);
+    BoundaryRegions regions;
+    regions.feature_faces = geodesic_disk(src, c.axis, c.sign, c.feature);
+    regions.roi_faces = geodesic_disk(src, c.axis, c.sign, c.rough);
+    regions.target_faces = geodesic_disk(tgt, c.target_axis, c.target_sign, c.region);
+    const BoundaryOptimizer opt(src, tgt, regions);
+    const OptimalBoundary b = opt.optimize(opt.suggested_placement());
+    MESSAGE(std::string(c.source) << " onto " << std::string(c.target) << ": E " << b.energy << " against "
+                                  << b.user_energy << " along ∂Ω0, " << b.history.size() << " iterations ("
+                                  << b.stopped_by << ")");
+    CHECK(b.energy < 0.8 * b.user_energy);
+    const SeamQuality q = seam_quality(tgt, opt.merge(b));
+    CHECK(q.valid());
+    CHECK(seam_quality(tgt, opt.merge(b, {}, true)).valid());
+  }
 }

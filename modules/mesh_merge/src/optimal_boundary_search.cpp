@@ -195,7 +195,7 @@ Placement2D BoundaryOptimizer::suggested_placement() const {
   p.angle = std::atan2(C(1, 0) - C(0, 1), C(0, 0) + C(1, 1));
   // ∂Ω0's uv centroid goes on Ω1's vertex nearest ∂Ω0's 3D centroid (the user placed the source
   // there), or else on Ω1's vertex farthest from its border in uv; at the 3D scale, or smaller
-  // until ∂Ω0 maps inside Ω1 with a margin of 15%.
+  // until ∂Ω0 maps inside Ω1 with a margin of 15% and the faces under it keep off Ω1's border.
   Eigen::Vector2d uv_centre = Eigen::Vector2d::Zero();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (int v : outer_) uv_centre += source_uv_.row(v).transpose(), centre += source_.V.row(v).transpose();
@@ -214,7 +214,11 @@ Placement2D BoundaryOptimizer::suggested_placement() const {
       const detail::UvHit hit = locator.locate_in_cell(q(source_uv_.row(v).transpose()));
       if (hit.face < 0 || hit.min_weight < -1e-9) return false;
     }
-    return true;
+    // And exactly as the merge will see it: the faces under ∂Ω0's image keep off Ω1's border.
+    Eigen::MatrixX2d polygon(static_cast<Eigen::Index>(outer_.size()), 2);
+    for (size_t i = 0; i < outer_.size(); ++i)
+      polygon.row(static_cast<Eigen::Index>(i)) = p(source_uv_.row(outer_[i]).transpose()).transpose();
+    return !hole_reaches_border(faces_under(polygon));
   };
   const double full_scale = p.scale;
   for (const Eigen::Vector2d& at : {Eigen::Vector2d(target_uv_.row(nearest).transpose()), deepest_target_point()})

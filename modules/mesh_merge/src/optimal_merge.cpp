@@ -102,6 +102,17 @@ std::vector<int> BoundaryOptimizer::faces_under(const Eigen::MatrixX2d& polygon)
   return under;
 }
 
+bool BoundaryOptimizer::hole_reaches_border(const std::vector<int>& region_faces) const {
+  const Connectivity region(target_region_);
+  std::vector<char> border(static_cast<size_t>(target_region_.num_vertices()), 0);
+  for (const auto& l : region.boundary_loops())
+    for (int v : l) border[v] = 1;
+  for (int f : region_faces)
+    for (int j = 0; j < 3; ++j)
+      if (border[target_region_.F(f, j)]) return true;
+  return false;
+}
+
 Eigen::Vector3d BoundaryOptimizer::point_at(const Eigen::Vector2d& uv) const {
   const detail::UvHit hit = detail::UvLocator(target_region_uv_, target_region_.F).locate(uv);
   const Eigen::Vector3d w = hit.weights.cwiseMax(0.0) / hit.weights.cwiseMax(0.0).sum();
@@ -215,7 +226,10 @@ MergeResult BoundaryOptimizer::merge(const OptimalBoundary& b, const MergeOption
     r.smoothed = seam_band(r.mesh, r.seam_vertices, options.smooth_rings);
     std::erase_if(r.smoothed, [&](int v) { return in_feature[v] != 0; });
     umbrella_smooth(r.mesh, r.smoothed, options.smooth_iterations, options.smooth_lambda);
-    unfold_seam(r.mesh, r.strip_faces, r.smoothed);
+    // A fold the band cannot undo may move Ωf's vertices next to the seam: a fold is worse
+    // than a feature's foot smoothed where it touches the strip.
+    if (unfold_seam(r.mesh, r.strip_faces, r.smoothed) > 0)
+      unfold_seam(r.mesh, r.strip_faces, seam_band(r.mesh, r.seam_vertices, options.smooth_rings));
   }
   r.timings.smooth_ms = ms_since(t0);
   r.timings.total_ms = ms_since(t_total);

@@ -146,7 +146,8 @@ class BoundaryOptimizer {
   void parameterize_target();
   void cut_band(const TriMesh& band);
   std::vector<int> faces_inside(const std::vector<int>& loop) const;
-  std::vector<int> faces_under(const Eigen::MatrixX2d& polygon) const;
+  std::vector<int> faces_under(const Eigen::MatrixX2d& polygon) const;  // Ω1-local face indices
+  bool hole_reaches_border(const std::vector<int>& region_faces) const;
   Eigen::Vector3d point_at(const Eigen::Vector2d& uv) const;
   Eigen::Vector2d deepest_target_point() const;
   void zip_onto_target(MergeResult& r, const Faces& part_faces, const std::vector<int>& part_loop,
