@@ -6,6 +6,7 @@
 #include "bundled_meshes.h"
 #include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
+#include "lapis/mesh_merge/regions_file.h"
 #include "lapis/viewer/app_main.h"
 #include "merge_app.h"
 
@@ -14,7 +15,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: lapis-merge [--source MESH --target MESH | --preset N] [--export PREFIX] [--headless]\n"
     "                   [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png] [--exit-after-replay]\n"
-    "                   [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
+    "                   [--benchmark OUT.json] [--ready-file F] [--size WxH] [--regions R.json]\n"
     "Presets: 0 dome onto neck (default), 1 placed dome onto neck, 2 devil's head onto the man.\n"
     "Left-click with the current tool: 1 pair loops, 2 key correspondences, 3 fixed handles; left-drag:\n"
     "4 moves the source with the gizmo, 5 paints a region (Shift erases) that C cuts off. Right-drag orbits,\n"
@@ -23,12 +24,13 @@ constexpr const char* kUsage =
     "shows result or inputs, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+E exports PREFIX.obj (merged),\n"
     "PREFIX_source.obj, PREFIX_target.obj, PREFIX_pairs.json and the equivalent `lapis merge` command\n"
     "(default PREFIX out/merge); with --export the files are also written on exit. Ctrl+P screenshot,\n"
-    "Ctrl+Q quit.\n";
+    "Ctrl+Q quit. --regions opens in the optimal-boundary mode (thesis 3.4) with the regions of a\n"
+    "`lapis merge --mode optimal` regions file; tool 5 then paints the region chosen in the panel.\n";
 
 std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string>& rest) {
   using namespace lapis;
   const cli::Args args(rest);
-  args.allow_only({"--source", "--target", "--preset", "--export"});
+  args.allow_only({"--source", "--target", "--preset", "--export", "--regions"});
   merge_app::AppPaths paths;
   paths.asset_dir = asset_path("merge").parent_path();
   if (args.has("--export")) paths.export_prefix = args.get("--export"), paths.export_on_exit = true;
@@ -47,6 +49,14 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
   setup.source = meshes.source;
   setup.target = meshes.target;
   if (meshes.place_source) setup.placement = mesh_merge::suggest_placement(*meshes.source, *meshes.target);
+  if (args.has("--regions")) {
+    const mesh_merge::BoundaryRegions r =
+        mesh_merge::read_regions_file(args.get("--regions"), *meshes.source, *meshes.target);
+    setup.options.mode = mesh_merge::MergeMode::OptimalBoundary;
+    setup.optimal.rough = merge_app::vertices_of(*meshes.source, r.roi_faces);
+    setup.optimal.feature = merge_app::vertices_of(*meshes.source, r.feature_faces);
+    setup.optimal.target = merge_app::vertices_of(*meshes.target, r.target_faces);
+  }
   return std::make_unique<merge_app::MergeApp>(std::move(setup), meshes.source_name, meshes.target_name, paths);
 }
 

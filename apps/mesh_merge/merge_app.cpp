@@ -26,7 +26,8 @@ bool same_options(const mesh_merge::MergeOptions& a, const mesh_merge::MergeOpti
   return a.mode == b.mode && a.roi_width == b.roi_width && a.handles == b.handles && a.refine_ratio == b.refine_ratio &&
          a.refine_levels == b.refine_levels && a.transition.source_width == b.transition.source_width &&
          a.transition.target_width == b.transition.target_width && a.transition.weight == b.transition.weight &&
-         a.transition.keep == b.transition.keep;
+         a.transition.keep == b.transition.keep &&
+         a.transition.configuration_dependent == b.transition.configuration_dependent && a.features == b.features;
 }
 
 }  // namespace
@@ -197,6 +198,7 @@ bool MergeApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
     }
     if (e.action == GLFW_RELEASE && (drag_start_ || painting_)) {
       if (drag_start_) release_move(v);
+      if (painting_ && optimal_mode()) end_region_stroke(v);
       painting_ = false;
       return true;
     }
@@ -383,32 +385,52 @@ bool MergeApp::auto_merge_allowed() const {
   return job_ms_.empty() || job_ms_.back() < kAutoMergeMs;
 }
 
+namespace {
+
+// The worker's job for the loop-pair modes: the Merger kept while the source and the options it
+// was precomputed for stay, then the merge and its metrics.
+template <class Slot>
+void merge_loops(MergeOutcome& out, Slot& slot, const MergeSetup& s) {
+  if (!slot.merger || slot.source != s.source || slot.placement != s.placement ||
+      !same_options(slot.options, s.options)) {
+    slot.merger.reset();  // free the old factorization before building the next
+    slot.merger = std::make_unique<mesh_merge::Merger>(mesh_merge::placed_source(s), s.options);
+    slot.source = s.source;
+    slot.placement = s.placement;
+    slot.options = s.options;
+  } else {
+    out.reused = true;
+  }
+  out.precompute_ms = slot.merger->precompute_ms();
+  slot.merger->set_smoothing(s.options.smooth_iterations, s.options.smooth_rings, s.options.smooth_lambda);
+  out.result = slot.merger->merge(*s.target, mesh_merge::loop_pairs(s));
+  out.quality = mesh_merge::seam_quality(*s.target, out.result);
+  out.detail = mesh_merge::detail_preservation(slot.merger->source(), out.result);
+}
+
+}  // namespace
+
 void MergeApp::request_merge() {
   if (requested_revision_ == revision()) return;  // already on its way (or done)
   requested_revision_ = revision();
   auto slot = engine_;
   const MergeSetup s = setup();
   const std::uint64_t revision = this->revision();
-  worker_.submit([slot, s, revision] {
+  const bool optimal = optimal_mode();
+  std::shared_ptr<const mesh_merge::BoundaryOptimizer> opt = optimal ? optimizer() : nullptr;
+  const std::string opt_error = optimizer_.error;
+  const mesh_merge::Placement2D placement = optimal ? current_placement() : mesh_merge::Placement2D{};
+  auto progress = optimal_progress_;
+  worker_.submit([slot, s, revision, optimal, opt, opt_error, placement, progress] {
     MergeOutcome out;
     out.revision = revision;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      if (!slot->merger || slot->source != s.source || slot->placement != s.placement ||
-          !same_options(slot->options, s.options)) {
-        slot->merger.reset();  // free the old factorization before building the next
-        slot->merger = std::make_unique<mesh_merge::Merger>(mesh_merge::placed_source(s), s.options);
-        slot->source = s.source;
-        slot->placement = s.placement;
-        slot->options = s.options;
+      if (optimal) {
+        run_optimal(out, s, opt, opt_error, placement, progress);
       } else {
-        out.reused = true;
+        merge_loops(out, *slot, s);
       }
-      out.precompute_ms = slot->merger->precompute_ms();
-      slot->merger->set_smoothing(s.options.smooth_iterations, s.options.smooth_rings, s.options.smooth_lambda);
-      out.result = slot->merger->merge(*s.target, mesh_merge::loop_pairs(s));
-      out.quality = mesh_merge::seam_quality(*s.target, out.result);
-      out.detail = mesh_merge::detail_preservation(slot->merger->source(), out.result);
     } catch (const Error& e) {
       out.error = e.what();
     } catch (const std::exception& e) {  // e.g. out of memory: reported, never a crash

@@ -4,6 +4,7 @@
 // options) re-merges on a worker thread, and the newest finished result is drawn.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "lapis/geometry/connectivity.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/metrics.h"
+#include "lapis/mesh_merge/optimal_boundary.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/latest_worker.h"
 #include "lapis/viewer/loop_picking.h"
@@ -36,6 +38,9 @@ const char* tool_name(Tool t);
 // suggestion for the paired target loops, or a twentieth of the target's size before any pair
 // has a key.
 double first_band_width(const mesh_merge::MergeSetup& s);
+
+// The vertices of the listed faces, sorted (a region file's faces as the brush's vertex set).
+std::vector<int> vertices_of(const geometry::TriMesh& mesh, const std::vector<int>& faces);
 
 // The undoable state: the setup and a revision number that stays with it through undo and
 // redo, so a merge result can be matched to the setup it was computed for.
@@ -63,9 +68,16 @@ struct MergeOutcome {
   mesh_merge::MergeResult result;
   mesh_merge::SeamQuality quality;
   mesh_merge::DetailPreservation detail;
-  double precompute_ms = 0;  // of the Merger used (built for this job or reused)
-  bool reused = false;       // the Merger was kept from an earlier job
-  double job_ms = 0;         // precompute + merge + metrics, what the user waits
+  double precompute_ms = 0;                             // of the Merger used (built for this job or reused)
+  bool reused = false;                                  // the Merger was kept from an earlier job
+  double job_ms = 0;                                    // precompute + merge + metrics, what the user waits
+  std::optional<mesh_merge::OptimalBoundary> boundary;  // OptimalBoundary mode: the boundary merged along
+};
+
+// The optimal-boundary search's progress, written by the worker, read by the overlay.
+struct OptimalProgress {
+  std::atomic<int> iteration{0};  // iterations done in the running search (0: none yet)
+  std::atomic<double> energy{0};  // its last E(B_k, T_k)
 };
 
 struct AppPaths {
@@ -133,6 +145,21 @@ class MergeApp final : public viewer::ViewerApp {
   // Writes the merge and the files that reproduce it; false when nothing was written.
   bool export_all(viewer::Viewer& v);
 
+  // Optimal-boundary mode (merge_optimal.cpp).
+  bool optimal_mode() const;
+  static std::vector<int>& region_of(MergeSetup& s, int region);
+  void begin_region_stroke();
+  void end_region_stroke(viewer::Viewer& v);
+  std::shared_ptr<const mesh_merge::BoundaryOptimizer> optimizer();
+  mesh_merge::Placement2D current_placement();
+  std::string edit_optimal(MergeSetup& next);
+  void draw_placement_window(viewer::Viewer& v);
+  static void run_optimal(MergeOutcome& out, const MergeSetup& s,
+                          const std::shared_ptr<const mesh_merge::BoundaryOptimizer>& opt, const std::string& error,
+                          const mesh_merge::Placement2D& placement, const std::shared_ptr<OptimalProgress>& progress);
+  void update_optimal_loops(viewer::Scene& scene);
+  void paint_regions(viewer::MeshItem& source, viewer::MeshItem& target) const;
+
   // Drawing (merge_scene.cpp) and panels (merge_panels.cpp).
   void update_scene(viewer::Viewer& v);
   void update_inputs(viewer::Scene& scene, bool result);  // result: the merged mesh is shown
@@ -169,6 +196,22 @@ class MergeApp final : public viewer::ViewerApp {
   bool painted_on_source_ = true;
   bool painting_ = false, erasing_ = false, paint_mesh_chosen_ = false;
   float brush_px_ = 24;
+
+  // Optimal-boundary mode: the region the brush paints (0 rough, 1 feature, 2 target), the
+  // optimizer of the current regions (its set-up is the fill and both conformal maps), the
+  // placement being dragged in the 2D view, and the running search's progress.
+  int optimal_region_ = 1;
+  struct OptimizerCache {
+    std::shared_ptr<const geometry::TriMesh> source, target;
+    Eigen::Matrix4d placement = Eigen::Matrix4d::Identity();
+    std::vector<int> rough, feature, region;
+    std::shared_ptr<const mesh_merge::BoundaryOptimizer> optimizer;
+    mesh_merge::Placement2D suggested;
+    std::string error;
+  };
+  OptimizerCache optimizer_;
+  std::optional<mesh_merge::Placement2D> placement_drag_;
+  std::shared_ptr<OptimalProgress> optimal_progress_ = std::make_shared<OptimalProgress>();
 
   float merge_panel_bottom_ = 0;  // where the result panel goes
   bool show_result_ = true;       // result (with translucent inputs) or the inputs alone

@@ -18,12 +18,15 @@ const char* kTransitionTooltip =
     "width, in the target's units) overlaps the other's; both deform, their details are tied by E_T (w_T = 0.1) and "
     "interpolated across the band instead of smoothing the seam. Configuration-independent.";
 const char* kOptimalTooltip =
-    "Not implemented yet: the optimal merging boundary (thesis 3.4) has not landed in mesh_merge.";
+    "The optimal merging boundary (thesis 3.4): paint a rough region around the feature to merge and the feature "
+    "itself on the source, and a region on the target (tool 5); place the band in the placement view; M searches "
+    "the boundary whose image changes least (Eq. 3.1) and merges along it.";
 
 }  // namespace
 
 void MergeApp::on_gui(viewer::Viewer& v) {
   draw_merge_panel(v);
+  if (optimal_mode()) draw_placement_window(v);
   draw_result_panel(v);
   draw_labels(v);
   draw_overlay(v);
@@ -71,6 +74,8 @@ void MergeApp::draw_merge_panel(viewer::Viewer& v) {
   std::string edit;
   for (std::string e : {edit_pairs(next), edit_mode(next), edit_mode_options(next)})
     if (!e.empty()) edit = std::move(e);
+  if (next.options.mode == mesh_merge::MergeMode::OptimalBoundary)
+    if (std::string e = edit_optimal(next); !e.empty()) edit = std::move(e);
   if (!edit.empty()) commit(v, std::move(next), edit);
   draw_merge_actions(v);
   ImGui::PopItemWidth();
@@ -132,11 +137,9 @@ std::string MergeApp::edit_mode(MergeSetup& next) {
       t.source_width = t.target_width = first_band_width(next);  // merge_app.h
   }
   tooltip(kTransitionTooltip);
-  ImGui::BeginDisabled();
-  bool off = false;
-  ImGui::RadioButton("optimal boundary (thesis 3.4)", off);
+  if (ImGui::RadioButton("optimal boundary (thesis 3.4)", mode == MergeMode::OptimalBoundary))
+    mode = MergeMode::OptimalBoundary, edit = "mode";
   tooltip(kOptimalTooltip);
-  ImGui::EndDisabled();
   return edit;
 }
 
@@ -146,7 +149,23 @@ std::string MergeApp::edit_mode_options(MergeSetup& next) {
   const MergeMode mode = next.options.mode;
   std::string edit;
   if (mode == MergeMode::Transition) edit = edit_transition_bands(next.options.transition);
-  if (mode == MergeMode::Dependent) {
+  if (mode == MergeMode::Independent) {
+    // §3.5: painted source regions that keep their shape, each moved by one similarity.
+    ImGui::Text("%zu fixed features (3.5)", next.options.features.size());
+    tooltip(
+        "Fixed features (thesis 3.5): each shares one deformation gradient, so it moves by one similarity while "
+        "the rest of the source bends. Paint a region on the source with tool 5, then add it.");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!painted_on_source_ || painted_.size() < 4);  // a gradient needs 4 vertices
+    if (ImGui::SmallButton("add painted"))
+      next.options.features.push_back(painted_), painted_.clear(), edit = "add feature";
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::SmallButton("clear##features")) next.options.features.clear(), edit = "clear features";
+  }
+  const bool placed = mode == MergeMode::Dependent ||
+                      (mode == MergeMode::Transition && next.options.transition.configuration_dependent);
+  if (placed) {
     float width = static_cast<float>(next.options.roi_width);
     ImGui::SliderFloat("ROI width (0: auto)", &width, 0.0f,
                        static_cast<float>(std::max(1e-3, source_.mesh.V.colwise().maxCoeff().maxCoeff() -
@@ -186,6 +205,12 @@ std::string MergeApp::edit_transition_bands(mesh_merge::TransitionOptions& t) {
   ImGui::SameLine();
   if (ImGui::RadioButton("target's", keep == 1)) keep = 1, edit = "band connectivity";
   t.keep = keep == 0 ? mesh_merge::TransitionKeep::Source : mesh_merge::TransitionKeep::Target;
+  bool placed = t.configuration_dependent;
+  if (ImGui::Checkbox("keep the placement (3.3.2 boundary)", &placed))
+    t.configuration_dependent = placed, edit = "transition boundary";
+  tooltip(
+      "Transition regions on the configuration-dependent boundary condition (thesis 3.3.2): the source stays where "
+      "it is placed, only vertices within the ROI width of its rim and the band move, the handles stay fixed.");
   return edit;
 }
 
@@ -245,6 +270,13 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
                      r.strip_faces.size());
   ImGui::TextColored(q.valid() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.4f, 0.3f, 1), "seam %s",
                      q.valid() ? "watertight and manifold" : "NOT valid");
+  if (shown_->boundary) {
+    const mesh_merge::OptimalBoundary& b = *shown_->boundary;
+    ImGui::Text("boundary energy %.3g (rough border %.3g)", b.energy, b.user_energy);
+    ImGui::Text("  %zu vertices (rough border %zu), %zu iterations: %s", b.loop.size(), b.user_loop.size(),
+                b.history.size(), b.stopped_by.c_str());
+  }
+
   ImGui::Text("seam boundary edges %d, degenerate faces %d", q.seam_boundary_edges, q.degenerate_faces);
   ImGui::Text("non-manifold edges %d, vertices %d", q.non_manifold_edges, q.non_manifold_vertices);
   ImGui::Text("min strip angle %.1f deg", q.min_strip_angle_deg);
@@ -276,6 +308,8 @@ void MergeApp::draw_overlay(viewer::Viewer& v) {
       v.overlay("click a boundary loop of each mesh to pair them");
   } else if (tool_ == Tool::Move) {
     v.overlay("drag an arrow (move), a ring (rotate) or the centre square (scale) to place the source");
+  } else if (tool_ == Tool::Paint && optimal_mode()) {
+    v.overlay("left-drag paints the chosen region, Shift+drag erases it");
   } else if (tool_ == Tool::Paint) {
     v.overlay("left-drag paints on either mesh, Shift+drag erases; C cuts along the painted border");
   } else if (tool_ == Tool::Keys) {
@@ -288,7 +322,14 @@ void MergeApp::draw_overlay(viewer::Viewer& v) {
   }
   if (show_result_ && shown_ && !v.scene().meshes["source"].visible)
     v.overlay("Tab: show the inputs to pick on the source");
-  if (worker_.busy()) v.overlay("merging...");
+  if (worker_.busy() && optimal_mode()) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "optimal boundary: iteration %d, E = %.3g", optimal_progress_->iteration.load(),
+                  optimal_progress_->energy.load());
+    v.overlay(buf);
+  } else if (worker_.busy()) {
+    v.overlay("merging...");
+  }
   if (shown_) {
     char buf[128];
     std::snprintf(buf, sizeof buf, "last merge %.0f ms (job %.0f ms)", shown_->result.timings.total_ms, shown_->job_ms);

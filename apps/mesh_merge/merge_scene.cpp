@@ -13,6 +13,9 @@ const Eigen::Vector3f kTargetColor{0.62f, 0.68f, 0.78f}, kSourceColor{0.90f, 0.7
 const Eigen::Vector3f kLoopColor{0.85f, 0.85f, 0.85f}, kPendingColor{1.0f, 0.92f, 0.25f};
 const Eigen::Vector3f kSeamColor{1.0f, 0.85f, 0.1f}, kHandleColor{0.95f, 0.2f, 0.2f};
 const Eigen::Vector3f kPaintColor{0.85f, 0.25f, 0.35f};
+// Optimal-boundary mode: the rough region, the feature, the target region, and the boundaries.
+const Eigen::Vector3f kRoughColor{0.98f, 0.86f, 0.55f}, kRegionColor{0.45f, 0.62f, 0.95f};
+const Eigen::Vector3f kUserLoopColor{0.95f, 0.6f, 0.2f}, kOptimalLoopColor{0.3f, 0.9f, 0.35f};
 
 Eigen::Vector3f pair_color(int pair) {
   static const Eigen::Vector3f palette[] = {
@@ -44,6 +47,7 @@ void MergeApp::update_scene(viewer::Viewer& v) {
   update_result(scene, result);
   update_loops(scene);
   update_markers(scene);
+  update_optimal_loops(scene);
   scene_dirty_ = false;
 }
 
@@ -71,7 +75,41 @@ void MergeApp::update_inputs(viewer::Scene& scene, bool result) {
   source.alpha = result ? 0.3f : 1.0f;
   source.visible = !result || setup().options.mode == mesh_merge::MergeMode::Dependent || tool_ == Tool::Move;
   paint(source, kSourceColor, painted_on_source_);
+  if (optimal_mode()) paint_regions(source, target);
   ++source.version;
+}
+
+// Optimal-boundary mode: the three regions, the one being painted as the stroke has it.
+void MergeApp::paint_regions(viewer::MeshItem& source, viewer::MeshItem& target) const {
+  auto tint = [](viewer::MeshItem& item, const Eigen::Vector3f& base, const std::vector<int>& vertices,
+                 const Eigen::Vector3f& color) {
+    if (item.colors.rows() != item.mesh.num_vertices())
+      item.colors = base.transpose().replicate(item.mesh.num_vertices(), 1);
+    for (int v : vertices)
+      if (v < item.mesh.num_vertices()) item.colors.row(v) = color.transpose();
+  };
+  const mesh_merge::OptimalPicks& o = setup().optimal;
+  auto shown = [&](int region, const std::vector<int>& picked) -> const std::vector<int>& {
+    return painting_ && optimal_region_ == region ? painted_ : picked;
+  };
+  source.colors.resize(0, 3), target.colors.resize(0, 3);
+  tint(source, kSourceColor, shown(0, o.rough), kRoughColor);
+  tint(source, kSourceColor, shown(1, o.feature), kPaintColor);
+  tint(target, kTargetColor, shown(2, o.target), kRegionColor);
+  ++target.version;
+}
+
+// The rough region's border and the optimal boundary of the shown result, on the source.
+void MergeApp::update_optimal_loops(viewer::Scene& scene) {
+  auto& item = scene.lines["optimal boundary"];
+  item.clear();
+  item.visible = optimal_mode() && shown_ && shown_->boundary;
+  item.on_top = true;
+  item.width = 3.0f;
+  if (!item.visible) return;
+  const mesh_merge::OptimalBoundary& b = *shown_->boundary;
+  item.add_strip(loop_points(source_.mesh, b.user_loop), kUserLoopColor);
+  item.add_strip(loop_points(source_.mesh, b.loop), kOptimalLoopColor);
 }
 
 // The merged mesh, its source part tinted, and its seam strips outlined.

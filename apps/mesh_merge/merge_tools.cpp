@@ -41,7 +41,8 @@ void MergeApp::release_move(viewer::Viewer& v) {
 void MergeApp::press_paint(viewer::Viewer& v, double x, double y, bool erase) {
   painting_ = true;
   erasing_ = erase;
-  paint_mesh_chosen_ = false;  // by the first surface the stroke touches (it may start beside it)
+  paint_mesh_chosen_ = false;                 // by the first surface the stroke touches (it may start beside it)
+  if (optimal_mode()) begin_region_stroke();  // the chosen region, on its mesh
   drag_paint(v, x, y);
 }
 
@@ -70,6 +71,7 @@ void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
 }
 
 void MergeApp::cut_painted(viewer::Viewer& v) {
+  if (optimal_mode()) return v.flash("the optimal-boundary mode paints regions; it cuts along the boundary it finds");
   if (painted_.empty()) return v.flash("paint a region first (tool 5: left-drag paints, Shift erases)");
   try {
     if (painted_on_source_) {

@@ -420,3 +420,80 @@ TEST_CASE("apps: merge app — a non-manifold source is refused with the module'
   CHECK(text_of(log).find("merge failed: mesh_merge::check_merge_input(): the source is not manifold") !=
         std::string::npos);
 }
+
+TEST_CASE("apps: merge app — the optimal boundary from a regions file: search, merge, export, equal to lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "optimal", shot = dir / "optimal.png";
+  const std::string inputs = " --source " + (kSource / "assets/merge/bump.obj").string() + " --target " +
+                             (kSource / "assets/merge/plate.obj").string() + " --regions " +
+                             (kSource / "assets/merge/bump_regions.json").string();
+  REQUIRE(run_under_xvfb(xdotool_session(inputs + " --export " + prefix.string(),
+                                         "mark; xdotool key --window $w m; wait_handled 2 0;"
+                                         " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;")) == 0);
+  const std::string command = text_of(prefix.string() + "_command.txt");
+  CHECK(command.find("--mode optimal") != std::string::npos);
+  CHECK(command.find("--regions " + prefix.string() + "_regions.json") != std::string::npos);
+  Exported e;
+  e.merged = geometry::read_mesh(prefix.string() + ".obj");
+  e.command = command.substr(0, command.find('\n'));
+  const geometry::TriMesh plate = asset("plate.obj");
+  CHECK(e.merged.num_vertices() > plate.num_vertices());
+  // Watertight: the plate's border is the only boundary left.
+  CHECK(geometry::Connectivity(e.merged).boundary_loops().size() == 1);
+  check_equals_cli(e, dir / "optimal_cli.obj");
+  // Headless, the merged bump with both boundaries on the ghost of the source.
+  REQUIRE(run_under_xvfb(kApp + kSize + inputs + " --headless --replay " +
+                         (kSource / "tests/apps/data/merge_key_m.json").string() + " --screenshot " + shot.string()) ==
+          0);
+  CHECK(foreground_fraction(viewer::read_png(shot)) > 0.03);
+}
+
+TEST_CASE(
+    "apps: merge app — in the optimal-boundary mode the brush grows the feature and the placement view moves the "
+    "band") {
+  const fs::path dir = scratch_dir(), prefix = dir / "placed";
+  const fs::path bump = kSource / "assets/merge/bump.obj", plate = kSource / "assets/merge/plate.obj",
+                 regions = kSource / "assets/merge/bump_regions.json";
+  const geometry::TriMesh source = geometry::read_mesh(bump), target = geometry::read_mesh(plate);
+  const geometry::CameraMatrices cam = first_view(source, target);
+  const Eigen::Vector3d top = geometry::project(cam, Eigen::Vector3d(0, 0, 0.25));
+  REQUIRE(top.x() < kWidth - merge_app::kPanelWidth);
+  // Tool 5 paints the chosen region, the feature by default: a stroke across the bump.
+  std::string actions = "mark; xdotool key --window $w 5; wait_handled 2 0; mark; xdotool mousemove --window $w " +
+                        pixel(top) + " sleep 0.1 mousedown 1";
+  for (int k = 1; k <= 6; ++k)
+    actions += " mousemove --window $w " + std::to_string(std::lround(top.x()) + 6 * k) + " " +
+               std::to_string(std::lround(top.y())) + " sleep 0.05";
+  actions += " mouseup 1; wait_handled 0 2;";
+  // The placement view's canvas, bottom left (MergeApp::draw_placement_window): drag the band right.
+  const Eigen::Vector2i canvas(170, kHeight - 330 + 27 + 130);
+  actions += " mark; xdotool mousemove --window $w " + std::to_string(canvas.x()) + " " + std::to_string(canvas.y()) +
+             " sleep 0.1 mousedown 1";
+  for (int k = 1; k <= 5; ++k)
+    actions += " mousemove --window $w " + std::to_string(canvas.x() + 4 * k) + " " + std::to_string(canvas.y()) +
+               " sleep 0.05";
+  actions +=
+      " mouseup 1; wait_handled 0 2; mark; xdotool key --window $w m; wait_handled 2 0;"
+      " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--source " + bump.string() + " --target " + plate.string() + " --regions " +
+                                             regions.string() + " --export " + prefix.string(),
+                                         actions)) == 0);
+  const nlohmann::json given = nlohmann::json::parse(text_of(regions)),
+                       exported = nlohmann::json::parse(text_of(prefix.string() + "_regions.json"));
+  MESSAGE("feature faces: " << given["feature"]["faces"].size() << " given, " << exported["feature"]["faces"].size()
+                            << " exported");
+  CHECK(exported["feature"]["faces"].size() > given["feature"]["faces"].size() + 20);  // not only the round trip's one
+  const std::string command = text_of(prefix.string() + "_command.txt");
+  Exported e;
+  e.merged = geometry::read_mesh(prefix.string() + ".obj");
+  e.command = command.substr(0, command.find('\n'));
+  check_equals_cli(e, dir / "placed_cli.obj");
+  // The dragged placement is not the suggested one: the plain merge of the same regions differs.
+  const std::string at = command.substr(command.find("--placement ") + 12);
+  const std::string placement = at.substr(0, at.find(' '));
+  REQUIRE(run(kCli + " merge --mode optimal --source " + bump.string() + " --target " + plate.string() + " --regions " +
+              prefix.string() + "_regions.json --out " + (dir / "suggested.obj").string() + " > " +
+              (dir / "suggested.json").string()) == 0);
+  const nlohmann::json suggested = nlohmann::json::parse(text_of(dir / "suggested.json"));
+  const double u = std::stod(placement.substr(placement.find(',', placement.find(',') + 1) + 1));
+  CHECK(u > suggested["placement"]["u"].get<double>() + 0.01);
+}

@@ -114,8 +114,37 @@ Eigen::Matrix4d suggest_placement(const TriMesh& source, const TriMesh& target) 
   return suggest_placement(source, sl, target, tc.boundary_loops()[static_cast<size_t>(tl)]);
 }
 
+namespace {
+
+std::vector<int> faces_of(const TriMesh& mesh, const std::vector<int>& vertices) {
+  std::vector<char> in(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : vertices)
+    if (v >= 0 && v < mesh.num_vertices()) in[v] = 1;
+  std::vector<int> faces;
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    if (in[mesh.F(f, 0)] && in[mesh.F(f, 1)] && in[mesh.F(f, 2)]) faces.push_back(f);
+  return faces;
+}
+
+}  // namespace
+
+BoundaryRegions boundary_regions(const MergeSetup& setup) {
+  BoundaryRegions r;
+  if (!setup.source || !setup.target) return r;
+  if (!setup.optimal.rough.empty()) r.roi_faces = faces_of(*setup.source, setup.optimal.rough);
+  r.feature_faces = faces_of(*setup.source, setup.optimal.feature);
+  if (!setup.optimal.target.empty()) r.target_faces = faces_of(*setup.target, setup.optimal.target);
+  return r;
+}
+
 std::string missing_input(const MergeSetup& setup, int source_loops) {
   if (!setup.source || !setup.target) return "load a source and a target mesh";
+  if (setup.options.mode == MergeMode::OptimalBoundary) {
+    if (setup.optimal.feature.empty()) return "paint the feature region on the source (tool 5, region: feature)";
+    if (setup.optimal.rough.empty() && source_loops == 0)
+      return "paint the rough region around the feature on the source (tool 5, region: rough)";
+    return "";
+  }
   if (source_loops == 0) return "the source has no boundary loop: cut a part off it first";
   const int paired = static_cast<int>(setup.pairs.size());
   if (paired < source_loops)

@@ -113,7 +113,7 @@ std::vector<int> BoundaryOptimizer::cheapest_loop(const Vertices& image, const g
   return loop;
 }
 
-OptimalBoundary BoundaryOptimizer::optimize(const Placement2D& placement) const {
+OptimalBoundary BoundaryOptimizer::optimize(const Placement2D& placement, const BoundaryProgress& progress) const {
   OptimalBoundary r;
   r.timings = timings_;
   auto t0 = std::chrono::steady_clock::now();
@@ -153,6 +153,7 @@ OptimalBoundary BoundaryOptimizer::optimize(const Placement2D& placement) const 
     if (it.energy < r.energy) r.energy = it.energy, r.loop = loop, r.transform = it.transform, r.best_iteration = k;
     const double change = k > 0 ? std::abs(it.energy - r.history.back().energy) : kInf;
     r.history.push_back(it);
+    if (progress) progress(k, it);
     if (k > 0 && loop == previous)
       r.stopped_by = "fixed point";
     else if (change <= options_.relative_tolerance * it.energy)

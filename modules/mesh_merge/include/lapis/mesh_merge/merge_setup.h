@@ -5,12 +5,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "lapis/mesh_merge/merge.h"
+#include "lapis/mesh_merge/optimal_boundary.h"
 
 namespace lapis::mesh_merge {
 
@@ -20,13 +22,25 @@ struct PickedPair {
   std::vector<KeyCorrespondence> keys;  // in the source loop's order
 };
 
+// The optimal-boundary picks (thesis §3.4) as vertex sets, sorted: a face belongs to a region
+// when its three corners do; an empty rough or target region means every face.
+struct OptimalPicks {
+  std::vector<int> rough, feature;       // Ω0 and Ωf on the source
+  std::vector<int> target;               // Ω1 on the target
+  std::optional<Placement2D> placement;  // unset: BoundaryOptimizer::suggested_placement()
+};
+
 struct MergeSetup {
   // Shared and immutable, so copies of the setup are cheap.
   std::shared_ptr<const TriMesh> source, target;
   Eigen::Matrix4d placement = Eigen::Matrix4d::Identity();  // source rest -> world (a similarity)
   std::vector<PickedPair> pairs;
   MergeOptions options;
+  OptimalPicks optimal;  // MergeMode::OptimalBoundary
 };
+
+// The picks as BoundaryOptimizer's face lists.
+BoundaryRegions boundary_regions(const MergeSetup& setup);
 
 // The source where the user placed it: what merge() gets (Dependent mode keeps this placement).
 TriMesh placed_source(const MergeSetup& setup);
@@ -66,7 +80,8 @@ int facing_target_loop(const TriMesh& source, const std::vector<int>& source_loo
 Eigen::Matrix4d suggest_placement(const TriMesh& source, const TriMesh& target);
 
 // Why the setup cannot be merged yet, as a sentence for the UI, or "" when every one of the
-// source's `source_loops` loops is paired and every pair has a key. (The module's own checks
+// source's `source_loops` loops is paired and every pair has a key (in OptimalBoundary mode:
+// when Ωf is painted, and Ω0 unless the source is open). (The module's own checks
 // still run on merge: this only spares the user errors for work not done yet.)
 std::string missing_input(const MergeSetup& setup, int source_loops);
 

@@ -10,6 +10,7 @@
 // each vertex of a cut across the band to its twin on the cut's other side.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,10 @@ struct OptimalBoundaryOptions {
   int max_exact_fill = 1000;         // ∂Ωf corners above which the fill is a centroid fan (O(k³) program)
   bool prune = true;                 // stop each Dijkstra beyond the cheapest loop found so far (exact)
 };
+
+struct BoundaryIteration;
+// Called by optimize() after each iteration's fit (k from 0), for progress in an app.
+using BoundaryProgress = std::function<void(int k, const BoundaryIteration& it)>;
 
 struct BoundaryIteration {
   double energy = 0;                // E(B_k, T_k)
@@ -106,7 +111,7 @@ class BoundaryOptimizer {
   // The iteration of §3.4.3 from B_0 = ∂Ω0; returns the boundary of lowest energy seen. Throws
   // InvalidArgument when a vertex of ∂Ω0 maps outside Ω1 (naming it) and when every closed path
   // around Ωf crosses the outside of Ω1.
-  OptimalBoundary optimize(const Placement2D& placement) const;
+  OptimalBoundary optimize(const Placement2D& placement, const BoundaryProgress& progress = {}) const;
 
   // §3.4.1's merge along the boundary (the optimal one, or the user's ∂Ω0 with T_0 to compare):
   // the source cut along it (the faces it encloses with Ωf), its short boundary refined
