@@ -66,7 +66,7 @@ std::shared_ptr<const mesh_merge::BoundaryOptimizer> MergeApp::optimizer() {
   if (s.optimal.feature.empty()) return c.error = "paint the feature region first", nullptr;
   try {
     c.optimizer = std::make_shared<const mesh_merge::BoundaryOptimizer>(mesh_merge::placed_source(s), *s.target,
-                                                                         mesh_merge::boundary_regions(s));
+                                                                        mesh_merge::boundary_regions(s));
     c.suggested = c.optimizer->suggested_placement();
   } catch (const Error& e) {
     c.error = e.what();
