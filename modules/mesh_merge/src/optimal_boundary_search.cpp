@@ -165,6 +165,8 @@ OptimalBoundary BoundaryOptimizer::optimize(const Placement2D& placement, const 
       break;
     }
     std::vector<int> next = cheapest_loop(r.image, it.transform, &r.history.back().step_energy);
+    if (next.empty())  // ∂Ω0 itself is a finite loop, so this needs its images undefined
+      detail::fail_optimal("every closed path around Ωf crosses the outside of Ω1 under the placement");
     r.history.back().ms = ms_since(t_step);
     previous = std::move(loop);
     loop = std::move(next);
