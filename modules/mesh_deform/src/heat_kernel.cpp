@@ -10,8 +10,9 @@ namespace lapis::mesh_deform {
 Eigen::VectorXd heat_kernel_times(const Eigen::VectorXd& values, int count, double truncation) {
   constexpr const char* fn = "mesh_deform::heat_kernel_times()";
   if (values.size() < 2 || !(values[1] > 0))
-    throw InvalidArgument(std::string(fn) + ": expected at least two eigenvalues with lambda_2 > 0 (is the mesh "
-                                            "connected?)");
+    throw InvalidArgument(std::string(fn) +
+                          ": expected at least two eigenvalues with lambda_2 > 0 (is the mesh "
+                          "connected?)");
   if (count < 1 || !(truncation > 0 && truncation < 1))
     throw InvalidArgument(std::string(fn) + ": expected count >= 1 and truncation in (0, 1)");
   const double c = -std::log(truncation);

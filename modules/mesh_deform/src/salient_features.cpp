@@ -27,8 +27,7 @@ void check_options(const FeatureOptions& o, int num_vertices) {
     throw InvalidArgument(std::string(fn) + ": expected hks.time_scales >= 1 and hks.truncation in (0, 1)");
   if (!(o.max_cluster_fraction > 0 && o.max_cluster_fraction <= 1) || !std::isfinite(o.min_cluster_saliency) ||
       !std::isfinite(o.aggregate_saliency))
-    throw InvalidArgument(std::string(fn) +
-                          ": expected max_cluster_fraction in (0, 1] and finite saliency thresholds");
+    throw InvalidArgument(std::string(fn) + ": expected max_cluster_fraction in (0, 1] and finite saliency thresholds");
 }
 
 // Vertices by decreasing saliency, ties by index: the seeding order of Step 2.
@@ -168,8 +167,8 @@ SalientFeatures detect_salient_features(const geometry::TriMesh& mesh, const Fea
   t0 = std::chrono::steady_clock::now();
   const geometry::Connectivity conn(mesh);
   out.clusters = grow_clusters(conn, out.saliency, o);
-  out.features = aggregate_clusters(conn, mesh.V, out.saliency, out.clusters, o.aggregate_saliency,
-                                    &r.dropped_features);
+  out.features =
+      aggregate_clusters(conn, mesh.V, out.saliency, out.clusters, o.aggregate_saliency, &r.dropped_features);
   r.clustering_ms = ms_since(t0);
   r.clusters = static_cast<int>(out.clusters.size());
   for (const auto& c : out.clusters) {

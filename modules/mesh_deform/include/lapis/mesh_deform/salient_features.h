@@ -38,7 +38,7 @@ struct FeatureReport {
   int eigenpairs = 0;
   double lambda_2 = 0, lambda_k = 0;  // the spectrum's range the times come from
   double t_min = 0, t_max = 0;
-  int clusters = 0;        // grown in Step 2
+  int clusters = 0;          // grown in Step 2
   int salient_clusters = 0;  // with mean ≥ aggregate_saliency
   int features = 0;
   int dropped_features = 0;  // with fewer than four non-coplanar vertices
