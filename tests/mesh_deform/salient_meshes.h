@@ -43,3 +43,28 @@ inline int apex_vertex(const geometry::TriMesh& m, const Eigen::Vector3d& a) {
 }
 
 }  // namespace lapis::mesh_deform::test
+
+namespace lapis::mesh_deform::test {
+
+// A box bar [0, 1]² × [0, 4] (n cells across) with a smooth bump of height 0.25 on its x = 1
+// side around z = 2, and the bump's vertices as the feature to keep rigid.
+struct BumpyBar {
+  geometry::TriMesh mesh;
+  std::vector<int> bump;  // ascending
+};
+
+inline BumpyBar bumpy_bar(int n) {
+  BumpyBar b;
+  b.mesh = geometry::make_box_bar(n, n, 4 * n, 1.0, 1.0, 4.0);
+  for (int i = 0; i < b.mesh.num_vertices(); ++i) {
+    const double y = b.mesh.V(i, 1) - 0.5, z = b.mesh.V(i, 2) - 2.0;
+    const double r2 = (y * y + z * z) / (0.4 * 0.4);
+    if (b.mesh.V(i, 0) > 1 - 1e-9 && r2 < 1) {
+      b.mesh.V(i, 0) += 0.25 * (1 - r2) * (1 - r2);
+      b.bump.push_back(i);
+    }
+  }
+  return b;
+}
+
+}  // namespace lapis::mesh_deform::test

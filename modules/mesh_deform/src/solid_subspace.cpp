@@ -96,8 +96,8 @@ solver::SparseMatrix discontinuity_rows(const geometry::TetMesh& tets) {
     const Eigen::Vector3d a = tets.V.row(f[0]).transpose(), b = tets.V.row(f[1]).transpose(),
                           c = tets.V.row(f[2]).transpose();
     const double w = std::sqrt(0.5 * (b - a).cross(c - a).norm() / 3);
-    for (const Eigen::Vector3d& u : {Eigen::Vector3d(0.5 * (a + b)), Eigen::Vector3d(0.5 * (b + c)),
-                                     Eigen::Vector3d(0.5 * (c + a))})
+    for (const Eigen::Vector3d& u :
+         {Eigen::Vector3d(0.5 * (a + b)), Eigen::Vector3d(0.5 * (b + c)), Eigen::Vector3d(0.5 * (c + a))})
       for (int l = 0; l < 3; ++l, ++row) {
         add_jacobian_row(tets, pair[0], u, l, w, row, out);
         add_jacobian_row(tets, pair[1], u, l, -w, row, out);
@@ -113,8 +113,8 @@ solver::SparseMatrix vibration_rows(const geometry::TetMesh& tets) {
   int row = 0;
   for (int t = 0; t < tets.num_tets(); ++t) {
     const Eigen::Matrix<double, 3, 4> g = barycentric_gradients(tets, t);
-    const double vol = geometry::tet_volume(corner(tets, t, 0), corner(tets, t, 1), corner(tets, t, 2),
-                                            corner(tets, t, 3));
+    const double vol =
+        geometry::tet_volume(corner(tets, t, 0), corner(tets, t, 1), corner(tets, t, 2), corner(tets, t, 3));
     const double w = std::cbrt(vol);  // √(vol^{2/3})
     for (int i = 0; i < 4; ++i)
       for (int l = 0; l < 3; ++l, ++row) {

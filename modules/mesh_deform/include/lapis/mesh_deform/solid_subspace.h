@@ -16,7 +16,7 @@
 namespace lapis::mesh_deform {
 
 struct SubspaceEmbedding {
-  solver::SparseMatrix C;  // #V by 4·#TV (Eq. 9), rows: at most 16 entries, φ summing to 1
+  solver::SparseMatrix C;   // #V by 4·#TV (Eq. 9), rows: at most 16 entries, φ summing to 1
   std::vector<int> tet_of;  // #V: the tet each surface vertex lies in (or is bound to)
   int strays = 0;           // surface vertices outside every tet, bound to the nearest one
 };
