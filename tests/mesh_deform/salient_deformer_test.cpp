@@ -54,8 +54,8 @@ TEST_CASE("mesh_deform: a rigid motion of every handle moves the salient result 
   SalientDeformer d(bar.mesh, given_features_only(50));
   d.set_features({bar.bump});
   d.set_selection(t::whole_bar_two_ends(bar.mesh));
-  const Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(1, 2, 0.5), 30, Eigen::Vector3d(0.5, 0.5, 2),
-                                              Eigen::Vector3d(0.3, -0.2, 0.1));
+  const Eigen::Matrix4d T =
+      t::rotation_about(Eigen::Vector3d(1, 2, 0.5), 30, Eigen::Vector3d(0.5, 0.5, 2), Eigen::Vector3d(0.3, -0.2, 0.1));
   HandleTransforms h = HandleTransforms::identity(d.selection());
   h.regions = {T, T};
   const Vertices X = d.deform(h);

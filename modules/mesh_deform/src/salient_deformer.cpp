@@ -16,9 +16,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 double diagonal(const Vertices& V) { return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(); }
 
@@ -37,8 +35,8 @@ struct SalientDeformer::Model {
 struct SalientDeformer::Frame {
   solver::Cholesky chol;
   std::vector<int> constrained;
-  std::vector<Eigen::Matrix3d> R;       // #V: Eq. 3's R_i (used at detail vertices)
-  std::vector<Eigen::Quaterniond> q;    // the same, each fit's starting guess
+  std::vector<Eigen::Matrix3d> R;     // #V: Eq. 3's R_i (used at detail vertices)
+  std::vector<Eigen::Quaterniond> q;  // the same, each fit's starting guess
   std::vector<Eigen::Matrix3d> R_feature;
   solver::DenseMatrix Z;  // subspace coefficients of the last solve
   Vertices P;             // C Z
@@ -52,9 +50,8 @@ SalientDeformer::~SalientDeformer() = default;
 
 void SalientDeformer::set_options(const SalientOptions& o) {
   auto nonneg = [](double x) { return std::isfinite(x) && x >= 0; };
-  if (!nonneg(o.alpha) || !nonneg(o.beta) || !nonneg(o.gamma) || !nonneg(o.lambda) || !(o.alpha > 0) ||
-      !(o.beta > 0) || !(o.gamma + o.lambda > 0) || !nonneg(o.feature_weight_scale) || o.iterations < 1 ||
-      o.subspace_vertices < 8)
+  if (!nonneg(o.alpha) || !nonneg(o.beta) || !nonneg(o.gamma) || !nonneg(o.lambda) || !(o.alpha > 0) || !(o.beta > 0) ||
+      !(o.gamma + o.lambda > 0) || !nonneg(o.feature_weight_scale) || o.iterations < 1 || o.subspace_vertices < 8)
     throw InvalidArgument(
         "mesh_deform::SalientDeformer::set_options(): expected finite weights >= 0 with alpha, beta and gamma + "
         "lambda > 0, iterations >= 1 and subspace_vertices >= 8");
@@ -106,8 +103,8 @@ void SalientDeformer::build_model() {
     detected = std::move(found.features);
     report_.detection = found.report;
   }
-  m->features = user_features_.empty() ? detected
-                                       : combine_features(detected, user_features_, options_.user_features, n);
+  m->features =
+      user_features_.empty() ? detected : combine_features(detected, user_features_, options_.user_features, n);
   report_.detection_ms = ms_since(t0);
 
   t0 = Clock::now();
@@ -170,8 +167,7 @@ void fit_feature_rotations(const detail::SalientSystem& s, const Vertices& P, st
   for (size_t i = 0; i < s.features.size(); ++i) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     const Feature& f = s.features[i];
-    for (size_t j = 0; j < f.size(); ++j)
-      A += P.row(f[j]).transpose() * s.offsets[i].row(static_cast<Eigen::Index>(j));
+    for (size_t j = 0; j < f.size(); ++j) A += P.row(f[j]).transpose() * s.offsets[i].row(static_cast<Eigen::Index>(j));
     R[i] = geometry::polar_rotation(A);
   }
 }

@@ -51,8 +51,8 @@ Sparse gram(const Sparse& B, double weight) { return weight * Sparse(Sparse(B.tr
 
 }  // namespace
 
-SalientSystem assemble_salient_system(const TriMesh& mesh, std::vector<Feature> features,
-                                      const geometry::TetMesh& tets, Sparse C, const SalientOptions& o) {
+SalientSystem assemble_salient_system(const TriMesh& mesh, std::vector<Feature> features, const geometry::TetMesh& tets,
+                                      Sparse C, const SalientOptions& o) {
   SalientSystem s;
   s.C = std::move(C);
   s.Ct = s.C.transpose();

@@ -14,21 +14,20 @@
 namespace lapis::mesh_deform::detail {
 
 struct SalientSystem {
-  solver::SparseMatrix C;   // #V by 4·#TV (Eq. 9)
-  solver::SparseMatrix Ct;  // its transpose: right-hand sides are Cᵀ Y
-  solver::SparseMatrix L;   // #V by #V cotangent Laplacian (geometry's sign, unnormalised)
-  Vertices delta;           // L P at rest: Eq. 3's δ
+  solver::SparseMatrix C;            // #V by 4·#TV (Eq. 9)
+  solver::SparseMatrix Ct;           // its transpose: right-hand sides are Cᵀ Y
+  solver::SparseMatrix L;            // #V by #V cotangent Laplacian (geometry's sign, unnormalised)
+  Vertices delta;                    // L P at rest: Eq. 3's δ
   std::vector<int> detail_vertices;  // vertices outside every feature: Eq. 3's sum
   std::vector<Feature> features;
-  std::vector<double> weight;        // w_i of Eq. 2, per feature
-  std::vector<Vertices> offsets;     // per feature, p_j − c_i at rest (|F_i| by 3)
-  solver::SparseMatrix normal;       // Eq. 11's normal matrix without the handle rows
+  std::vector<double> weight;     // w_i of Eq. 2, per feature
+  std::vector<Vertices> offsets;  // per feature, p_j − c_i at rest (|F_i| by 3)
+  solver::SparseMatrix normal;    // Eq. 11's normal matrix without the handle rows
 };
 
 // Assembles E_sfp (Eq. 1–2, centred rows), α E_ldp (Eq. 3), γ E_disc and λ E_vibr (Eq. 8).
-SalientSystem assemble_salient_system(const TriMesh& mesh, std::vector<Feature> features,
-                                      const geometry::TetMesh& tets, solver::SparseMatrix C,
-                                      const SalientOptions& options);
+SalientSystem assemble_salient_system(const TriMesh& mesh, std::vector<Feature> features, const geometry::TetMesh& tets,
+                                      solver::SparseMatrix C, const SalientOptions& options);
 
 // β Σ_h C_hᵀ C_h over the given vertices (Eq. 4 projected by Eq. 9).
 solver::SparseMatrix handle_normal(const solver::SparseMatrix& C, const std::vector<int>& vertices, double beta);

@@ -33,8 +33,7 @@ void check_input(const SparseMatrix& K, const SparseMatrix& M, int k, const Eige
   if (k < 1 || k >= K.rows())
     throw InvalidArgument(std::string(kFn) + ": k = " + std::to_string(k) + " eigenpairs of a " +
                           std::to_string(K.rows()) + "-row problem, expected 1 <= k < " + std::to_string(K.rows()));
-  if (o.shift && !std::isfinite(*o.shift))
-    throw InvalidArgument(std::string(kFn) + ": the shift is not finite");
+  if (o.shift && !std::isfinite(*o.shift)) throw InvalidArgument(std::string(kFn) + ": the shift is not finite");
   if (!(o.relative_shift > 0) || !(o.tolerance > 0) || o.max_restarts < 1 || o.basis_size < 0)
     throw InvalidArgument(std::string(kFn) +
                           ": expected relative_shift > 0, tolerance > 0, max_restarts >= 1, basis_size >= 0");
@@ -88,10 +87,11 @@ Eigenpairs dense_eigenpairs(const SparseMatrix& K, const SparseMatrix& M, int k)
   return e;
 }
 
-Eigenpairs lanczos_eigenpairs(const SparseMatrix& K, const SparseMatrix& M, int k, double sigma,
-                              const EigenOptions& o, EigenReport& report) {
+Eigenpairs lanczos_eigenpairs(const SparseMatrix& K, const SparseMatrix& M, int k, double sigma, const EigenOptions& o,
+                              EigenReport& report) {
   const int n = static_cast<int>(K.rows());
-  const int ncv = o.basis_size > 0 ? std::min(std::max(o.basis_size, k + 1), n) : std::min(std::max(2 * k + 1, k + 20), n);
+  const int ncv =
+      o.basis_size > 0 ? std::min(std::max(o.basis_size, k + 1), n) : std::min(std::max(2 * k + 1, k + 20), n);
   detail::ShiftInvertOperator op(K, M);
   Spectra::SparseSymMatProd<double, Eigen::Lower, Eigen::ColMajor, int> bop(M);
   const auto t0 = std::chrono::steady_clock::now();
@@ -115,7 +115,8 @@ Eigenpairs lanczos_eigenpairs(const SparseMatrix& K, const SparseMatrix& M, int 
   } catch (const NotPositiveDefinite& err) {
     throw NotPositiveDefinite(std::string(kFn) + ": K - sigma M with sigma = " + std::to_string(sigma) +
                                   " is not positive definite (is K semi-definite, M definite, sigma below the "
-                                  "spectrum?): " + err.what(),
+                                  "spectrum?): " +
+                                  err.what(),
                               err.column());
   }
 }
@@ -129,8 +130,8 @@ Eigenpairs smallest_eigenpairs(const SparseMatrix& K, const SparseMatrix& M, int
   EigenReport report;
   report.backend = o.backend;
   report.shift = o.shift ? *o.shift : -o.relative_shift * scale;
-  Eigenpairs e = o.backend == Backend::Eigen ? dense_eigenpairs(K, M, k)
-                                             : lanczos_eigenpairs(K, M, k, report.shift, o, report);
+  Eigenpairs e =
+      o.backend == Backend::Eigen ? dense_eigenpairs(K, M, k) : lanczos_eigenpairs(K, M, k, report.shift, o, report);
   sort_ascending(e);
   report.max_residual = max_residual(K, M, e, scale);
   report.total_ms = ms_since(t0);

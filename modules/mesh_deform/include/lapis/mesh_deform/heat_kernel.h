@@ -21,6 +21,8 @@ struct HeatKernelOptions {
   // weighs e^{−λ_k t_min} = truncation (public code: 10⁻⁴, i.e. t = 4 ln 10 / λ).
   double truncation = 1e-4;
   solver::EigenOptions eigen;
+
+  bool operator==(const HeatKernelOptions&) const = default;
 };
 
 // Log-spaced times from the spectrum (values ascending, λ₁ ≈ 0 first): count times over

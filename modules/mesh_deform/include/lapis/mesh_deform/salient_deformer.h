@@ -38,6 +38,8 @@ struct SalientOptions {
   // Start a frame from the rotations the previous one ended with (an interactive drag);
   // otherwise every R is the identity before the first solve (spec §1.4).
   bool warm_start = true;
+
+  bool operator==(const SalientOptions&) const = default;
 };
 
 struct SalientReport {
@@ -45,17 +47,17 @@ struct SalientReport {
   int subspace_vertices = 0, tets = 0, unknowns = 0;  // unknowns per coordinate: 4 · subspace_vertices
   int strays = 0;                                     // surface vertices outside every tet
   FeatureReport detection;
-  double detection_ms = 0;     // HKS, clustering, aggregation (once per mesh)
-  double subspace_ms = 0;      // building the tetrahedra (once per mesh)
-  double embedding_ms = 0;     // location and C (once per mesh)
-  double system_ms = 0;        // system (11) without the handle rows (once per mesh)
-  double precompute_ms = 0;    // Table 1's precomputation: system_ms, the handle rows, the Cholesky
-  double factorize_ms = 0;     // of which the factorization
-  int iterations = 0;          // in the last deform()
+  double detection_ms = 0;   // HKS, clustering, aggregation (once per mesh)
+  double subspace_ms = 0;    // building the tetrahedra (once per mesh)
+  double embedding_ms = 0;   // location and C (once per mesh)
+  double system_ms = 0;      // system (11) without the handle rows (once per mesh)
+  double precompute_ms = 0;  // Table 1's precomputation: system_ms, the handle rows, the Cholesky
+  double factorize_ms = 0;   // of which the factorization
+  int iterations = 0;        // in the last deform()
   double frame_ms = 0, rotations_ms = 0, solves_ms = 0, interpolation_ms = 0;
-  double last_change = 0;          // max vertex move of the last iteration / bounding box diagonal
-  double handle_residual = 0;      // max ‖p′_h − p̄_h‖ over constrained vertices, before they are placed
-  double feature_residual = 0;     // max feature_rigidity_residual() over the features
+  double last_change = 0;       // max vertex move of the last iteration / bounding box diagonal
+  double handle_residual = 0;   // max ‖p′_h − p̄_h‖ over constrained vertices, before they are placed
+  double feature_residual = 0;  // max feature_rigidity_residual() over the features
   double ms_per_iteration() const { return iterations ? frame_ms / iterations : 0; }
 };
 

@@ -32,6 +32,8 @@ struct FeatureOptions {
   // Skip seeding once the best unclustered saliency is below aggregate_saliency: every later
   // cluster's mean is at most its seed's, so none could be aggregated (same features, faster).
   bool stop_seeding_early = true;
+
+  bool operator==(const FeatureOptions&) const = default;
 };
 
 struct FeatureReport {

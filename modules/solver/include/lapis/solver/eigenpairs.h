@@ -33,23 +33,25 @@ struct EigenOptions {
   int basis_size = 0;
   int max_restarts = 1000;
   double tolerance = 1e-12;  // Spectra's relative accuracy of the Ritz values
+
+  bool operator==(const EigenOptions&) const = default;
 };
 
 struct EigenReport {
   Backend backend = Backend::Cholmod;
-  double shift = 0;          // σ used
-  int restarts = 0;          // Lanczos restarts (0 for the dense backend)
-  int solves = 0;            // applications of (K − σM)⁻¹M
+  double shift = 0;  // σ used
+  int restarts = 0;  // Lanczos restarts (0 for the dense backend)
+  int solves = 0;    // applications of (K − σM)⁻¹M
   // max_i ‖Kφ_i − λ_i Mφ_i‖₂ / (s ‖Mφ_i‖₂), s = max_j K_jj / M_jj: relative to the top of the
   // spectrum, so a λ₁ = 0 pair is measured too.
   double max_residual = 0;
-  double factorize_ms = 0;   // Cholesky of K − σM
+  double factorize_ms = 0;  // Cholesky of K − σM
   double total_ms = 0;
 };
 
 struct Eigenpairs {
-  Eigen::VectorXd values;   // k ascending eigenvalues λ
-  DenseMatrix vectors;      // n by k, M-orthonormal: ΦᵀMΦ = I
+  Eigen::VectorXd values;  // k ascending eigenvalues λ
+  DenseMatrix vectors;     // n by k, M-orthonormal: ΦᵀMΦ = I
   EigenReport report;
 };
 
