@@ -44,8 +44,7 @@ std::vector<Feature> read_features(const std::filesystem::path& path) {
     const std::string where = path.string() + ": feature " + std::to_string(f);
     if (!a.is_array()) throw IoError(where + ": expected an array of vertex indices, found " + a.type_name());
     Feature g;
-    for (size_t k = 0; k < a.size(); ++k)
-      g.push_back(json_index<IoError>(a[k], where + " entry " + std::to_string(k)));
+    for (size_t k = 0; k < a.size(); ++k) g.push_back(json_index<IoError>(a[k], where + " entry " + std::to_string(k)));
     out.push_back(std::move(g));
   }
   return out;
@@ -80,7 +79,8 @@ void write_saliency_ply(const std::filesystem::path& path, const geometry::TriMe
       for (int k = 0; k < 3; ++k) out << ' ' << static_cast<int>(std::lround(255 * c[k]));
       out << '\n';
     }
-    for (int f = 0; f < mesh.num_faces(); ++f) out << "3 " << mesh.F(f, 0) << ' ' << mesh.F(f, 1) << ' ' << mesh.F(f, 2) << '\n';
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      out << "3 " << mesh.F(f, 0) << ' ' << mesh.F(f, 1) << ' ' << mesh.F(f, 2) << '\n';
   });
 }
 
