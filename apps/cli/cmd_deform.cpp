@@ -11,6 +11,7 @@
 #include "command.h"
 #include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/cgal_enclosure.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/feature_io.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
@@ -31,6 +32,7 @@ constexpr const char* kUsageRest =
     "                    [--domain edges|vertices] [--transform rotation|isotropic|anisotropic|full]\n"
     "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
     "                    [--features FEATURES.json] [--no-detect] [--subspace-vertices N] [--eigenpairs K]\n"
+    "                    [--subspace lattice|cgal]\n"
     "                    --out OUT.obj [--report OUT.json]\n"
     "  ROI: vertex indices, as a JSON array or whitespace-separated text; 'all' for every vertex.\n"
     "  HANDLES.json: {\"regions\": [{\"vertices\": [..], \"transforms\": [M, ...]}],\n"
@@ -46,7 +48,8 @@ constexpr const char* kUsageRest =
     "  of the bbox diagonal; --warm-start starts each frame from the last one's transforms.\n"
     "  salient (Zhao et al.): --iterations per frame (5); --features adds features (a file of\n"
     "  `lapis features`) to the detected ones, or replaces them with --no-detect; the solid\n"
-    "  subspace has about --subspace-vertices vertices (100); --eigenpairs of the heat kernel (100).\n"
+    "  subspace has about --subspace-vertices vertices (100), a lattice of cubes or CGAL's alpha\n"
+    "  wrap tetrahedralised (--subspace cgal); --eigenpairs of the heat kernel (100).\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
 const char* usage() {
@@ -108,9 +111,10 @@ json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95
 
 int run(const std::vector<std::string>& argv) {
   const Args args(argv, {"--scale-features", "--warm-start", "--soft-handles", "--no-detect"});
-  args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
-                   "--report", "--domain", "--transform", "--frame", "--tolerance", "--warm-start", "--soft-handles",
-                   "--features", "--no-detect", "--subspace-vertices", "--eigenpairs"});
+  args.allow_only({"--mesh",       "--roi",        "--handles",      "--method",   "--weights",   "--scale-features",
+                   "--iterations", "--out",        "--report",       "--domain",   "--transform", "--frame",
+                   "--tolerance",  "--warm-start", "--soft-handles", "--features", "--no-detect", "--subspace-vertices",
+                   "--eigenpairs", "--subspace"});
   const std::string method = args.get("--method");
   bool known = false;
   for (const MethodInfo& m : methods()) known = known || method == m.name;
@@ -132,12 +136,21 @@ int run(const std::vector<std::string>& argv) {
   settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000000));
   if (edge) read_edge_options(args, w, settings.edge);
   if (settings.method == Method::Salient) read_salient_options(args, settings.salient);
-  for (const char* flag : {"--features", "--no-detect", "--subspace-vertices", "--eigenpairs"})
+  for (const char* flag : {"--features", "--no-detect", "--subspace-vertices", "--eigenpairs", "--subspace"})
     if (args.has(flag) && settings.method != Method::Salient)
       throw UsageError(std::string(flag) + " is an option of --method salient");
   const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
-  if (auto* s = dynamic_cast<SalientDeformer*>(d.get()); s && args.has("--features"))
-    s->set_features(read_features(args.get("--features")));
+  if (auto* s = dynamic_cast<SalientDeformer*>(d.get())) {
+    if (args.has("--features")) s->set_features(read_features(args.get("--features")));
+    const std::string subspace = args.get("--subspace", "lattice");
+    if (subspace != "lattice" && subspace != "cgal")
+      throw UsageError("--subspace must be lattice or cgal, not '" + subspace + "'");
+    if (subspace == "cgal") {
+      EnclosureOptions eo;
+      eo.target_vertices = settings.salient.subspace_vertices;
+      s->set_subspace(cgal_enclosure(mesh, eo));
+    }
+  }
   const auto* implicit = dynamic_cast<const ImplicitLaplacianDeformer*>(d.get());
   using clock = std::chrono::steady_clock;
   auto ms = [](clock::time_point t0) { return std::chrono::duration<double, std::milli>(clock::now() - t0).count(); };

@@ -36,8 +36,11 @@ json subspace_timings(const TriMesh& m) {
     const double build = time_ms([&] { tets = geometry::lattice_enclosure(m, n); });
     SubspaceEmbedding e;
     const double embed = time_ms([&] { e = embed_in_subspace(tets, m.V); });
-    out[std::to_string(n)] = {{"build_ms", build},      {"embed_ms", embed},         {"vertices", tets.num_vertices()},
-                              {"tets", tets.num_tets()}, {"strays", e.strays}};
+    out[std::to_string(n)] = {{"build_ms", build},
+                              {"embed_ms", embed},
+                              {"vertices", tets.num_vertices()},
+                              {"tets", tets.num_tets()},
+                              {"strays", e.strays}};
   }
   return out;
 }

@@ -232,6 +232,11 @@ TEST_CASE("cli: lapis features writes features, a saliency PLY and a report; lap
   CHECK(k["salient"]["iterations"] == 3);
   CHECK(k["salient"]["strays"] == 0);
   CHECK(k["salient"]["handle_residual"].get<double>() < 0.5);
+  const Result cgal = lapis_cli(base + " --method salient --no-detect --subspace cgal --subspace-vertices 20");
+  CHECK(cgal.status == 0);
+  const Result unknown_subspace = lapis_cli(base + " --method salient --subspace magic");
+  CHECK(unknown_subspace.status == 2);
+  CHECK(unknown_subspace.output.find("--subspace must be lattice or cgal") != std::string::npos);
   const Result bad = lapis_cli(base + " --method salient --no-detect --features " + (d / "bad_features.json").string());
   CHECK(bad.status == 1);
   CHECK(bad.output.find("bad_features.json: feature 0 entry 1") != std::string::npos);
