@@ -40,8 +40,7 @@ TEST_CASE("mesh_deform: what CGAL cannot enclose is a typed error naming the sta
   coarse.target_vertices = 8;
   coarse.offset_fraction = 0.001;
   CHECK_THROWS_WITH_AS(cgal_enclosure(geometry::make_plane_grid(10, 10), coarse),
-                       doctest::Contains("tetrahedral meshing of the wrap produced no tetrahedra"),
-                       SolverFailure);
+                       doctest::Contains("tetrahedral meshing of the wrap produced no tetrahedra"), SolverFailure);
   EnclosureOptions bad;
   bad.offset_fraction = 0;
   CHECK_THROWS_WITH_AS(cgal_enclosure(geometry::make_icosphere(2), bad), doctest::Contains("offset_fraction > 0"),

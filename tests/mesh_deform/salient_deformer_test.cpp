@@ -6,6 +6,7 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/feature_rigidity.h"
+#include "lapis/mesh_deform/live_deformer.h"
 #include "lapis/mesh_deform/salient_deformer.h"
 #include "salient_meshes.h"
 #include "test_meshes.h"
@@ -156,4 +157,30 @@ TEST_CASE("mesh_deform: salient deformation rejects bad options, features and su
   std::swap(inverted.T(3, 0), inverted.T(3, 1));
   d.set_subspace(inverted);
   CHECK_THROWS_WITH_AS(d.precompute(), doctest::Contains("tet 3 has no positive volume"), InvalidArgument);
+}
+
+TEST_CASE("mesh_deform: the live deformer reports the salient features and takes the user's") {
+  const TriMesh m = t::spiky_sphere(4, t::tetrahedral_directions());
+  LiveDeformer live(m);
+  LiveRequest r;
+  r.settings.method = Method::Salient;
+  r.selection = t::bottom_fixed_top_handle(m, 2, 0.1, 0.1);
+  r.selection_revision = 1;
+  r.transforms = HandleTransforms::identity(r.selection);
+  const LiveFrame first = live.update(r);
+  CHECK(first.did_setup);
+  CHECK(first.features.size() == 4);
+  CHECK(first.saliency.size() == m.num_vertices());
+  CHECK((first.positions - m.V).cwiseAbs().maxCoeff() < 1e-10);
+  CHECK(first.timing.find("4 features") != std::string::npos);
+  // A new selection keeps the detection; painted features replace it.
+  r.selection_revision = 2;
+  r.settings.salient.user_features = FeatureMerge::Replace;
+  r.features = {first.features[0], {0, 1, 2, 3, 4}};
+  r.features_revision = 1;
+  const LiveFrame second = live.update(r);
+  CHECK(second.did_setup);
+  REQUIRE(second.features.size() == 2);
+  CHECK(second.features[0] == first.features[0]);
+  CHECK(second.saliency == first.saliency);
 }

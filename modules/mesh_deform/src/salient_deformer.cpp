@@ -55,7 +55,18 @@ void SalientDeformer::set_options(const SalientOptions& o) {
     throw InvalidArgument(
         "mesh_deform::SalientDeformer::set_options(): expected finite weights >= 0 with alpha, beta and gamma + "
         "lambda > 0, iterations >= 1 and subspace_vertices >= 8");
+  if (!(o.detection == options_.detection)) detection_.reset();
   options_ = o;
+  model_.reset();
+  mark_dirty();
+}
+
+void SalientDeformer::set_detection(SalientFeatures detection) {
+  if (detection.saliency.size() != mesh_.num_vertices())
+    throw InvalidArgument(
+        "mesh_deform::SalientDeformer::set_detection(): " + std::to_string(detection.saliency.size()) +
+        " saliency values for " + std::to_string(mesh_.num_vertices()) + " vertices");
+  detection_ = std::move(detection);
   model_.reset();
   mark_dirty();
 }
@@ -98,10 +109,10 @@ void SalientDeformer::build_model() {
   auto t0 = Clock::now();
   std::vector<Feature> detected;
   if (options_.detect_features) {
-    SalientFeatures found = detect_salient_features(mesh_, options_.detection);
-    m->saliency = std::move(found.saliency);
-    detected = std::move(found.features);
-    report_.detection = found.report;
+    if (!detection_) detection_ = detect_salient_features(mesh_, options_.detection);
+    m->saliency = detection_->saliency;
+    detected = detection_->features;
+    report_.detection = detection_->report;
   }
   m->features =
       user_features_.empty() ? detected : combine_features(detected, user_features_, options_.user_features, n);

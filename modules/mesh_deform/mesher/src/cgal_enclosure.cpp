@@ -93,8 +93,7 @@ geometry::TetMesh mesh_wrap(const Domain& domain, double h, bool odt) {
 
 }  // namespace
 
-geometry::TetMesh cgal_enclosure(const geometry::TriMesh& surface, const EnclosureOptions& o,
-                                 EnclosureReport* report) {
+geometry::TetMesh cgal_enclosure(const geometry::TriMesh& surface, const EnclosureOptions& o, EnclosureReport* report) {
   geometry::require_valid(surface, {}, kFn);
   if (surface.num_faces() == 0) throw InvalidArgument(std::string(kFn) + ": the surface has no faces");
   if (o.target_vertices < 8 || !(o.alpha_fraction > 0) || !(o.offset_fraction > 0) || o.attempts < 1)

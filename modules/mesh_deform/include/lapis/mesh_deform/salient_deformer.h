@@ -76,6 +76,10 @@ class SalientDeformer final : public Deformer {
   // A given solid subspace (e.g. from a tetrahedral mesher) instead of the lattice. Checked by
   // the next precompute(): geometry::require_valid_tets().
   void set_subspace(geometry::TetMesh tets);
+  // A detection already run on this mesh (e.g. cached by an interactive session across
+  // selections), used instead of running options().detection again. Throws InvalidArgument
+  // when its saliency has not one value per vertex.
+  void set_detection(SalientFeatures detection);
 
   // After precompute(): the features in use, the saliency (empty without detection) and the
   // subspace with its coordinates.
@@ -98,6 +102,7 @@ class SalientDeformer final : public Deformer {
   SalientReport report_;
   std::vector<Feature> user_features_;
   std::optional<geometry::TetMesh> given_subspace_;
+  std::optional<SalientFeatures> detection_;  // kept across set_features() and selections
   std::unique_ptr<Model> model_;
   std::unique_ptr<Frame> frame_;
 };

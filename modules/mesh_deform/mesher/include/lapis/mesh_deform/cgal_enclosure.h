@@ -18,7 +18,7 @@ struct EnclosureOptions {
   // tet, 0.08 leaves 19 of 26K, 0.1 none of the camel's and 0.15 none of the armadillo's.
   double alpha_fraction = 0.05;
   double offset_fraction = 0.1;
-  bool odt = true;  // ODT optimisation of the tetrahedra (§4.1's [44])
+  bool odt = true;   // ODT optimisation of the tetrahedra (§4.1's [44])
   int attempts = 4;  // cell-size corrections towards target_vertices
 };
 
