@@ -8,6 +8,7 @@
 #include "lapis/geometry/laplacian.h"
 #include "lapis/geometry/normals.h"
 #include "lapis/geometry/procedural.h"
+#include "lapis/mesh_deform/feature_labels.h"
 #include "lapis/mesh_deform/heat_kernel.h"
 #include "lapis/mesh_deform/salient_features.h"
 #include "salient_meshes.h"
@@ -159,4 +160,19 @@ TEST_CASE("mesh_deform: user features replace or join the detected ones") {
   CHECK_THROWS_AS(merge_two_features(detected, 1, 1), InvalidArgument);
   CHECK_THROWS_WITH_AS(detect_salient_features(geometry::make_icosphere(1), FeatureOptions{}),
                        doctest::Contains("expected 2 <= k < #V = 42"), InvalidArgument);
+}
+
+TEST_CASE("mesh_deform: feature labels seed, paint, erase and merge features as an editor does") {
+  FeatureLabels labels;
+  labels.seed({{0, 1, 2, 3}, {5, 6, 7, 8}}, 12);
+  CHECK(labels.count == 2);
+  labels.paint({9, 10}, 2);  // a new feature
+  labels.paint({3}, FeatureLabels::kNone);
+  CHECK(labels.features() == std::vector<Feature>{{0, 1, 2}, {5, 6, 7, 8}, {9, 10}});
+  labels.merge(0, 1);
+  CHECK(labels.count == 2);
+  CHECK(labels.features() == std::vector<Feature>{{0, 1, 2, 5, 6, 7, 8}, {9, 10}});
+  CHECK(labels.size_of(1) == 2);
+  CHECK_THROWS_WITH_AS(labels.merge(1, 1), doctest::Contains("two different indices"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(labels.paint({12}, 0), doctest::Contains("vertex 12 out of range"), InvalidArgument);
 }
