@@ -26,8 +26,7 @@ void FeatureLabels::paint(const std::vector<int>& vertices, int feature) {
 void FeatureLabels::merge(int a, int b) {
   if (a == b || a < 0 || b < 0 || a >= count || b >= count)
     throw InvalidArgument("mesh_deform::FeatureLabels::merge(): features " + std::to_string(a) + " and " +
-                          std::to_string(b) + ", expected two different indices in [0, " + std::to_string(count) +
-                          ")");
+                          std::to_string(b) + ", expected two different indices in [0, " + std::to_string(count) + ")");
   for (int& f : feature_of) {
     if (f == b) f = a;
     if (f > b) --f;
