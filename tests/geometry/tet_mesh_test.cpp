@@ -41,6 +41,10 @@ double total_volume(const TetMesh& m) {
 TEST_CASE("geometry: tet location finds the containing tet with coordinates that reproduce the point") {
   const TetMesh m = five_tet_cube();
   CHECK(std::abs(total_volume(m) - 1) < 1e-14);
+  // The central tet (4) shares each of its faces with one corner tet.
+  const std::vector<SharedFace> shared = shared_faces(m);
+  CHECK(shared.size() == 4);
+  for (const SharedFace& f : shared) CHECK((f.tets[0] == 4 || f.tets[1] == 4));
   const TetLocator locator(m);
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(0, 1);

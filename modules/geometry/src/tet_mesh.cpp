@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "lapis/core/error.h"
@@ -40,6 +41,23 @@ Eigen::Vector4d tet_barycentric(const TetMesh& m, int t, const Eigen::Vector3d& 
   E << corner(m, t, 1) - a, corner(m, t, 2) - a, corner(m, t, 3) - a;
   const Eigen::Vector3d l = E.partialPivLu().solve(p - a);
   return Eigen::Vector4d(1 - l.sum(), l[0], l[1], l[2]);
+}
+
+std::vector<SharedFace> shared_faces(const TetMesh& m) {
+  std::map<std::array<int, 3>, std::array<int, 2>> faces;
+  for (int t = 0; t < m.num_tets(); ++t)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> f{};
+      for (int k = 0, c = 0; k < 4; ++k)
+        if (k != skip) f[static_cast<size_t>(c++)] = m.T(t, k);
+      std::sort(f.begin(), f.end());
+      auto [it, fresh] = faces.try_emplace(f, std::array<int, 2>{t, -1});
+      if (!fresh) it->second[1] = t;
+    }
+  std::vector<SharedFace> out;
+  for (const auto& [f, pair] : faces)
+    if (pair[1] >= 0) out.push_back({f, pair});
+  return out;
 }
 
 void require_valid_tets(const TetMesh& m, const char* context) {

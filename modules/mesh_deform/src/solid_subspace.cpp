@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
-#include <map>
 
 namespace lapis::mesh_deform {
 namespace {
@@ -79,20 +78,11 @@ solver::DenseMatrix rest_coefficients(const geometry::TetMesh& tets) {
 }
 
 solver::SparseMatrix discontinuity_rows(const geometry::TetMesh& tets) {
-  std::map<std::array<int, 3>, std::array<int, 2>> faces;  // sorted corners -> (tet, tet)
-  for (int t = 0; t < tets.num_tets(); ++t)
-    for (int skip = 0; skip < 4; ++skip) {
-      std::array<int, 3> f{};
-      for (int k = 0, c = 0; k < 4; ++k)
-        if (k != skip) f[static_cast<size_t>(c++)] = tets.T(t, k);
-      std::sort(f.begin(), f.end());
-      auto [it, fresh] = faces.try_emplace(f, std::array<int, 2>{t, -1});
-      if (!fresh) it->second[1] = t;
-    }
   Triplets out;
   int row = 0;
-  for (const auto& [f, pair] : faces) {
-    if (pair[1] < 0) continue;  // boundary face
+  for (const geometry::SharedFace& face : geometry::shared_faces(tets)) {
+    const auto& f = face.corners;
+    const auto& pair = face.tets;
     const Eigen::Vector3d a = tets.V.row(f[0]).transpose(), b = tets.V.row(f[1]).transpose(),
                           c = tets.V.row(f[2]).transpose();
     const double w = std::sqrt(0.5 * (b - a).cross(c - a).norm() / 3);

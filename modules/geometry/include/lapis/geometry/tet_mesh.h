@@ -28,6 +28,15 @@ double tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eige
 // Barycentric coordinates of p in tet t (sum 1; all ≥ 0 inside).
 Eigen::Vector4d tet_barycentric(const TetMesh& mesh, int t, const Eigen::Vector3d& p);
 
+// A triangle shared by two tets: its corners ascending and the two tets.
+struct SharedFace {
+  std::array<int, 3> corners;
+  std::array<int, 2> tets;
+};
+
+// Every face shared by two tets, ordered by corners (a conforming mesh's interior faces).
+std::vector<SharedFace> shared_faces(const TetMesh& mesh);
+
 // Throws InvalidArgument (starting with context) for an index out of range, a non-finite
 // vertex or a tet whose volume is not positive, naming the tet.
 void require_valid_tets(const TetMesh& mesh, const char* context);
