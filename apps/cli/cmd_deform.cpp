@@ -11,7 +11,9 @@
 #include "command.h"
 #include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
+#include "lapis/mesh_deform/cgal_enclosure.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
+#include "lapis/mesh_deform/feature_io.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/metrics.h"
@@ -29,6 +31,8 @@ constexpr const char* kUsageRest =
     "                    [--weights cotan|uniform] [--scale-features] [--iterations N]\n"
     "                    [--domain edges|vertices] [--transform rotation|isotropic|anisotropic|full]\n"
     "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
+    "                    [--features FEATURES.json] [--no-detect] [--subspace-vertices N] [--eigenpairs K]\n"
+    "                    [--subspace lattice|cgal]\n"
     "                    --out OUT.obj [--report OUT.json]\n"
     "  ROI: vertex indices, as a JSON array or whitespace-separated text; 'all' for every vertex.\n"
     "  HANDLES.json: {\"regions\": [{\"vertices\": [..], \"transforms\": [M, ...]}],\n"
@@ -42,6 +46,10 @@ constexpr const char* kUsageRest =
     "  each cell, anisotropic (S R1, the paper's) by default; --frame of the scales, world axes\n"
     "  (the paper's) or principal rest axes; --tolerance stops once no vertex moves more than T\n"
     "  of the bbox diagonal; --warm-start starts each frame from the last one's transforms.\n"
+    "  salient (Zhao et al.): --iterations per frame (5); --features adds features (a file of\n"
+    "  `lapis features`) to the detected ones, or replaces them with --no-detect; the solid\n"
+    "  subspace has about --subspace-vertices vertices (100), a lattice of cubes or CGAL's alpha\n"
+    "  wrap tetrahedralised (--subspace cgal); --eigenpairs of the heat kernel (100).\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
 const char* usage() {
@@ -74,12 +82,39 @@ void read_edge_options(const Args& args, LaplacianWeights weights, EdgeLaplacian
   }
 }
 
+// The salient method's flags over its defaults.
+void read_salient_options(const Args& args, SalientOptions& o) {
+  o.iterations = static_cast<int>(args.get_int("--iterations", o.iterations, 1, 1000000));
+  o.subspace_vertices = static_cast<int>(args.get_int("--subspace-vertices", o.subspace_vertices, 8, 100000));
+  o.detection.hks.eigenpairs = static_cast<int>(args.get_int("--eigenpairs", o.detection.hks.eigenpairs, 2, 100000));
+  o.detect_features = !args.has("--no-detect");
+}
+
+json salient_report(const SalientReport& r) {
+  return {{"features", r.features},
+          {"feature_vertices", r.feature_vertices},
+          {"subspace_vertices", r.subspace_vertices},
+          {"tets", r.tets},
+          {"strays", r.strays},
+          {"iterations", r.iterations},
+          {"detection_ms", r.detection_ms},
+          {"subspace_ms", r.subspace_ms},
+          {"embedding_ms", r.embedding_ms},
+          {"precompute_ms", r.precompute_ms},
+          {"ms_per_iteration", r.ms_per_iteration()},
+          {"last_change", r.last_change},
+          {"handle_residual", r.handle_residual},
+          {"feature_residual", r.feature_residual}};
+}
+
 json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95", s.p95}}; }
 
 int run(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--scale-features", "--warm-start", "--soft-handles"});
-  args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
-                   "--report", "--domain", "--transform", "--frame", "--tolerance", "--warm-start", "--soft-handles"});
+  const Args args(argv, {"--scale-features", "--warm-start", "--soft-handles", "--no-detect"});
+  args.allow_only({"--mesh",       "--roi",        "--handles",      "--method",   "--weights",   "--scale-features",
+                   "--iterations", "--out",        "--report",       "--domain",   "--transform", "--frame",
+                   "--tolerance",  "--warm-start", "--soft-handles", "--features", "--no-detect", "--subspace-vertices",
+                   "--eigenpairs", "--subspace"});
   const std::string method = args.get("--method");
   bool known = false;
   for (const MethodInfo& m : methods()) known = known || method == m.name;
@@ -100,7 +135,22 @@ int run(const std::vector<std::string>& argv) {
   settings.scale_features = args.has("--scale-features");
   settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000000));
   if (edge) read_edge_options(args, w, settings.edge);
+  if (settings.method == Method::Salient) read_salient_options(args, settings.salient);
+  for (const char* flag : {"--features", "--no-detect", "--subspace-vertices", "--eigenpairs", "--subspace"})
+    if (args.has(flag) && settings.method != Method::Salient)
+      throw UsageError(std::string(flag) + " is an option of --method salient");
   const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
+  if (auto* s = dynamic_cast<SalientDeformer*>(d.get())) {
+    if (args.has("--features")) s->set_features(read_features(args.get("--features")));
+    const std::string subspace = args.get("--subspace", "lattice");
+    if (subspace != "lattice" && subspace != "cgal")
+      throw UsageError("--subspace must be lattice or cgal, not '" + subspace + "'");
+    if (subspace == "cgal") {
+      EnclosureOptions eo;
+      eo.target_vertices = settings.salient.subspace_vertices;
+      s->set_subspace(cgal_enclosure(mesh, eo));
+    }
+  }
   const auto* implicit = dynamic_cast<const ImplicitLaplacianDeformer*>(d.get());
   using clock = std::chrono::steady_clock;
   auto ms = [](clock::time_point t0) { return std::chrono::duration<double, std::milli>(clock::now() - t0).count(); };
@@ -141,6 +191,7 @@ int run(const std::vector<std::string>& argv) {
                  {"fit_ms", er.fit_ms},
                  {"solve_ms", er.solve_ms}};
   }
+  if (const auto* s = dynamic_cast<const SalientDeformer*>(d.get())) r["salient"] = salient_report(s->report());
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
@@ -152,6 +203,7 @@ int run(const std::vector<std::string>& argv) {
 }  // namespace
 
 extern const Command kDeformCommand = {
-    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, or ARAP", usage(), run};
+    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, ARAP, or salient features", usage(),
+    run};
 
 }  // namespace lapis::cli

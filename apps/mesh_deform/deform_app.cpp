@@ -147,6 +147,11 @@ void DeformApp::request_solve() {
     r.transforms.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
   r.preview = dragging_ && preview_while_dragging_;
   if (color_mode_ == ColorMode::Distortion) r.field = field_;
+  if (settings_.method == Method::Salient && features_edited_) {
+    r.settings.salient.user_features = FeatureMerge::Replace;  // the painted ones are the features
+    r.features = features_.features();
+  }
+  r.features_revision = features_revision_;
 
   std::string key;
   append_bytes(key, epoch_);
@@ -163,6 +168,11 @@ void DeformApp::request_solve() {
     append_bytes(key, v);
   append_bytes(key, e.tolerance);
   append_bytes(key, e.handle_weight);
+  const SalientOptions& sa = settings_.salient;
+  for (int v : {sa.iterations, sa.subspace_vertices, static_cast<int>(sa.detect_features), sa.detection.hks.eigenpairs,
+                static_cast<int>(sa.warm_start)})
+    append_bytes(key, v);
+  append_bytes(key, features_revision_);
   append_bytes(key, r.preview);
   append_bytes(key, r.field ? static_cast<int>(*r.field) : -1);
   for (const auto& T : r.transforms.regions) key.append(reinterpret_cast<const char*>(T.data()), sizeof(double) * 16);
@@ -208,11 +218,19 @@ void DeformApp::receive(viewer::Viewer& v) {
   if (s->revision == selection_revision_ && s->settings == settings_) setup_started_ = -1;
   solve_ms_.push_back(s->frame.solve_ms);
   shown_.V = s->frame.positions;
+  features_received(s->frame);
   if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));
   last_ = std::move(s);
   result_frame_ = v.frame();
   pick_stale_ = true;
   surface_dirty_ = markers_dirty_ = true;
+}
+
+// The detected features seed the painted ones until the user edits them.
+void DeformApp::features_received(const LiveFrame& f) {
+  if (f.method != "salient" || features_edited_) return;
+  features_.seed(f.features, rest_.num_vertices());
+  active_feature_ = std::min(active_feature_, std::max(0, features_.count));
 }
 
 void DeformApp::on_frame(viewer::Viewer& v) {
@@ -283,6 +301,9 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
     engine_ = std::make_shared<EngineSlot>(rest_);
     ++epoch_;
     last_.reset();
+    features_ = {};  // a new mesh's features come from its own detection
+    features_edited_ = false;
+    ++features_revision_;
     last_key_.clear();
     received_ = submitted_;
     state_ = initial_state(rest_.num_vertices());

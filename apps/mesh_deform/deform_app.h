@@ -14,6 +14,7 @@
 
 #include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
+#include "lapis/mesh_deform/feature_labels.h"
 #include "lapis/mesh_deform/live_deformer.h"
 #include "lapis/mesh_deform/vertex_labels.h"
 #include "lapis/viewer/gizmo.h"
@@ -29,10 +30,16 @@ namespace fs = std::filesystem;
 enum class Tool { Move, Brush, Lasso };
 const char* tool_name(Tool t);
 
-enum class ColorMode { Selection, Distortion };
+enum class ColorMode { Selection, Distortion, Saliency };
 
 // Colour of region handle `label` on the surface and in the panels.
 Eigen::Vector3f handle_color(int label);
+// Colour of salient feature `index` (the salient method's rigid parts).
+Eigen::Vector3f feature_color(int index);
+
+// The paint target that paints the active salient feature (beside VertexLabels' kRoi, kFixed,
+// kNone and the handle indices).
+inline constexpr int kFeatureTarget = -10;
 
 struct DeformPaths {
   fs::path mesh;                // the mesh opened (the CLI's --mesh for the export)
@@ -126,6 +133,8 @@ class DeformApp final : public viewer::ViewerApp {
   void draw_handle_panel(viewer::Viewer& v);
   void draw_file_panel(viewer::Viewer& v);
   void draw_legend(viewer::Viewer& v);
+  void draw_feature_controls();
+  void features_received(const LiveFrame& f);
   void draw_overlay(viewer::Viewer& v);
   void draw_cursor(viewer::Viewer& v);
 
@@ -149,6 +158,11 @@ class DeformApp final : public viewer::ViewerApp {
   int target_ = VertexLabels::kRoi;  // kRoi, kFixed, kNone (erase) or 0 = the active handle
   bool erase_ = false;               // Shift held at press: this stroke erases
   float brush_px_ = 24;
+  FeatureLabels features_;        // the salient method's features as painted
+  bool features_edited_ = false;  // the user changed them: they replace the detection
+  std::uint64_t features_revision_ = 0;
+  std::optional<std::vector<int>> feature_stroke_;  // feature_of being painted (committed on release)
+  int active_feature_ = 0, merge_from_ = 1;
   viewer::Gizmo gizmo_;
   Eigen::Matrix4d drag_start_ = Eigen::Matrix4d::Identity();
   bool dragging_ = false;

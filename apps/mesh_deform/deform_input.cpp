@@ -155,6 +155,7 @@ bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
   if (tool_ == Tool::Move) return false;  // the camera's
   erase_ = mods & GLFW_MOD_SHIFT;
   stroke_ = std::make_shared<VertexLabels>(*state_.labels);
+  if (target_ == kFeatureTarget) feature_stroke_ = features_.feature_of;
   if (tool_ == Tool::Brush) {
     last_paint_ = p;
     paint_at(v, p);
@@ -187,7 +188,10 @@ void DeformApp::move(viewer::Viewer& v, const Eigen::Vector2d& p) {
 void DeformApp::paint_at(viewer::Viewer& v, const Eigen::Vector2d& p) {
   ensure_pick_structures();
   const std::vector<int> vs = viewer::brush_vertices(shown_, *conn_, *pick_bvh_, v.camera_matrices(), p, {brush_px_});
-  stroke_->paint(vs, paint_value());
+  if (feature_stroke_)
+    for (int i : vs) (*feature_stroke_)[static_cast<size_t>(i)] = erase_ ? FeatureLabels::kNone : active_feature_;
+  else
+    stroke_->paint(vs, paint_value());
   surface_dirty_ = true;
 }
 
@@ -198,12 +202,27 @@ void DeformApp::release(viewer::Viewer& v) {
     commit(std::string("move handle ") + std::to_string(state_.active_handle));
     return;  // the next request is the full pipeline (preview off)
   }
+  std::vector<int> lassoed;
   if (tool_ == Tool::Lasso && lasso_.size() >= 3) {
     ensure_pick_structures();
-    stroke_->paint(viewer::lasso_vertices(shown_, *pick_bvh_, v.camera_matrices(), lasso_), paint_value());
+    lassoed = viewer::lasso_vertices(shown_, *pick_bvh_, v.camera_matrices(), lasso_);
+    if (!feature_stroke_) stroke_->paint(lassoed, paint_value());
   }
   lasso_.clear();
   markers_dirty_ = true;
+  if (feature_stroke_) {  // a feature stroke: the labels stay, the features change
+    stroke_.reset();
+    std::vector<int> painted = std::move(*feature_stroke_);
+    feature_stroke_.reset();
+    for (int i : lassoed) painted[static_cast<size_t>(i)] = erase_ ? FeatureLabels::kNone : active_feature_;
+    if (painted == features_.feature_of) return;
+    features_.feature_of = std::move(painted);
+    features_.count = std::max(features_.count, active_feature_ + 1);
+    features_edited_ = true;
+    ++features_revision_;
+    surface_dirty_ = true;
+    return;
+  }
   auto labels = std::move(stroke_);
   stroke_.reset();
   if (labels->label == state_.labels->label) return;  // painted nothing new

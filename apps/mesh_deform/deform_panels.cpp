@@ -1,5 +1,6 @@
-// The deform app's Dear ImGui panels: tools and paint targets, method and its options, the
-// active handle's exact transform, files, the distortion legend and the timing overlay.
+// The deform app's Dear ImGui panels: tools and paint targets (the salient features among
+// them), method and its options, the active handle's exact transform, files, the distortion
+// legend and the timing overlay.
 #include <imgui.h>
 
 #include <algorithm>
@@ -80,6 +81,10 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   if (ImGui::RadioButton("handle", target_ >= 0)) target_ = 0;
   ImGui::SameLine();
   if (ImGui::RadioButton("erase", target_ == VertexLabels::kNone)) target_ = VertexLabels::kNone;
+  if (settings_.method == Method::Salient) {
+    ImGui::SameLine();
+    if (ImGui::RadioButton("feature", target_ == kFeatureTarget)) target_ = kFeatureTarget;
+  }
   ImGui::TextDisabled("1 ROI  2 fixed  3 handle  4 erase  N new handle");
   // Handles: pick the active one (the gizmo's and the target's).
   const int handles = state_.labels->handle_count();
@@ -108,6 +113,7 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("reset pose (R)")) reset_pose(v);
+  if (settings_.method == Method::Salient) draw_feature_controls();
   if (!selection_error_.empty())
     ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
   else if (selection_)
@@ -136,7 +142,53 @@ void draw_edge_controls(EdgeLaplacianOptions& o) {
   ImGui::Checkbox("warm start from the last frame", &o.warm_start);
 }
 
+// The salient method's choices (Zhao et al.): iterations, the subspace's size, detection.
+void draw_salient_controls(SalientOptions& o) {
+  ImGui::SliderInt("iterations / frame", &o.iterations, 1, 20);
+  ImGui::SliderInt("subspace vertices", &o.subspace_vertices, 20, 400);
+  ImGui::Checkbox("detect features (HKS)", &o.detect_features);
+  if (o.detect_features) ImGui::SliderInt("eigenpairs", &o.detection.hks.eigenpairs, 20, 300);
+  ImGui::Checkbox("warm start from the last frame", &o.warm_start);
+}
+
 }  // namespace
+
+// The features: pick the one the brush paints (target "feature"; Shift erases), start a new
+// one, merge two (§3.1's grouping), or go back to the detected ones.
+void DeformApp::draw_feature_controls() {
+  ImGui::Separator();
+  ImGui::Text("salient features (%d)%s", features_.count, features_edited_ ? ", edited" : "");
+  for (int f = 0; f < features_.count; ++f) {
+    ImGui::PushID(1000 + f);
+    ImGui::ColorButton("##f", to_imvec(feature_color(f)), ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+    ImGui::SameLine();
+    const std::string label = "feature " + std::to_string(f) + " (" + std::to_string(features_.size_of(f)) + ")";
+    if (ImGui::Selectable(label.c_str(), active_feature_ == f)) active_feature_ = f, target_ = kFeatureTarget;
+    ImGui::PopID();
+  }
+  if (ImGui::Button("new feature")) active_feature_ = features_.count, target_ = kFeatureTarget;
+  if (features_.count >= 2) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(60);
+    ImGui::InputInt("##from", &merge_from_);
+    ImGui::SameLine();
+    const bool valid = merge_from_ >= 0 && merge_from_ < features_.count && merge_from_ != active_feature_ &&
+                       active_feature_ < features_.count;
+    ImGui::BeginDisabled(!valid);
+    if (ImGui::Button("merge into active")) {
+      features_.merge(active_feature_, merge_from_);
+      if (active_feature_ > merge_from_) --active_feature_;
+      features_edited_ = true;
+      ++features_revision_;
+      surface_dirty_ = true;
+    }
+    ImGui::EndDisabled();
+  }
+  if (features_edited_ && ImGui::Button("detected features")) {
+    features_edited_ = false;
+    ++features_revision_;
+  }
+}
 
 void DeformApp::draw_method_panel(viewer::Viewer& v) {
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 330), ImGuiCond_FirstUseEver);
@@ -149,7 +201,7 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
       if (ImGui::Selectable(m.label, m.method == s.method)) s.method = m.method;
     ImGui::EndCombo();
   }
-  if (s.method != Method::Arap) {
+  if (s.method != Method::Arap && s.method != Method::Salient) {  // those two use cotangents only
     LaplacianWeights& weights = s.method == Method::Edge ? s.edge.weights : s.weights;
     int w = weights == LaplacianWeights::Cotangent ? 0 : 1;
     if (ImGui::Combo("weights", &w, "cotangent\0uniform\0"))
@@ -165,13 +217,19 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
     ImGui::SliderInt("iterations / frame", &s.arap_iterations, 1, 50);
   }
   if (s.method == Method::Edge) draw_edge_controls(s.edge);
+  if (s.method == Method::Salient) draw_salient_controls(s.salient);
   if (!(s == settings_)) settings_ = s;  // the next request sets up again
   ImGui::Separator();
-  int mode = color_mode_ == ColorMode::Selection ? 0 : 1 + static_cast<int>(field_);
+  constexpr int kSaliencyMode = 4;  // after the three distortion fields
+  int mode = color_mode_ == ColorMode::Selection  ? 0
+             : color_mode_ == ColorMode::Saliency ? kSaliencyMode
+                                                  : 1 + static_cast<int>(field_);
   if (ImGui::Combo("colour (C)", &mode,
-                   "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0")) {
-    color_mode_ = mode == 0 ? ColorMode::Selection : ColorMode::Distortion;
-    if (mode > 0) field_ = static_cast<DistortionField>(mode - 1);
+                   "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0saliency (salient)\0")) {
+    color_mode_ = mode == 0               ? ColorMode::Selection
+                  : mode == kSaliencyMode ? ColorMode::Saliency
+                                          : ColorMode::Distortion;
+    if (mode > 0 && mode < kSaliencyMode) field_ = static_cast<DistortionField>(mode - 1);
     surface_dirty_ = true;
   }
   if (ImGui::Checkbox("degenerate vertices", &show_degenerate_)) markers_dirty_ = true;

@@ -1,6 +1,6 @@
-// What the deform app draws: the surface coloured by selection (ROI, fixed, handles) or by a
-// distortion measure, the gizmo on the active handle, the degenerate vertices the implicit
-// method found, and the lasso being drawn.
+// What the deform app draws: the surface coloured by selection (ROI, fixed, handles), by a
+// distortion measure or by saliency, the salient features over it, the gizmo on the active handle, the degenerate
+// vertices the implicit method found, and the lasso being drawn.
 #include "deform_app.h"
 #include "lapis/viewer/colormap.h"
 
@@ -12,9 +12,14 @@ const Eigen::Vector3f kFixedColor{0.42f, 0.46f, 0.55f};  // outside the ROI: sla
 const Eigen::Vector3f kHandleColors[] = {{1.0f, 0.55f, 0.12f}, {0.85f, 0.25f, 0.75f}, {0.25f, 0.75f, 0.35f},
                                          {0.2f, 0.7f, 0.95f},  {0.95f, 0.85f, 0.2f},  {0.6f, 0.4f, 0.95f}};
 
+// Salient features: cool tones, apart from the handles' warm ones.
+const Eigen::Vector3f kFeatureColors[] = {{0.2f, 0.45f, 0.95f}, {0.1f, 0.7f, 0.6f},  {0.55f, 0.3f, 0.9f},
+                                          {0.3f, 0.8f, 0.95f},  {0.2f, 0.55f, 0.3f}, {0.7f, 0.55f, 0.95f}};
+
 }  // namespace
 
 Eigen::Vector3f handle_color(int label) { return kHandleColors[label % 6]; }
+Eigen::Vector3f feature_color(int index) { return kFeatureColors[index % 6]; }
 
 void DeformApp::update_surface(viewer::Viewer& v) {
   auto& item = v.scene().meshes["surface"];
@@ -23,8 +28,12 @@ void DeformApp::update_surface(viewer::Viewer& v) {
   item.colors.resize(n, 3);
   const bool distortion =
       color_mode_ == ColorMode::Distortion && last_ && last_->frame.distortion.size() == n && !stroke_;
+  const bool saliency = color_mode_ == ColorMode::Saliency && last_ && last_->frame.saliency.size() == n;
   if (distortion) {
     item.colors = viewer::colorize(last_->frame.distortion, 0.0, legend_hi_);
+  } else if (saliency) {
+    const Eigen::VectorXd& s = last_->frame.saliency;
+    item.colors = viewer::colorize(s, viewer::percentile(s, 0.02), viewer::percentile(s, 0.98));
   } else {
     const VertexLabels& labels = stroke_ ? *stroke_ : *state_.labels;
     const bool roi_painted = labels.any(VertexLabels::kRoi);
@@ -36,6 +45,12 @@ void DeformApp::update_surface(viewer::Viewer& v) {
       item.colors.row(i) = (l >= 0 ? handle_color(l) : fixed ? kFixedColor : kRoiColor).transpose();
     }
   }
+  // The salient method's features over any colouring, half blended, so they show where they are.
+  const std::vector<int>& painted = feature_stroke_ ? *feature_stroke_ : features_.feature_of;
+  if (settings_.method == Method::Salient && static_cast<int>(painted.size()) == n)
+    for (int i = 0; i < n; ++i)
+      if (const int f = painted[static_cast<size_t>(i)]; f >= 0)
+        item.colors.row(i) = 0.5f * (item.colors.row(i) + feature_color(f).transpose());
   ++item.version;
   surface_dirty_ = false;
 }

@@ -1,5 +1,5 @@
 // lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]
-//              [--method naive|implicit|arap|edge] [--weights cotan|uniform] [--scale-features]
+//              [--method naive|implicit|arap|edge|salient] [--weights cotan|uniform] [--scale-features]
 //              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
@@ -69,7 +69,8 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   const auto w = weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
   (edge ? settings.edge.weights : settings.weights) = w;
   settings.scale_features = args.has("--scale-features");
-  int& iterations = edge ? settings.edge.iterations : settings.arap_iterations;
+  const bool salient = settings.method == mesh_deform::Method::Salient;
+  int& iterations = edge ? settings.edge.iterations : salient ? settings.salient.iterations : settings.arap_iterations;
   iterations = static_cast<int>(args.get_int("--iterations", iterations, 1, 1000));
 
   auto app =

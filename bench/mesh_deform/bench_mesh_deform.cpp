@@ -1,6 +1,7 @@
 // mesh_deform benchmark: setup seconds, per-frame milliseconds of a drag, ARAP milliseconds
 // per iteration and peak memory of naive Laplacian, implicit Laplacian (thesis ch. 2), ARAP
-// and edge-based Laplacian editing (Wang et al., edge and vertex domain), against CGAL's
+// and edge-based Laplacian editing (Wang et al., edge and vertex domain), salient features in a
+// solid subspace (Zhao et al.; salient_row.h has its stages), against CGAL's
 // Surface_mesh_deformation (ORIGINAL_ARAP) on the same mesh, ROI and handle in the same run,
 // with the last frame's distortion. Each (mesh, method) runs in its own child process so the
 // peak memory is that method's alone.
@@ -30,6 +31,7 @@
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "lapis_bench.h"
+#include "salient_row.h"
 
 using namespace lapis;
 using namespace lapis::mesh_deform;
@@ -96,6 +98,10 @@ json run_one(const Size& size, const std::string& method) {
   const TriMesh m = load(size);
   json r = {{"mesh", size.name}, {"vertices", m.num_vertices()}, {"method", method}};
   const Setup s = make_setup(m, method == "cgal_arap" ? size.peer_frames : size.frames);
+  if (method == "salient") {
+    r.update(bench::salient_row(m, s.sel, s.drag, kArapIterationsPerFrame));
+    return r;
+  }
   if (method == "cgal_arap") {
     std::unique_ptr<peers::CgalArap> cgal;
     r["setup_s"] =
@@ -214,7 +220,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::string sizes = "26k,52k,151k,416k,1m";
-  std::string only = ",naive,implicit,implicit_backsub,arap,arap_1t,cgal_arap,edge,edge_vertex,";
+  std::string only = ",naive,implicit,implicit_backsub,arap,arap_1t,cgal_arap,edge,edge_vertex,salient,";
   bool implicit_large = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) sizes = argv[++i];
@@ -227,7 +233,7 @@ int main(int argc, char** argv) {
   for (const Size& s : kSizes) {
     if (sizes.find(s.name) == std::string::npos) continue;
     for (const char* method :
-         {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap", "edge", "edge_vertex"}) {
+         {"naive", "implicit", "implicit_backsub", "arap", "arap_1t", "cgal_arap", "edge", "edge_vertex", "salient"}) {
       if (only.find(comma_delimited(method)) == std::string::npos) continue;
       if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large)
         continue;

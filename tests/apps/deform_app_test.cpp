@@ -335,6 +335,24 @@ TEST_CASE("apps: deform app — a replayed drag renders headless, neither blank 
   CHECK(max_difference(rest.V, moved.V) > 1e-3);
 }
 
+TEST_CASE("apps: deform app — the salient method shows its features and deforms a replayed drag") {
+  const fs::path dir = scratch_dir();
+  const std::string common = " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() +
+                             " --handles " + kHandles.string() + " --method salient";
+  const fs::path shot = dir / "salient.png", out = dir / "salient.obj";
+  REQUIRE(run_under_xvfb(kApp + common + " --replay " + (kData / "deform_drag_events.json").string() +
+                         " --exit-after-replay --screenshot " + shot.string() + " --export " + out.string() +
+                         " --export-on-exit") == 0);
+  CHECK(foreground_fraction(viewer::read_png(shot)) > 0.05);
+  const geometry::TriMesh rest = geometry::read_mesh(kMesh), moved = geometry::read_mesh(out);
+  CHECK(max_difference(rest.V, moved.V) > 1e-3);
+  // The export's report names the method, as the CLI would run it.
+  std::ifstream report(dir / "salient.deform.json");
+  REQUIRE(report);
+  const auto j = nlohmann::json::parse(report);
+  CHECK(j.dump().find("salient") != std::string::npos);
+}
+
 TEST_CASE("apps: deform app — bad input is reported, not a crash") {
   const fs::path dir = scratch_dir();
   std::ofstream(dir / "bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";

@@ -153,7 +153,7 @@ TEST_CASE("mesh_deform: per-vertex distortion is zero under rigid motion and sho
 }
 
 TEST_CASE("mesh_deform: the method list makes every method and the preview equals the first system alone") {
-  CHECK(methods().size() == 4);
+  CHECK(methods().size() == 5);
   CHECK(method_from_name("edge") == Method::Edge);
   CHECK(method_from_name("arap") == Method::Arap);
   CHECK_THROWS_WITH_AS(method_from_name("magic"), doctest::Contains("expected one of naive, implicit, arap, edge"),
@@ -168,9 +168,10 @@ TEST_CASE("mesh_deform: the method list makes every method and the preview equal
     CHECK(d->name() == info.name);
     d->set_selection(sel);
     const Vertices X = d->deform({{turn(0.3, 0.5)}, {}});
-    CHECK((X.row(sel.region_handles[0][0]).transpose() -
-           apply(turn(0.3, 0.5), m.V.row(sel.region_handles[0][0]).transpose()))
-              .norm() < 1e-9);
+    const double off = (X.row(sel.region_handles[0][0]).transpose() -
+                        apply(turn(0.3, 0.5), m.V.row(sel.region_handles[0][0]).transpose()))
+                           .norm();
+    CHECK(off < (info.method == Method::Salient ? 0.1 : 1e-9));  // Zhao et al.'s handles are soft (Eq. 4)
   }
   // Preview on a full-pipeline deformer = a first-system-only deformer, frame for frame; off
   // again = the full pipeline, without a new setup.

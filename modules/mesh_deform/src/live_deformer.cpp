@@ -6,6 +6,7 @@
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/salient_deformer.h"
 
 namespace lapis::mesh_deform {
 namespace {
@@ -24,6 +25,10 @@ std::string timing_of(const Deformer& d) {
     const ArapReport& s = a->report();
     std::snprintf(buf, sizeof buf, "%d iterations: local %.0f ms, global %.0f ms", s.iterations, s.rotations_ms,
                   s.solves_ms);
+  } else if (const auto* sd = dynamic_cast<const SalientDeformer*>(&d)) {
+    const SalientReport& s = sd->report();
+    std::snprintf(buf, sizeof buf, "%d iterations: fits %.0f ms, solves %.1f ms, %d features, %d subspace vertices",
+                  s.iterations, s.rotations_ms, s.solves_ms, s.features, s.subspace_vertices);
   } else if (const auto* e = dynamic_cast<const EdgeLaplacianDeformer*>(&d)) {
     const EdgeLaplacianReport& s = e->report();
     std::snprintf(buf, sizeof buf, "%d iterations: fits %.0f ms, solves %.0f ms, last move %.2g", s.iterations,
@@ -37,12 +42,27 @@ std::string timing_of(const Deformer& d) {
 LiveDeformer::LiveDeformer(TriMesh rest) : rest_(std::move(rest)) {}
 LiveDeformer::~LiveDeformer() = default;
 
+// The cached detection (run now if the options changed) and the user's features.
+void LiveDeformer::prepare_salient(SalientDeformer& d, const LiveRequest& r) {
+  const SalientOptions& o = r.settings.salient;
+  if (o.detect_features) {
+    if (!detection_ || !(detection_options_ == o.detection)) {
+      detection_ = detect_salient_features(rest_, o.detection);
+      detection_options_ = o.detection;
+    }
+    d.set_detection(*detection_);
+  }
+  if (!r.features.empty()) d.set_features(r.features);
+}
+
 LiveFrame LiveDeformer::update(const LiveRequest& r) {
   LiveFrame f;
-  if (!deformer_ || !(r.settings == settings_) || r.selection_revision != selection_revision_ || deformer_->dirty()) {
+  if (!deformer_ || !(r.settings == settings_) || r.selection_revision != selection_revision_ ||
+      r.features_revision != features_revision_ || deformer_->dirty()) {
     deformer_.reset();  // free the old factorizations before building the new ones
     history_.clear();
     auto d = make_deformer(rest_, r.settings);
+    if (auto* s = dynamic_cast<SalientDeformer*>(d.get())) prepare_salient(*s, r);
     d->set_selection(r.selection);
     const auto t0 = std::chrono::steady_clock::now();
     d->precompute();  // throws for an invalid selection; deformer_ stays empty, so we retry
@@ -50,6 +70,7 @@ LiveFrame LiveDeformer::update(const LiveRequest& r) {
     deformer_ = std::move(d);
     settings_ = r.settings;
     selection_revision_ = r.selection_revision;
+    features_revision_ = r.features_revision;
     f.did_setup = true;
   }
   auto* implicit = dynamic_cast<ImplicitLaplacianDeformer*>(deformer_.get());
@@ -66,6 +87,10 @@ LiveFrame LiveDeformer::update(const LiveRequest& r) {
   f.setup_ms = setup_ms_;
   f.method = deformer_->name();
   f.timing = timing_of(*deformer_);
+  if (const auto* s = dynamic_cast<const SalientDeformer*>(deformer_.get())) {
+    f.saliency = s->saliency();
+    f.features = s->features();
+  }
   if (r.field) {
     t0 = std::chrono::steady_clock::now();
     f.distortion = vertex_distortion(rest_, f.positions, *r.field);

@@ -4,6 +4,7 @@
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
+#include "lapis/mesh_deform/salient_deformer.h"
 
 namespace lapis::mesh_deform {
 
@@ -13,6 +14,7 @@ const std::vector<MethodInfo>& methods() {
       {Method::Implicit, "implicit", "implicit Laplacian (thesis ch. 2)"},
       {Method::Arap, "arap", "ARAP (Sorkine & Alexa)"},
       {Method::Edge, "edge", "edge-based Laplacian (Wang et al.)"},
+      {Method::Salient, "salient", "salient features, solid subspace (Zhao et al.)"},
   };
   return list;
 }
@@ -59,6 +61,8 @@ std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
     }
     case Method::Edge:
       return std::make_unique<EdgeLaplacianDeformer>(std::move(mesh), s.edge);
+    case Method::Salient:
+      return std::make_unique<SalientDeformer>(std::move(mesh), s.salient);
   }
   throw InvalidArgument("mesh_deform::make_deformer(): unknown method");
 }

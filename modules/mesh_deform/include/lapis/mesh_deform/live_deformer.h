@@ -2,8 +2,9 @@
 // re-runs the setup only when the method settings or the selection change (thesis §2.5:
 // precompute once per ROI/handle set, back-substitute per frame), records every frame it
 // solved since that setup (so a CLI run of the same frames reproduces the result: the
-// implicit method's rotation unwrapping and ARAP's warm start depend on them), and computes
-// the per-vertex distortion the app colours the surface with. Not thread-safe: one caller
+// implicit method's rotation unwrapping and ARAP's warm start depend on them), computes the
+// per-vertex distortion the app colours the surface with, and keeps the salient method's
+// feature detection across setups. Not thread-safe: one caller
 // (the app's worker thread) at a time.
 #pragma once
 
@@ -25,6 +26,10 @@ struct LiveRequest {
   HandleTransforms transforms;
   bool preview = false;                  // implicit method: first system only (§2.5's preview while dragging)
   std::optional<DistortionField> field;  // per-vertex distortion to compute, if any
+  // Salient method: features given by the user (painted), combined with the detected ones by
+  // settings.salient.user_features; the caller bumps features_revision when they change.
+  std::vector<Feature> features;
+  std::uint64_t features_revision = 0;
 };
 
 struct LiveFrame {
@@ -39,6 +44,9 @@ struct LiveFrame {
   std::string timing;                     // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
   std::vector<int> degenerate_vertices;   // implicit: found by the current setup
   std::vector<HandleTransforms> history;  // every frame solved since the setup, this one last
+  // Salient method: the saliency (empty without detection) and the features in use.
+  Eigen::VectorXd saliency;
+  std::vector<Feature> features;
 };
 
 class LiveDeformer {
@@ -55,10 +63,16 @@ class LiveDeformer {
   const TriMesh& rest() const { return rest_; }
 
  private:
+  void prepare_salient(SalientDeformer& d, const LiveRequest& r);
+
   TriMesh rest_;
   std::unique_ptr<Deformer> deformer_;
   MethodSettings settings_;
-  std::uint64_t selection_revision_ = 0;
+  std::uint64_t selection_revision_ = 0, features_revision_ = 0;
+  // The salient method's detection, run once per mesh and detection options, not once per
+  // selection (it costs seconds where a setup costs milliseconds).
+  std::optional<SalientFeatures> detection_;
+  FeatureOptions detection_options_;  // what detection_ was run with
   double setup_ms_ = 0;
   std::vector<HandleTransforms> history_;
 };
