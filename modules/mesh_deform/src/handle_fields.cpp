@@ -80,8 +80,8 @@ void require_anchored_components(const TriMesh& mesh, const std::vector<int>& co
     if (column_of[v] >= 0 && comps.vertex_component[v] >= 0) anchored[comps.vertex_component[v]] = 1;
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (const int c = comps.vertex_component[v]; c >= 0 && !anchored[c])
-      throw InvalidArgument("mesh_deform::harmonic_fields(): connected component " + std::to_string(c) +
-                            " (vertex " + std::to_string(v) +
+      throw InvalidArgument("mesh_deform::harmonic_fields(): connected component " + std::to_string(c) + " (vertex " +
+                            std::to_string(v) +
                             ") holds no handle vertex and is not outside the ROI: its fields are undefined");
 }
 

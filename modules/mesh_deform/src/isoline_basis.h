@@ -20,11 +20,11 @@ struct IsolineBasis {
   int sets = 0;      // K: one per handle, one in all when there are two handles (§4.1)
   int isolines = 0;  // N per set
   int vertices = 0;
-  std::vector<int> lower;            // #V·K: global isoline index i·N + j of the lower bracket
-  std::vector<double> w0, w1;        // #V·K: weights of isolines lower and lower + 1
-  Eigen::Vector3d center{0, 0, 0};   // of the bounding box
-  double scale = 1;                  // bounding-box diagonal
-  geometry::Vertices rest;           // #V by 3, normalized
+  std::vector<int> lower;           // #V·K: global isoline index i·N + j of the lower bracket
+  std::vector<double> w0, w1;       // #V·K: weights of isolines lower and lower + 1
+  Eigen::Vector3d center{0, 0, 0};  // of the bounding box
+  double scale = 1;                 // bounding-box diagonal
+  geometry::Vertices rest;          // #V by 3, normalized
 
   int count() const { return sets * isolines; }  // m
   int slot(int k, int i) const { return k * sets + i; }

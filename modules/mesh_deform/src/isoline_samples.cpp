@@ -44,8 +44,8 @@ std::vector<int> fit_sources(const std::vector<int>& offsets, int sets, int isol
 
 }  // namespace
 
-IsolineSamples sample_isolines(const IsolineBasis& b, const geometry::Faces& F, const Eigen::MatrixXd& phi,
-                               int budget, int min_per) {
+IsolineSamples sample_isolines(const IsolineBasis& b, const geometry::Faces& F, const Eigen::MatrixXd& phi, int budget,
+                               int min_per) {
   const int m = b.count();
   std::vector<std::vector<IsolineSegment>> per(static_cast<size_t>(m));
   IsolineSamples out;

@@ -20,13 +20,13 @@ enum class NormalFit {
 };
 
 struct IsolineSamples {
-  std::vector<int> vertices;        // mesh vertices of the sampled triangles (the per-iteration set)
+  std::vector<int> vertices;         // mesh vertices of the sampled triangles (the per-iteration set)
   std::vector<Eigen::Vector3i> tri;  // per sample: corners as indices into `vertices`
   std::vector<IsolineSegment> seg;   // per sample: its segment (face = mesh face)
   std::vector<Eigen::Vector3d> rest_normal;
-  std::vector<int> offsets;          // samples of isoline ℓ: [offsets[ℓ], offsets[ℓ+1])
-  std::vector<int> source;           // per isoline: the isoline whose fit it takes (itself if sampled)
-  int crossed = 0;                   // triangles crossed by all isolines before sampling
+  std::vector<int> offsets;  // samples of isoline ℓ: [offsets[ℓ], offsets[ℓ+1])
+  std::vector<int> source;   // per isoline: the isoline whose fit it takes (itself if sampled)
+  int crossed = 0;           // triangles crossed by all isolines before sampling
   int size() const { return static_cast<int>(tri.size()); }
 };
 

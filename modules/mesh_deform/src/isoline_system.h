@@ -23,12 +23,12 @@ struct HandleGroup {
 };
 
 struct IsolineSystem {
-  solver::DenseMatrix laplacian;           // (L W_x)ᵀ(L W_x)
-  solver::DenseMatrix handles;             // W_xᵀΦᵀΦW_x, unweighted
-  solver::DenseMatrix smoothness;          // MᵀM over 4×4 blocks of neighbouring isolines
-  solver::DenseMatrix P;                   // (L W_x)ᵀ W_δ
-  std::vector<solver::DenseMatrix> G;      // per group: 4m by 4 (affine) or 4m by 1 (point)
-  int handle_rows = 0;                     // vertices in all groups
+  solver::DenseMatrix laplacian;       // (L W_x)ᵀ(L W_x)
+  solver::DenseMatrix handles;         // W_xᵀΦᵀΦW_x, unweighted
+  solver::DenseMatrix smoothness;      // MᵀM over 4×4 blocks of neighbouring isolines
+  solver::DenseMatrix P;               // (L W_x)ᵀ W_δ
+  std::vector<solver::DenseMatrix> G;  // per group: 4m by 4 (affine) or 4m by 1 (point)
+  int handle_rows = 0;                 // vertices in all groups
 };
 
 // L  #V by #V cotangent Laplacian (symmetric); delta  #V by 3 rest Laplacian coordinates L X̄,

@@ -5,6 +5,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "anderson.h"
 #include "isoline_basis.h"
 #include "isoline_samples.h"
 #include "isoline_system.h"
@@ -30,6 +31,7 @@ void check_options(const IsolinesOptions& o) {
   if (o.isolines < 2) fail_option("isolines = " + std::to_string(o.isolines) + ", expected >= 2 (§4.1: s = 0 and 1)");
   if (!positive(o.omega)) fail_option("omega must be finite and > 0");
   if (!std::isfinite(o.beta) || o.beta < 0) fail_option("beta must be finite and >= 0");
+  if (o.anderson_depth < 0) fail_option("anderson_depth must be >= 0");
   if (o.max_iterations < 1) fail_option("max_iterations = " + std::to_string(o.max_iterations) + ", expected >= 1");
   if (!std::isfinite(o.tolerance) || o.tolerance < 0) fail_option("tolerance must be finite and >= 0");
   if (o.triangle_budget < 0 || o.min_triangles_per_isoline < 0)
@@ -40,9 +42,12 @@ void check_options(const IsolinesOptions& o) {
 
 detail::NormalFit normal_fit(IsolineFit f) {
   switch (f) {
-    case IsolineFit::Similarity: return detail::NormalFit::Similarity;
-    case IsolineFit::Paper: return detail::NormalFit::Paper;
-    case IsolineFit::Rotation: break;
+    case IsolineFit::Similarity:
+      return detail::NormalFit::Similarity;
+    case IsolineFit::Paper:
+      return detail::NormalFit::Paper;
+    case IsolineFit::Rotation:
+      break;
   }
   return detail::NormalFit::Rotation;
 }
@@ -67,11 +72,11 @@ struct IsolinesDeformer::Impl {
   std::vector<detail::HandleGroup> groups;
   std::vector<DenseMatrix> G;  // ω² W_xᵀΦᵀQ per group
   DenseMatrix P;               // W_xᵀLᵀW_δ
-  DenseMatrix UtU;  // without the ridge
+  DenseMatrix UtU;             // without the ridge
   Eigen::LLT<DenseMatrix> chol;
   double ridge = 0;
-  DenseMatrix R;                      // current transforms, 4m by 3
-  std::vector<Eigen::Quaterniond> q;  // per isoline: last fitted rotation
+  DenseMatrix R;                       // current transforms, 4m by 3
+  std::vector<Eigen::Quaterniond> q;   // per isoline: last fitted rotation
   std::vector<Eigen::Quaterniond> vq;  // Eq. 6 mode, per vertex
   std::vector<int> free;
   Vertices last;  // the last full frame, for previews
@@ -226,8 +231,8 @@ void IsolinesDeformer::setup(const Layout& layout) {
   for (DenseMatrix& g : sys.G) m->G.push_back(w2 * g);
   m->P = std::move(sys.P);
   if (options_.solve == IsolineSolve::Full) {
-    m->stencil = detail::make_stencil(m->basis.rest, mesh_.F, LaplacianWeights::Cotangent,
-                                      detail::ObtuseAngles::ClampToZero);
+    m->stencil =
+        detail::make_stencil(m->basis.rest, mesh_.F, LaplacianWeights::Cotangent, detail::ObtuseAngles::ClampToZero);
     m->L = std::move(L);
     m->vq.assign(static_cast<size_t>(mesh_.num_vertices()), Eigen::Quaterniond::Identity());
   }
@@ -261,12 +266,17 @@ void IsolinesDeformer::solve(const HandleTransforms& transforms, const Vertices&
   auto t0 = std::chrono::steady_clock::now();
   // Eq. 10 / Eq. 6 from the last frame's transforms (§3: X⁰ the current positions). The ridge
   // pulls toward them, so it vanishes at convergence.
+  // The step size is the plain iteration's, ‖g(R) − R‖ / ‖R‖, also when accelerated.
+  detail::Anderson accel(options_.anderson_depth);
   for (int it = 0; it < options_.max_iterations; ++it) {
     const DenseMatrix data = options_.solve == IsolineSolve::Reduced ? m.reduced_data(m.R, fit) : m.full_data(m.R);
     const DenseMatrix d = m.step(data + gc);
     const double step = d.norm() / std::max(m.R.norm(), 1e-300);
-    m.R += d;
     report_.steps.push_back(step);
+    const Eigen::Map<const Eigen::VectorXd> x(m.R.data(), m.R.size());
+    const Eigen::VectorXd g = x + Eigen::Map<const Eigen::VectorXd>(d.data(), d.size());
+    const Eigen::VectorXd next = step < options_.tolerance ? g : accel.next(x, g);
+    m.R = Eigen::Map<const DenseMatrix>(next.data(), m.R.rows(), m.R.cols());
     if (step < options_.tolerance) break;
   }
   report_.iterations = static_cast<int>(report_.steps.size());
@@ -334,9 +344,12 @@ const char* to_string(IsolineSolve s) { return s == IsolineSolve::Full ? "full" 
 
 const char* to_string(IsolineFit f) {
   switch (f) {
-    case IsolineFit::Similarity: return "similarity";
-    case IsolineFit::Paper: return "paper";
-    case IsolineFit::Rotation: break;
+    case IsolineFit::Similarity:
+      return "similarity";
+    case IsolineFit::Paper:
+      return "paper";
+    case IsolineFit::Rotation:
+      break;
   }
   return "rotation";
 }
@@ -344,7 +357,8 @@ const char* to_string(IsolineFit f) {
 IsolineSolve isoline_solve_from_name(const std::string& name) {
   for (IsolineSolve s : {IsolineSolve::Reduced, IsolineSolve::Full})
     if (name == to_string(s)) return s;
-  throw InvalidArgument("mesh_deform::isoline_solve_from_name(): unknown mode '" + name + "', expected reduced or full");
+  throw InvalidArgument("mesh_deform::isoline_solve_from_name(): unknown mode '" + name +
+                        "', expected reduced or full");
 }
 
 IsolineFit isoline_fit_from_name(const std::string& name) {

@@ -36,10 +36,10 @@ HandleSets handle_sets(const TriMesh& mesh, const Layout& layout, const Selectio
                        const HandleFieldOptions& options = {});
 
 struct HandleFields {
-  Eigen::MatrixXd phi;         // #V by H; rows sum to 1, entries in [0, 1]
-  double overshoot = 0;        // largest distance of a solved value outside [0, 1] before clamping
-  double residual = 0;         // max |(L φ_h)_i| over free vertices i, relative to max |L_ii|
-  long long factor_nnz = 0;    // of the one Cholesky factor of −L_ff
+  Eigen::MatrixXd phi;       // #V by H; rows sum to 1, entries in [0, 1]
+  double overshoot = 0;      // largest distance of a solved value outside [0, 1] before clamping
+  double residual = 0;       // max |(L φ_h)_i| over free vertices i, relative to max |L_ii|
+  long long factor_nnz = 0;  // of the one Cholesky factor of −L_ff
   double factorize_ms = 0;
   double solve_ms = 0;
 };
