@@ -13,6 +13,7 @@
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/selection_io.h"
@@ -29,6 +30,7 @@ constexpr const char* kUsageRest =
     "                    [--weights cotan|uniform] [--scale-features] [--iterations N]\n"
     "                    [--domain edges|vertices] [--transform rotation|isotropic|anisotropic|full]\n"
     "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
+    "                    [--isolines N] [--solve reduced|full] [--fit rotation|similarity|paper]\n"
     "                    --out OUT.obj [--report OUT.json]\n"
     "  ROI: vertex indices, as a JSON array or whitespace-separated text; 'all' for every vertex.\n"
     "  HANDLES.json: {\"regions\": [{\"vertices\": [..], \"transforms\": [M, ...]}],\n"
@@ -42,6 +44,9 @@ constexpr const char* kUsageRest =
     "  each cell, anisotropic (S R1, the paper's) by default; --frame of the scales, world axes\n"
     "  (the paper's) or principal rest axes; --tolerance stops once no vertex moves more than T\n"
     "  of the bbox diagonal; --warm-start starts each frame from the last one's transforms.\n"
+    "  isolines (Au et al.): --isolines per handle (20), --solve reduced (Eq. 10, independent of\n"
+    "  #V) or full (Eq. 6), --fit of each isoline's transform, --iterations at most per frame (50)\n"
+    "  and --tolerance of the step size (1e-4).\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
 const char* usage() {
@@ -74,12 +79,26 @@ void read_edge_options(const Args& args, LaplacianWeights weights, EdgeLaplacian
   }
 }
 
+// The isolines method's flags over its defaults.
+void read_isolines_options(const Args& args, IsolinesOptions& o) {
+  try {
+    o.isolines = static_cast<int>(args.get_int("--isolines", o.isolines, 2, 100000));
+    o.solve = isoline_solve_from_name(args.get("--solve", to_string(o.solve)));
+    o.fit = isoline_fit_from_name(args.get("--fit", to_string(o.fit)));
+    o.max_iterations = static_cast<int>(args.get_int("--iterations", o.max_iterations, 1, 1000000));
+    o.tolerance = args.get_double("--tolerance", o.tolerance, 0, 1);
+  } catch (const InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95", s.p95}}; }
 
 int run(const std::vector<std::string>& argv) {
   const Args args(argv, {"--scale-features", "--warm-start", "--soft-handles"});
   args.allow_only({"--mesh", "--roi", "--handles", "--method", "--weights", "--scale-features", "--iterations", "--out",
-                   "--report", "--domain", "--transform", "--frame", "--tolerance", "--warm-start", "--soft-handles"});
+                   "--report", "--domain", "--transform", "--frame", "--tolerance", "--warm-start", "--soft-handles",
+                   "--isolines", "--solve", "--fit"});
   const std::string method = args.get("--method");
   bool known = false;
   for (const MethodInfo& m : methods()) known = known || method == m.name;
@@ -100,6 +119,7 @@ int run(const std::vector<std::string>& argv) {
   settings.scale_features = args.has("--scale-features");
   settings.arap_iterations = static_cast<int>(args.get_int("--iterations", settings.arap_iterations, 1, 1000000));
   if (edge) read_edge_options(args, w, settings.edge);
+  if (settings.method == Method::Isolines) read_isolines_options(args, settings.isolines);
   const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
   const auto* implicit = dynamic_cast<const ImplicitLaplacianDeformer*>(d.get());
   using clock = std::chrono::steady_clock;
@@ -141,6 +161,19 @@ int run(const std::vector<std::string>& argv) {
                  {"fit_ms", er.fit_ms},
                  {"solve_ms", er.solve_ms}};
   }
+  if (const auto* iso = dynamic_cast<const IsolinesDeformer*>(d.get())) {
+    const IsolinesReport& ir = iso->report();
+    r["isolines"] = {{"solve", to_string(settings.isolines.solve)},
+                     {"fit", to_string(settings.isolines.fit)},
+                     {"handles", ir.handles},
+                     {"sets", ir.sets},
+                     {"unknowns", ir.unknowns},
+                     {"sampled_triangles", ir.sampled_triangles},
+                     {"iterations", ir.iterations},
+                     {"iterate_ms", ir.iterate_ms},
+                     {"reconstruct_ms", ir.reconstruct_ms},
+                     {"field_overshoot", ir.field_overshoot}};
+  }
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
@@ -152,6 +185,7 @@ int run(const std::vector<std::string>& argv) {
 }  // namespace
 
 extern const Command kDeformCommand = {
-    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, or ARAP", usage(), run};
+    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, ARAP, or handle-aware isolines",
+    usage(), run};
 
 }  // namespace lapis::cli

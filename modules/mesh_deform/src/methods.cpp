@@ -3,6 +3,7 @@
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 
 namespace lapis::mesh_deform {
@@ -13,6 +14,7 @@ const std::vector<MethodInfo>& methods() {
       {Method::Implicit, "implicit", "implicit Laplacian (thesis ch. 2)"},
       {Method::Arap, "arap", "ARAP (Sorkine & Alexa)"},
       {Method::Edge, "edge", "edge-based Laplacian (Wang et al.)"},
+      {Method::Isolines, "isolines", "handle-aware isolines (Au et al.)"},
   };
   return list;
 }
@@ -59,6 +61,8 @@ std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
     }
     case Method::Edge:
       return std::make_unique<EdgeLaplacianDeformer>(std::move(mesh), s.edge);
+    case Method::Isolines:
+      return std::make_unique<IsolinesDeformer>(std::move(mesh), s.isolines);
   }
   throw InvalidArgument("mesh_deform::make_deformer(): unknown method");
 }

@@ -18,6 +18,8 @@ struct HandleFieldOptions {
   // mesh is refined, so the isolines would depend on the sampling (§5, Fig. 8). The vertex's
   // 1-ring is always in the disc.
   double point_handle_radius = 0.02;
+
+  bool operator==(const HandleFieldOptions&) const = default;
 };
 
 // The Dirichlet sets: column h of the fields is 1 on handle_vertices[h]. Column 0 is the fixed

@@ -18,12 +18,16 @@
 
 namespace lapis::mesh_deform {
 
+inline constexpr int kIsolinePreviewStride = 8;
+
 struct LiveRequest {
   MethodSettings settings;
   Selection selection;
   std::uint64_t selection_revision = 0;  // the caller bumps it when the selection changes
   HandleTransforms transforms;
-  bool preview = false;                  // implicit method: first system only (§2.5's preview while dragging)
+  // While dragging: the implicit method's first system only (§2.5); the isolines method's
+  // iteration with every kIsolinePreviewStride-th free vertex reconstructed (§5: a subset is shown).
+  bool preview = false;
   std::optional<DistortionField> field;  // per-vertex distortion to compute, if any
 };
 
@@ -31,7 +35,7 @@ struct LiveFrame {
   Vertices positions;          // #V by 3
   Eigen::VectorXd distortion;  // #V, empty when no field was requested
   bool did_setup = false;      // this frame ran the setup
-  bool preview = false;        // this frame stopped after the first system
+  bool preview = false;        // this frame was a preview (first system only, or a subset reconstructed)
   double setup_ms = 0;         // of the current setup (whenever it ran)
   double solve_ms = 0;         // this frame's deform() call
   double distortion_ms = 0;

@@ -9,15 +9,16 @@
 
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
 
 namespace lapis::mesh_deform {
 
-enum class Method { Naive, Implicit, Arap, Edge };
+enum class Method { Naive, Implicit, Arap, Edge, Isolines };
 
 struct MethodInfo {
   Method method;
-  const char* name;   // command-line name: naive, implicit, arap, edge
+  const char* name;   // command-line name: naive, implicit, arap, edge, isolines
   const char* label;  // menu text
 };
 
@@ -36,12 +37,13 @@ struct MethodSettings {
   bool scale_features = false;                             // implicit: Eq. 2.11 (R_i S_i δ_i) instead of Eq. 2.10
   int arap_iterations = 10;   // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
   EdgeLaplacianOptions edge;  // the edge-based method (Wang et al.), its own weights and iterations
+  IsolinesOptions isolines;   // the handle-aware isolines reduced model (Au et al.)
 
   bool operator==(const MethodSettings&) const = default;
 };
 
 // A deformer of the chosen method with these settings. Throws InvalidArgument for
-// arap_iterations < 1 and for edge options that EdgeLaplacianDeformer::set_options() refuses.
+// arap_iterations < 1 and for edge or isolines options that their set_options() refuses.
 std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& settings);
 
 }  // namespace lapis::mesh_deform
