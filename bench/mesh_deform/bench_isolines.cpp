@@ -38,7 +38,7 @@ struct Size {
   int loop_levels;
 };
 
-const std::vector<Size> kSizes = {{"bar", "", 0},          {"26k", "armadillo", 0}, {"151k", "bunny00", 1},
+const std::vector<Size> kSizes = {{"bar", "", 0},           {"26k", "armadillo", 0}, {"151k", "bunny00", 1},
                                   {"416k", "armadillo", 2}, {"1m", "man", 3},        {"1.66m", "armadillo", 3}};
 
 struct Config {
@@ -108,7 +108,8 @@ Setup make_setup(const TriMesh& m, const Config& c, int axis) {
   if (c.region_handles >= 2) add_region(extreme(m, free_now(), 0, 0.05, false));
   if (c.region_handles >= 3) add_region(extreme(m, free_now(), 0, 0.05, true));
   const std::vector<int> rest = free_now();
-  for (int p = 0; p < c.point_handles; ++p) s.sel.point_handles.push_back(rest[(2 * p + 1) * rest.size() / (2 * c.point_handles)]);
+  for (int p = 0; p < c.point_handles; ++p)
+    s.sel.point_handles.push_back(rest[(2 * p + 1) * rest.size() / (2 * c.point_handles)]);
   const double diag = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
   const Eigen::Vector3d cross = axis == 2 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
   for (int f = 1; f <= kFrames; ++f) {
@@ -165,7 +166,10 @@ json run_one(const Size& size, const Config& c, const std::string& method) {
   const TriMesh m = load(size);
   const int axis = size.file.empty() ? 2 : 1;
   const Setup s = make_setup(m, c, axis);
-  json r = {{"mesh", size.name}, {"vertices", m.num_vertices()}, {"config", c.name}, {"method", method},
+  json r = {{"mesh", size.name},
+            {"vertices", m.num_vertices()},
+            {"config", c.name},
+            {"method", method},
             {"isolines", c.isolines}};
   if (method == "reduced" || method == "full") {
     IsolinesOptions o;
