@@ -7,13 +7,11 @@ extern const Command kMeshCommand;
 extern const Command kHairCommand;
 extern const Command kMergeCommand;
 extern const Command kDeformCommand;
+extern const Command kTransferCommand;
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
-      kMeshCommand,
-      kHairCommand,
-      kMergeCommand,
-      kDeformCommand,
+      kMeshCommand, kHairCommand, kMergeCommand, kDeformCommand, kTransferCommand,
   };
   return all;
 }

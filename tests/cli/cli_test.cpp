@@ -208,3 +208,35 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
   CHECK(outside.output ==
         "lapis deform: error: mesh_deform::Deformer::precompute(): region handle 0 vertex 2 is outside the ROI\n");
 }
+
+TEST_CASE("cli: lapis transfer carries poses onto a target and names mismatched handles") {
+  const fs::path d = scratch();
+  lapis::cli_test::write_grid_obj(d / "grid.obj");
+  {
+    std::ofstream roi(d / "roi.txt");
+    roi << "1 2 4 5 7 8\n";
+    std::ofstream handles(d / "handles.json");
+    handles << R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+    std::ofstream two(d / "two.json");
+    two << R"({"regions": [{"vertices": [2], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]},)"
+        << R"({"vertices": [8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  }
+  const std::string common = "transfer --source " + (d / "grid.obj").string() + " --source-handles " +
+                             (d / "handles.json").string() + " --source-roi " + (d / "roi.txt").string() +
+                             " --target " + (d / "grid.obj").string() + " --target-roi " + (d / "roi.txt").string();
+  const Result r = lapis_cli(common + " --source-deformed " + (d / "grid.obj").string() + "," +
+                             (d / "grid.obj").string() + " --target-handles " + (d / "handles.json").string() +
+                             " --out " + (d / "t.obj").string() + " --report " + (d / "t.json").string());
+  REQUIRE(r.status == 0);
+  CHECK(fs::file_size(d / "t_0.obj") > 0);
+  CHECK(fs::file_size(d / "t_1.obj") > 0);
+  std::ifstream report(d / "t.json");
+  const auto j = nlohmann::json::parse(report);
+  CHECK(j["poses"].size() == 2);
+  CHECK(j["poses"][0]["eq11_residual"].get<double>() < 1e-12);  // the rest pose: the identity
+  CHECK(j["handles"] == 2);
+  const Result bad = lapis_cli(common + " --source-deformed " + (d / "grid.obj").string() + " --target-handles " +
+                               (d / "two.json").string() + " --out " + (d / "t.obj").string());
+  CHECK(bad.status == 1);
+  CHECK(bad.output.find("the handles do not correspond: the source has 1 region") != std::string::npos);
+}

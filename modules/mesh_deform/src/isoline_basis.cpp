@@ -18,19 +18,24 @@ IsolineBasis make_isoline_basis(const geometry::Vertices& rest, const Eigen::Mat
   b.lower.resize(static_cast<size_t>(n) * b.sets);
   b.w0.resize(b.lower.size());
   b.w1.resize(b.lower.size());
-  const double steps = isolines - 1;
   for (int k = 0; k < n; ++k)
     for (int i = 0; i < b.sets; ++i) {
       const double f = phi(k, field_of_set(b.sets, i));
-      const double weight = b.sets == 1 ? 1.0 : f;  // Σ_i φ_i r_i; one set carries the whole transform
-      const int j = std::clamp(static_cast<int>(std::floor(f * steps)), 0, isolines - 2);
-      const double alpha = f * steps - j;  // §4.2: (φ − s_j) / (s_{j+1} − s_j)
+      // Σ_i φ_i r_i (§4.2); one set for two handles carries the whole transform.
+      const IsolineBracket br = isoline_bracket(f, b.sets == 1 ? 1.0 : f, i, isolines);
       const int s = b.slot(k, i);
-      b.lower[s] = i * isolines + j;
-      b.w0[s] = weight * (1 - alpha);
-      b.w1[s] = weight * alpha;
+      b.lower[s] = br.lower;
+      b.w0[s] = br.w0;
+      b.w1[s] = br.w1;
     }
   return b;
+}
+
+IsolineBracket isoline_bracket(double f, double weight, int set, int isolines) {
+  const double steps = isolines - 1;
+  const int j = std::clamp(static_cast<int>(std::floor(f * steps)), 0, isolines - 2);
+  const double alpha = f * steps - j;
+  return {set * isolines + j, weight * (1 - alpha), weight * alpha};
 }
 
 }  // namespace lapis::mesh_deform::detail

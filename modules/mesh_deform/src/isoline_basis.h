@@ -44,6 +44,14 @@ struct IsolineBasis {
   }
 };
 
+// The isolines of set i bracketing field value f (§4.2: s_j ≤ f ≤ s_{j+1}, α = (f − s_j) /
+// (s_{j+1} − s_j)) and their weights, the set's share `weight` split (1 − α) : α.
+struct IsolineBracket {
+  int lower = 0;  // global index i·N + j
+  double w0 = 0, w1 = 0;
+};
+IsolineBracket isoline_bracket(double f, double weight, int set, int isolines);
+
 // Field column of isoline set i: the handle's own, or column 1 when one set serves two handles.
 inline int field_of_set(int sets, int i) { return sets == 1 ? 1 : i; }
 
