@@ -66,8 +66,8 @@ int run(const std::vector<std::string>& argv) {
   for (const std::string& path : split_commas(args.get("--source-deformed"))) {
     poses.push_back(read_valid_mesh(path));
     if (poses.back().num_vertices() != source.num_vertices())
-      throw InvalidArgument(path + ": " + std::to_string(poses.back().num_vertices()) + " vertices, expected the source's " +
-                            std::to_string(source.num_vertices()));
+      throw InvalidArgument(path + ": " + std::to_string(poses.back().num_vertices()) +
+                            " vertices, expected the source's " + std::to_string(source.num_vertices()));
   }
   DeformationTransfer transfer(source, read_selection(args, "--source-handles", "--source-roi", source.num_vertices()),
                                target, read_selection(args, "--target-handles", "--target-roi", target.num_vertices()),
@@ -78,12 +78,15 @@ int run(const std::vector<std::string>& argv) {
     geometry::TriMesh r = target;
     r.V = transfer.transfer(pose.V);
     results.push_back(std::move(r));
-    frames.push_back({{"eq11_residual", transfer.report().eq11_residual},
-                      {"eq12_residual", transfer.report().eq12_residual}});
+    frames.push_back(
+        {{"eq11_residual", transfer.report().eq11_residual}, {"eq12_residual", transfer.report().eq12_residual}});
   }
-  const json report = {{"source_vertices", source.num_vertices()}, {"target_vertices", target.num_vertices()},
-                       {"handles", transfer.report().handles},     {"unknowns", transfer.report().unknowns},
-                       {"pinned", transfer.report().pinned},       {"setup_s", transfer.report().setup_ms / 1000},
+  const json report = {{"source_vertices", source.num_vertices()},
+                       {"target_vertices", target.num_vertices()},
+                       {"handles", transfer.report().handles},
+                       {"unknowns", transfer.report().unknowns},
+                       {"pinned", transfer.report().pinned},
+                       {"setup_s", transfer.report().setup_ms / 1000},
                        {"poses", frames}};
   require_finite_numbers(report, "report");  // all outputs or none
   core::AtomicFileGroup outputs;

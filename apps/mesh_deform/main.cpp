@@ -69,7 +69,9 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   const auto w = weights == "cotan" ? mesh_deform::LaplacianWeights::Cotangent : mesh_deform::LaplacianWeights::Uniform;
   (edge ? settings.edge.weights : settings.weights) = w;
   settings.scale_features = args.has("--scale-features");
-  int& iterations = edge ? settings.edge.iterations : settings.arap_iterations;
+  int& iterations = edge                                               ? settings.edge.iterations
+                    : settings.method == mesh_deform::Method::Isolines ? settings.isolines.max_iterations
+                                                                       : settings.arap_iterations;
   iterations = static_cast<int>(args.get_int("--iterations", iterations, 1, 1000));
 
   auto app =

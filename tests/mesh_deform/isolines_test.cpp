@@ -14,6 +14,7 @@
 #include "lapis/geometry/procedural.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/isolines_deformer.h"
+#include "lapis/mesh_deform/live_deformer.h"
 #include "lapis/solver/least_squares.h"
 #include "rotation_fit.h"
 #include "stencil.h"
@@ -395,4 +396,37 @@ TEST_CASE("isolines: on the armadillo a small drag moves it a little and the cam
   HandleTransforms h = HandleTransforms::identity(s);
   h.regions = {T, T};
   CHECK(t::max_deviation(d.deform(h), camel.V, T) < 1e-8 * t::bbox_diagonal(camel.V));
+}
+
+TEST_CASE("isolines: the live deformer shows the field, ψ and isolines on setup, and previews a vertex subset") {
+  const TriMesh m = t::box_bar(6, 1.0, 4.0);
+  LiveDeformer live(m);
+  LiveRequest r;
+  r.settings.method = Method::Isolines;
+  r.selection = bar_selection(m);
+  r.selection_revision = 1;
+  r.transforms = HandleTransforms::identity(r.selection);
+  const LiveFrame first = live.update(r);
+  REQUIRE(first.did_setup);
+  CHECK(first.isoline_field.size() == m.num_vertices());
+  CHECK(first.rigidity.size() == m.num_vertices());
+  CHECK(first.rigidity.maxCoeff() > 0);
+  CHECK(first.isolines.size() > 20);
+  CHECK(first.timing.find("iterations") != std::string::npos);
+  r.transforms.regions[0] = t::rotation_about(Eigen::Vector3d::UnitY(), 30, Eigen::Vector3d(0.5, 0.5, 0.4));
+  r.preview = true;
+  const LiveFrame preview = live.update(r);
+  CHECK_FALSE(preview.did_setup);
+  CHECK(preview.isolines.empty());
+  const auto& free = make_layout(r.selection, m.num_vertices(), "test").free;
+  int kept = 0, moved = 0;
+  for (size_t k = 0; k < free.size(); ++k) {
+    const bool same = preview.positions.row(free[k]) == first.positions.row(free[k]);
+    (k % kIsolinePreviewStride == 0 ? moved : kept) += (k % kIsolinePreviewStride == 0) ? !same : same;
+  }
+  CHECK(moved == static_cast<int>((free.size() + kIsolinePreviewStride - 1) / kIsolinePreviewStride));
+  CHECK(kept == static_cast<int>(free.size()) - moved);
+  r.preview = false;
+  const LiveFrame full = live.update(r);
+  CHECK((full.positions - preview.positions).rowwise().norm().maxCoeff() > 1e-3);
 }

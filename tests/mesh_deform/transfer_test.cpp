@@ -46,7 +46,8 @@ TEST_CASE("transfer: the identity gives the target's rest, a rigid motion that m
   const Vertices out = x.transfer(moved);
   const auto fit = lapis::geometry::fit_similarity(tgt.V, out, false);
   double rigid_error = 0;
-  for (int v = 0; v < tgt.num_vertices(); ++v) rigid_error = std::max(rigid_error, (fit(tgt.V.row(v).transpose()) - out.row(v).transpose()).norm());
+  for (int v = 0; v < tgt.num_vertices(); ++v)
+    rigid_error = std::max(rigid_error, (fit(tgt.V.row(v).transpose()) - out.row(v).transpose()).norm());
   CHECK(rigid_error < 1e-8 * diag);
   CHECK((fit.R - T.topLeftCorner<3, 3>()).norm() < 1e-8);
 

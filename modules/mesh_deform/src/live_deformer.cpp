@@ -66,6 +66,11 @@ LiveFrame LiveDeformer::update(const LiveRequest& r) {
   if (auto* iso = dynamic_cast<IsolinesDeformer*>(deformer_.get())) {
     iso->set_preview_stride(r.preview ? kIsolinePreviewStride : 0);
     f.preview = r.preview;
+    if (f.did_setup) {
+      f.isoline_field = iso->fields().col(iso->isoline_sets() == 1 ? 1 : 0);
+      f.rigidity = iso->rigidity();
+      f.isolines = iso->isolines_of_set(0);
+    }
   }
   auto t0 = std::chrono::steady_clock::now();
   f.positions = deformer_->deform(r.transforms);

@@ -18,11 +18,11 @@ struct TransferOptions {
 };
 
 struct TransferReport {
-  int handles = 0;            // H on each mesh, the fixed region included
-  int unknowns = 0;           // 3 K n_iso per coordinate (Eq. 11)
-  double eq11_residual = 0;   // last transfer: ‖W_e R_e − E X‖ / ‖E X‖ on the source
-  double eq12_residual = 0;   // the same of Eq. 12 on the target
-  std::vector<int> pinned;    // target vertices held (one per connected component)
+  int handles = 0;           // H on each mesh, the fixed region included
+  int unknowns = 0;          // 3 K n_iso per coordinate (Eq. 11)
+  double eq11_residual = 0;  // last transfer: ‖W_e R_e − E X‖ / ‖E X‖ on the source
+  double eq12_residual = 0;  // the same of Eq. 12 on the target
+  std::vector<int> pinned;   // target vertices held (one per connected component)
   double setup_ms = 0;
 };
 

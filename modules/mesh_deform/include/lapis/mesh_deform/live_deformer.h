@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "lapis/mesh_deform/isolines.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/vertex_distortion.h"
 
@@ -43,6 +44,10 @@ struct LiveFrame {
   std::string timing;                     // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
   std::vector<int> degenerate_vertices;   // implicit: found by the current setup
   std::vector<HandleTransforms> history;  // every frame solved since the setup, this one last
+  // Isolines method, on a setup frame: the harmonic field of the first isoline set (§4.1), the
+  // rigidity ψ (#V each) and that set's isolines on the rest mesh. Empty otherwise.
+  Eigen::VectorXd isoline_field, rigidity;
+  std::vector<IsolineSegment> isolines;
 };
 
 class LiveDeformer {
