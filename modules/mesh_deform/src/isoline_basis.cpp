@@ -31,6 +31,17 @@ IsolineBasis make_isoline_basis(const geometry::Vertices& rest, const Eigen::Mat
   return b;
 }
 
+TransformBlocks transform_blocks(const solver::DenseMatrix& R) {
+  TransformBlocks B(static_cast<size_t>(R.rows() / 4));
+  for (size_t l = 0; l < B.size(); ++l) B[l] = R.middleRows<4>(4 * static_cast<Eigen::Index>(l));
+  return B;
+}
+
+Eigen::Vector3d IsolineBasis::position(int k, const TransformBlocks& R) const {
+  const int s = slot(k, 0);
+  return blend(homogeneous(k), &lower[s], &w0[s], &w1[s], sets, R);
+}
+
 IsolineBracket isoline_bracket(double f, double weight, int set, int isolines) {
   const double steps = isolines - 1;
   const int j = std::clamp(static_cast<int>(std::floor(f * steps)), 0, isolines - 2);

@@ -16,6 +16,20 @@
 
 namespace lapis::mesh_deform::detail {
 
+// R (4m by 3, block ℓ = r_ℓᵀ) as contiguous 4×3 blocks: the per-vertex blends read one block
+// per bracket instead of three strided columns of R.
+using TransformBlock = Eigen::Matrix<double, 4, 3>;
+using TransformBlocks = std::vector<TransformBlock, Eigen::aligned_allocator<TransformBlock>>;
+TransformBlocks transform_blocks(const solver::DenseMatrix& R);
+
+// Σ_i [w0_i h R_{lower_i} + w1_i h R_{lower_i + 1}] over the K brackets of one vertex.
+inline Eigen::Vector3d blend(const Eigen::Vector4d& h, const int* lower, const double* w0, const double* w1, int sets,
+                             const TransformBlocks& R) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (int i = 0; i < sets; ++i) x.noalias() += (w0[i] * R[lower[i]] + w1[i] * R[lower[i] + 1]).transpose() * h;
+  return x;
+}
+
 struct IsolineBasis {
   int sets = 0;      // K: one per handle, one in all when there are two handles (§4.1)
   int isolines = 0;  // N per set
@@ -32,16 +46,9 @@ struct IsolineBasis {
   Eigen::Vector3d normalized(const Eigen::Vector3d& x) const { return (x - center) / scale; }
   Eigen::Vector3d denormalized(const Eigen::Vector3d& x) const { return center + scale * x; }
 
-  // Row k of W_x times R (4m by 3: block ℓ is r_ℓᵀ): the vertex's position, normalized.
-  Eigen::Vector3d position(int k, const solver::DenseMatrix& R) const {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    const Eigen::RowVector4d h(rest(k, 0), rest(k, 1), rest(k, 2), 1.0);
-    for (int i = 0; i < sets; ++i) {
-      const int s = slot(k, i), l = lower[s];
-      x += (w0[s] * (h * R.middleRows<4>(4 * l)) + w1[s] * (h * R.middleRows<4>(4 * l + 4))).transpose();
-    }
-    return x;
-  }
+  Eigen::Vector4d homogeneous(int k) const { return {rest(k, 0), rest(k, 1), rest(k, 2), 1.0}; }
+  // Row k of W_x times R: the vertex's position, normalized.
+  Eigen::Vector3d position(int k, const TransformBlocks& R) const;
 };
 
 // The isolines of set i bracketing field value f (§4.2: s_j ≤ f ≤ s_{j+1}, α = (f − s_j) /

@@ -75,7 +75,23 @@ IsolineSamples sample_isolines(const IsolineBasis& b, const geometry::Faces& F, 
     out.offsets.push_back(out.size());
   }
   out.source = fit_sources(out.offsets, b.sets, b.isolines);
+  for (int v : out.vertices) {
+    out.hom.push_back(b.homogeneous(v));
+    for (int i = 0; i < b.sets; ++i) {
+      const int s = b.slot(v, i);
+      out.lower.push_back(b.lower[s]), out.w0.push_back(b.w0[s]), out.w1.push_back(b.w1[s]);
+    }
+  }
   return out;
+}
+
+geometry::Vertices sample_positions(const IsolineSamples& S, int sets, const TransformBlocks& R) {
+  geometry::Vertices X(S.vertices.size(), 3);
+  for (size_t k = 0; k < S.vertices.size(); ++k) {
+    const size_t s = k * sets;
+    X.row(static_cast<Eigen::Index>(k)) = blend(S.hom[k], &S.lower[s], &S.w0[s], &S.w1[s], sets, R).transpose();
+  }
+  return X;
 }
 
 namespace {

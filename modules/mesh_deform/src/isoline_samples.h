@@ -27,6 +27,11 @@ struct IsolineSamples {
   std::vector<int> offsets;  // samples of isoline ℓ: [offsets[ℓ], offsets[ℓ+1])
   std::vector<int> source;   // per isoline: the isoline whose fit it takes (itself if sampled)
   int crossed = 0;           // triangles crossed by all isolines before sampling
+  // The sample vertices' interpolation data, copied out of the basis so that an iteration
+  // reads a few contiguous kilobytes whatever #V: homogeneous rest positions, and K brackets each.
+  std::vector<Eigen::Vector4d, Eigen::aligned_allocator<Eigen::Vector4d>> hom;
+  std::vector<int> lower;
+  std::vector<double> w0, w1;
   int size() const { return static_cast<int>(tri.size()); }
 };
 
@@ -38,6 +43,9 @@ IsolineSamples sample_isolines(const IsolineBasis& basis, const geometry::Faces&
 // Segments of every isoline of set i on the rest mesh (for display and tests): level j = isoline j.
 std::vector<IsolineSegment> isoline_set_segments(const IsolineBasis& basis, const geometry::Faces& faces,
                                                  const Eigen::MatrixXd& phi, int set);
+
+// Positions (normalized) of the sample vertices under R.
+geometry::Vertices sample_positions(const IsolineSamples& samples, int sets, const TransformBlocks& R);
 
 // r̂ per isoline (m 3×3 matrices) from the samples' positions X (#samples.vertices by 3, normalized).
 // q  per isoline: the last fit's rotation, the start of the next (nearest_rotation).

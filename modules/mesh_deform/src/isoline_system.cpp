@@ -26,8 +26,6 @@ struct BlockRow {
   }
 };
 
-Eigen::Vector4d homogeneous(const IsolineBasis& b, int k) { return {b.rest(k, 0), b.rest(k, 1), b.rest(k, 2), 1.0}; }
-
 // One partial result per thread over the vertices [0, n): each is a dense matrix of the size of
 // the reduced system, so chunks are few and large. body(lo, hi, partial) fills its partial.
 template <class T, class Body>
@@ -53,7 +51,7 @@ void accumulate_rows(const IsolineBasis& b, const Eigen::SparseMatrix<double>& L
   for (std::ptrdiff_t k = lo; k < hi; ++k) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, k); it; ++it) {
       const int j = static_cast<int>(it.row());
-      const Eigen::Vector4d h = it.value() * homogeneous(b, j);
+      const Eigen::Vector4d h = it.value() * b.homogeneous(j);
       for (int i = 0; i < b.sets; ++i) {
         const int s = b.slot(j, i);
         if (b.w0[s] != 0) row.add(b.lower[s], b.w0[s] * h);
@@ -82,7 +80,7 @@ void symmetrize_blocks(DenseMatrix& A) {
 
 void add_handle_group(const IsolineBasis& b, const HandleGroup& g, IsolineSystem& sys, DenseMatrix& Gg) {
   for (int v : g.vertices) {
-    const Eigen::Vector4d h = homogeneous(b, v);
+    const Eigen::Vector4d h = b.homogeneous(v);
     const Eigen::Matrix4d hh = h * h.transpose();
     for (int i = 0; i < b.sets; ++i) {
       const int s = b.slot(v, i);
@@ -150,7 +148,7 @@ DenseMatrix basis_transpose_times(const IsolineBasis& b, const geometry::Vertice
   const auto partial = per_thread_partials<DenseMatrix>(n, [&](std::ptrdiff_t lo, std::ptrdiff_t hi, DenseMatrix& p) {
     p = DenseMatrix::Zero(4 * m, 3);
     for (std::ptrdiff_t k = lo; k < hi; ++k) {
-      const Eigen::Matrix<double, 4, 3> hy = homogeneous(b, static_cast<int>(k)) * Y.row(k);
+      const Eigen::Matrix<double, 4, 3> hy = b.homogeneous(static_cast<int>(k)) * Y.row(k);
       for (int i = 0; i < b.sets; ++i) {
         const int s = b.slot(static_cast<int>(k), i);
         p.middleRows<4>(4 * b.lower[s]) += b.w0[s] * hy;

@@ -126,8 +126,7 @@ DenseMatrix IsolinesDeformer::Impl::handle_term(const HandleTransforms& t, int n
 
 // Eq. 10's P R_δ: the isolines' fits from the sampled triangles only.
 DenseMatrix IsolinesDeformer::Impl::reduced_data(const DenseMatrix& Rx, detail::NormalFit fit) {
-  Vertices X(samples.vertices.size(), 3);
-  for (size_t k = 0; k < samples.vertices.size(); ++k) X.row(k) = basis.position(samples.vertices[k], Rx).transpose();
+  const Vertices X = detail::sample_positions(samples, basis.sets, detail::transform_blocks(Rx));
   std::vector<Eigen::Matrix3d> r;
   detail::fit_isolines(samples, X, fit, q, r);
   DenseMatrix Rd(3 * r.size(), 3);
@@ -140,7 +139,8 @@ DenseMatrix IsolinesDeformer::Impl::reduced_data(const DenseMatrix& Rx, detail::
 DenseMatrix IsolinesDeformer::Impl::full_data(const DenseMatrix& Rx) {
   const int n = basis.vertices;
   Vertices X(n, 3), D(n, 3);
-  detail::for_vertices(n, [&](std::ptrdiff_t k) { X.row(k) = basis.position(static_cast<int>(k), Rx).transpose(); });
+  const detail::TransformBlocks B = detail::transform_blocks(Rx);
+  detail::for_vertices(n, [&](std::ptrdiff_t k) { X.row(k) = basis.position(static_cast<int>(k), B).transpose(); });
   detail::for_vertices(n, [&](std::ptrdiff_t k) {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     for (int e = stencil.offsets[k]; e < stencil.offsets[k + 1]; ++e) {
@@ -263,12 +263,14 @@ void IsolinesDeformer::solve(const HandleTransforms& transforms, const Vertices&
   const DenseMatrix gc = m.handle_term(transforms, layout().num_region_handles);
   const detail::NormalFit fit = normal_fit(options_.fit);
   report_.steps.clear();
+  report_.iteration_ms.clear();
   auto t0 = std::chrono::steady_clock::now();
   // Eq. 10 / Eq. 6 from the last frame's transforms (§3: X⁰ the current positions). The ridge
   // pulls toward them, so it vanishes at convergence.
   // The step size is the plain iteration's, ‖g(R) − R‖ / ‖R‖, also when accelerated.
   detail::Anderson accel(options_.anderson_depth);
   for (int it = 0; it < options_.max_iterations; ++it) {
+    const auto t_it = std::chrono::steady_clock::now();
     const DenseMatrix data = options_.solve == IsolineSolve::Reduced ? m.reduced_data(m.R, fit) : m.full_data(m.R);
     const DenseMatrix d = m.step(data + gc);
     const double step = d.norm() / std::max(m.R.norm(), 1e-300);
@@ -277,6 +279,7 @@ void IsolinesDeformer::solve(const HandleTransforms& transforms, const Vertices&
     const Eigen::VectorXd g = x + Eigen::Map<const Eigen::VectorXd>(d.data(), d.size());
     const Eigen::VectorXd next = step < options_.tolerance ? g : accel.next(x, g);
     m.R = Eigen::Map<const DenseMatrix>(next.data(), m.R.rows(), m.R.cols());
+    report_.iteration_ms.push_back(ms_since(t_it));
     if (step < options_.tolerance) break;
   }
   report_.iterations = static_cast<int>(report_.steps.size());
@@ -284,15 +287,17 @@ void IsolinesDeformer::solve(const HandleTransforms& transforms, const Vertices&
 
   t0 = std::chrono::steady_clock::now();
   const int stride = m.have_last ? preview_stride_ : 0;
+  const detail::TransformBlocks B = detail::transform_blocks(m.R);
   detail::for_vertices(m.free.size(), [&](std::ptrdiff_t k) {
     const int v = m.free[k];
     if (stride > 1 && k % stride != 0)
       out.row(v) = m.last.row(v);
     else
-      out.row(v) = m.basis.denormalized(m.basis.position(v, m.R)).transpose();
+      out.row(v) = m.basis.denormalized(m.basis.position(v, B)).transpose();
   });
-  m.last = out;
-  m.have_last = true;
+  // Only a preview needs the last frame (a #V × 3 copy: 27 MB at 1.1M vertices).
+  m.have_last = preview_stride_ > 1;
+  if (m.have_last) m.last = out;
   report_.reconstruct_ms = ms_since(t0);
   report_.frame_ms = ms_since(t_frame);
 }
@@ -330,12 +335,13 @@ const Eigen::MatrixXd& IsolinesDeformer::isoline_transforms() const {
 Vertices IsolinesDeformer::reconstruct(const std::vector<int>& vertices) const {
   if (!impl_) not_set_up("reconstruct()");
   Vertices X(vertices.size(), 3);
+  const detail::TransformBlocks B = detail::transform_blocks(impl_->R);
   for (size_t k = 0; k < vertices.size(); ++k) {
     const int v = vertices[k];
     if (v < 0 || v >= mesh_.num_vertices())
       throw InvalidArgument("mesh_deform::IsolinesDeformer::reconstruct(): vertex " + std::to_string(v) +
                             " out of range");
-    X.row(k) = impl_->basis.denormalized(impl_->basis.position(v, impl_->R)).transpose();
+    X.row(k) = impl_->basis.denormalized(impl_->basis.position(v, B)).transpose();
   }
   return X;
 }

@@ -65,6 +65,9 @@ struct IsolinesReport {
   double fields_factorize_ms = 0, fields_solve_ms = 0, extraction_ms = 0, assembly_ms = 0, setup_ms = 0;
   int iterations = 0;         // of the last deform()
   std::vector<double> steps;  // ‖ΔR‖/‖R‖ per iteration of the last deform()
+  // Per iteration of the last deform(). The first one of a frame finds the reduced system out of
+  // cache (the last reconstruction streamed #V × 3 positions through it).
+  std::vector<double> iteration_ms;
   double iterate_ms = 0;      // all iterations of the last deform()
   double reconstruct_ms = 0;  // X = W_x R_x over the free vertices
   double frame_ms = 0;
@@ -87,7 +90,8 @@ class IsolinesDeformer final : public Deformer {
   // The next deform() starts from the identity transforms instead of the last frame's.
   void reset_warm_start();
   // Preview while dragging: deform() iterates as usual but reconstructs only every
-  // `stride`-th free vertex (the others keep the last full frame's positions); 0 turns it off.
+  // `stride`-th free vertex (the others keep the last frame's positions); 0 turns it off. The
+  // first frame after one without preview is whole: only previews keep a copy of their result.
   void set_preview_stride(int stride) { preview_stride_ = stride < 0 ? 0 : stride; }
 
   // After setup: the fields (#V by H, column order of HandleSets), the rigidity ψ, and the
