@@ -288,18 +288,24 @@ TEST_CASE("isolines: an Eq. 10 iteration's work does not grow with the vertex co
   CHECK(counts(fine, IsolineSolve::Full).iteration_rows == fine.num_vertices());
 }
 
-TEST_CASE("isolines: a 175° twist of a bar turns monotonically along it (Fig. 9, drag of 7 frames)") {
+// A 175° twist (Fig. 9) at N = 10 and 20, and 270°, past π, at N = 20: the handle's matrix
+// cannot tell 270° from −90°, the warm start from the last frame's transforms carries the turn.
+TEST_CASE("isolines: a 175° and a 270° twist of a bar turn monotonically along it over a drag") {
   const TriMesh m = t::box_bar(6, 1.0, 4.0);
   const Selection s = bar_selection(m);
-  for (int n : {10, 20}) {
+  // The last case is the paper's model without the guides: it unwinds to −90°.
+  for (const auto [n, total, guides] : {std::tuple{10, 175.0, true}, std::tuple{20, 175.0, true},
+                                        std::tuple{20, 270.0, true}, std::tuple{20, 270.0, false}}) {
     IsolinesOptions o;
     o.isolines = n;
+    o.large_rotations = guides;
     IsolinesDeformer d(m, o);
     d.set_selection(s);
     HandleTransforms h = HandleTransforms::identity(s);
     Vertices X;
-    for (int frame = 1; frame <= 7; ++frame) {
-      h.regions[0] = t::rotation_about(Eigen::Vector3d::UnitZ(), 25.0 * frame, Eigen::Vector3d(0.5, 0.5, 0));
+    const int frames = static_cast<int>(total / 25.0 + 0.999);
+    for (int frame = 1; frame <= frames; ++frame) {
+      h.regions[0] = t::rotation_about(Eigen::Vector3d::UnitZ(), total * frame / frames, Eigen::Vector3d(0.5, 0.5, 0));
       X = d.deform(h);
     }
     // Mean turn of each vertex row about the bar's axis, unwrapped from row to row.
@@ -317,8 +323,13 @@ TEST_CASE("isolines: a 175° twist of a bar turns monotonically along it (Fig. 9
       turn.push_back(angle);
     }
     CAPTURE(n);
+    CAPTURE(total);
     CHECK(turn.front() == doctest::Approx(0).epsilon(1e-6));
-    CHECK(turn.back() == doctest::Approx(175).epsilon(1e-6));
+    if (!guides) {
+      CHECK(turn.back() == doctest::Approx(total - 360).epsilon(1e-6));
+      continue;
+    }
+    CHECK(turn.back() == doctest::Approx(total).epsilon(1e-6));
     for (size_t k = 1; k < turn.size(); ++k) CHECK(turn[k] >= turn[k - 1] - 1e-6);
   }
 }
@@ -431,4 +442,43 @@ TEST_CASE("isolines: the live deformer shows the field, ψ and isolines on setup
   r.preview = false;
   const LiveFrame full = live.update(r);
   CHECK((full.positions - preview.positions).rowwise().norm().maxCoeff() > 1e-3);
+}
+
+TEST_CASE("isolines: a refined bar deforms like the coarse one (Fig. 8), at the vertices they share") {
+  const TriMesh coarse = t::box_bar(6, 1.0, 4.0);
+  const TriMesh fine = lapis::geometry::midpoint_subdivide(coarse, 1);  // same shape, the old vertices first
+  auto bend = [](const TriMesh& m) {
+    IsolinesDeformer d(m);
+    const Selection s = bar_selection(m);
+    d.set_selection(s);
+    HandleTransforms h = HandleTransforms::identity(s);
+    h.regions[0] = t::rotation_about(Eigen::Vector3d::UnitY(), 60, Eigen::Vector3d(0.5, 0.5, 0.4));
+    return d.deform(h);
+  };
+  const Vertices a = bend(coarse), b = bend(fine);
+  CHECK(mean_distance(a, b.topRows(coarse.num_vertices())) < 0.01 * t::bbox_diagonal(coarse.V));
+}
+
+TEST_CASE("isolines: a planar grid and a double torus set up and keep identity and translation") {
+  const TriMesh grid = t::planar_grid(14, 14, 0.2);
+  Selection s;
+  s.roi = t::all_vertices(grid);
+  s.region_handles = {t::slab(grid, 0, 0.0, 0.08), t::slab(grid, 0, 0.92, 1.0)};
+  const TriMesh torus = lapis::geometry::make_double_torus(24, 12);
+  Selection st;
+  st.roi = t::all_vertices(torus);
+  st.region_handles = {t::slab(torus, 0, 0.0, 0.1), t::slab(torus, 0, 0.9, 1.0)};
+  st.point_handles = {t::slab(torus, 1, 0.97, 1.0).front()};
+  for (const auto& [m, sel] : {std::pair{grid, s}, std::pair{torus, st}}) {
+    IsolinesDeformer d(m, converged({}));
+    d.set_selection(sel);
+    CHECK((d.deform(HandleTransforms::identity(sel)) - m.V).cwiseAbs().maxCoeff() < 1e-9 * t::bbox_diagonal(m.V));
+    // Translating every handle moves no normal: the result is that translation.
+    HandleTransforms h = HandleTransforms::identity(sel);
+    Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+    T.topRightCorner<3, 1>() = Eigen::Vector3d(0.3, -0.2, 0.1);
+    for (auto& r : h.regions) r = T;
+    for (auto& p : h.points) p = T.topRightCorner<3, 1>();
+    CHECK(t::max_deviation(d.deform(h), m.V, T) < 1e-8 * t::bbox_diagonal(m.V));
+  }
 }

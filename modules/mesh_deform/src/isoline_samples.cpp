@@ -138,6 +138,9 @@ void fit_isolines(const IsolineSamples& S, const geometry::Vertices& X, NormalFi
     if (fit == NormalFit::Paper) {
       own[l] = A * pseudo_inverse_sym(B);
     } else {
+      // Parallel normals (a planar isoline) leave the turn about them free; a pull of 10⁻⁶
+      // toward the last rotation picks the continuous one and leaves a determined fit alone.
+      A += 1e-6 * A.norm() * q[l].toRotationMatrix();
       own[l] = nearest_rotation(A, q[l]);
       if (fit == NormalFit::Similarity && rest_len > 0) own[l] *= len / rest_len;
     }

@@ -7,6 +7,7 @@
 
 #include "anderson.h"
 #include "isoline_basis.h"
+#include "isoline_guides.h"
 #include "isoline_samples.h"
 #include "isoline_system.h"
 #include "lapis/geometry/laplacian.h"
@@ -32,6 +33,8 @@ void check_options(const IsolinesOptions& o) {
   if (!positive(o.omega)) fail_option("omega must be finite and > 0");
   if (!std::isfinite(o.beta) || o.beta < 0) fail_option("beta must be finite and >= 0");
   if (o.anderson_depth < 0) fail_option("anderson_depth must be >= 0");
+  if (!std::isfinite(o.guide_angle) || o.guide_angle < 0 || !std::isfinite(o.guide_weight) || o.guide_weight < 0)
+    fail_option("guide_angle and guide_weight must be finite and >= 0");
   if (o.max_iterations < 1) fail_option("max_iterations = " + std::to_string(o.max_iterations) + ", expected >= 1");
   if (!std::isfinite(o.tolerance) || o.tolerance < 0) fail_option("tolerance must be finite and >= 0");
   if (o.triangle_budget < 0 || o.min_triangles_per_isoline < 0)
@@ -72,9 +75,12 @@ struct IsolinesDeformer::Impl {
   std::vector<detail::HandleGroup> groups;
   std::vector<DenseMatrix> G;  // ω² W_xᵀΦᵀQ per group
   DenseMatrix P;               // W_xᵀLᵀW_δ
-  DenseMatrix UtU;             // without the ridge
+  DenseMatrix UtU_model;       // Eq. 6/10's normal matrix, without the ridge
+  DenseMatrix UtU;             // the same with this frame's guide rows
   Eigen::LLT<DenseMatrix> chol;
   double ridge = 0;
+  double guide_unit = 0;  // mean diagonal of the Laplacian part
+  detail::IsolineGuides guides;
   DenseMatrix R;                       // current transforms, 4m by 3
   std::vector<Eigen::Quaterniond> q;   // per isoline: last fitted rotation
   std::vector<Eigen::Quaterniond> vq;  // Eq. 6 mode, per vertex
@@ -86,7 +92,28 @@ struct IsolinesDeformer::Impl {
   DenseMatrix reduced_data(const DenseMatrix& R, detail::NormalFit fit);
   DenseMatrix full_data(const DenseMatrix& R);
   DenseMatrix step(const DenseMatrix& rhs) const;
+  void factorize();
+  DenseMatrix guide_term(double weight) const;
 };
+
+// UᵀU (+ guide rows) + λI.
+void IsolinesDeformer::Impl::factorize() {
+  DenseMatrix A = UtU;
+  A.diagonal().array() += ridge;
+  chol.compute(A);
+  if (chol.info() != Eigen::Success)
+    throw NotPositiveDefinite("mesh_deform::IsolinesDeformer::precompute(): the reduced normal matrix UᵀU (" +
+                                  std::to_string(A.rows()) + " unknowns) is not positive definite",
+                              -1);
+}
+
+// w Σ_ℓ guided [G_ℓᵀ; 0], the right-hand side of the guide rows w ‖A_ℓ − G_ℓ‖²_F.
+DenseMatrix IsolinesDeformer::Impl::guide_term(double weight) const {
+  DenseMatrix g = DenseMatrix::Zero(UtU.rows(), 3);
+  for (size_t l = 0; l < guides.guided.size(); ++l)
+    if (guides.guided[l]) g.middleRows<3>(4 * static_cast<Eigen::Index>(l)) = weight * guides.target[l].transpose();
+  return g;
+}
 
 // The change of R that solves (UᵀU + λI) R' = rhs + λR, from the residual and with one step of
 // refinement: ω² makes UᵀU ill-conditioned (~1e10), and a fixed point (the identity, a rigid
@@ -171,7 +198,11 @@ void IsolinesDeformer::set_options(const IsolinesOptions& o) {
 }
 
 void IsolinesDeformer::reset_warm_start() {
-  if (impl_) impl_->R = identity_transforms(impl_->basis.count());
+  if (!impl_) return;
+  impl_->R = identity_transforms(impl_->basis.count());
+  impl_->guides.reset(static_cast<int>(impl_->guides.angle.size()), impl_->basis.count());
+  impl_->UtU = impl_->UtU_model;
+  impl_->factorize();
 }
 
 namespace {
@@ -216,18 +247,14 @@ void IsolinesDeformer::setup(const Layout& layout) {
   const double lap = sys.laplacian.trace();
   const double w2 = options_.omega * options_.omega * (lap > 0 ? lap / sys.handles.trace() : 1.0);
   const double b2 = options_.beta * options_.beta * (lap > 0 ? lap / sys.smoothness.trace() : 1.0);
-  DenseMatrix UtU = sys.laplacian + w2 * sys.handles + b2 * sys.smoothness;
+  m->UtU_model = sys.laplacian + w2 * sys.handles + b2 * sys.smoothness;
+  m->UtU = m->UtU_model;
   // The ridge for rank-deficient cases (coplanar influence, point handles only) is relative to
   // the Laplacian part: ω²'s share of the trace would make it slow the iteration down.
-  m->ridge = 1e-10 * (lap > 0 ? lap : UtU.trace()) / UtU.rows();
-  UtU.diagonal().array() += m->ridge;
-  m->chol.compute(UtU);
-  UtU.diagonal().array() -= m->ridge;
-  m->UtU = std::move(UtU);
-  if (m->chol.info() != Eigen::Success)
-    throw NotPositiveDefinite("mesh_deform::IsolinesDeformer::precompute(): the reduced normal matrix UᵀU (" +
-                                  std::to_string(m->UtU.rows()) + " unknowns) is not positive definite",
-                              -1);
+  m->guide_unit = (lap > 0 ? lap : m->UtU.trace()) / m->UtU.rows();
+  m->ridge = 1e-10 * m->guide_unit;
+  m->factorize();
+  m->guides.reset(layout.num_region_handles, iso);
   for (DenseMatrix& g : sys.G) m->G.push_back(w2 * g);
   m->P = std::move(sys.P);
   if (options_.solve == IsolineSolve::Full) {
@@ -260,7 +287,17 @@ void IsolinesDeformer::setup(const Layout& layout) {
 void IsolinesDeformer::solve(const HandleTransforms& transforms, const Vertices& /*targets*/, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
-  const DenseMatrix gc = m.handle_term(transforms, layout().num_region_handles);
+  DenseMatrix gc = m.handle_term(transforms, layout().num_region_handles);
+  if (options_.large_rotations) {
+    const double w = options_.guide_weight * m.guide_unit;
+    if (m.guides.update(transforms, m.basis, m.sets, options_.guide_angle)) {
+      m.UtU = m.UtU_model;
+      for (size_t l = 0; l < m.guides.guided.size(); ++l)
+        if (m.guides.guided[l]) m.UtU.diagonal().segment<3>(4 * static_cast<Eigen::Index>(l)).array() += w;
+      m.factorize();
+    }
+    gc += m.guide_term(w);
+  }
   const detail::NormalFit fit = normal_fit(options_.fit);
   report_.steps.clear();
   report_.iteration_ms.clear();

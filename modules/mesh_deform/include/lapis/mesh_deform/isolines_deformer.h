@@ -46,6 +46,13 @@ struct IsolinesOptions {
   // Anderson acceleration of the iteration over this many past iterates (0: the paper's plain
   // inexact Gauss–Newton). Same fixed point; on the armadillo 3–5 times fewer iterations.
   int anderson_depth = 3;
+  // A region handle turned (over the drag, unwrapped frame to frame) past guide_angle pulls the
+  // linear parts of its isolines toward their share s_j of its rotation: the "extra in-between
+  // handles" of §5's limitation, placed automatically, so a turn past π is kept. Off: the
+  // paper's model, which unwinds past π.
+  bool large_rotations = true;
+  double guide_angle = 0.5 * 3.141592653589793;
+  double guide_weight = 1;    // relative to the mean diagonal of the Laplacian part of UᵀU
   HandleFieldOptions fields;  // point handles' disc (§4.1 needs a field per handle)
 
   bool operator==(const IsolinesOptions&) const = default;
