@@ -17,8 +17,8 @@
 namespace lapis::mesh_deform::detail {
 
 struct IsolineGuides {
-  std::vector<Eigen::Vector3d> angle;  // per region handle: rotation vector continued over the drag
-  std::vector<char> guided;            // per isoline
+  std::vector<Eigen::Vector3d> angle;   // per region handle: rotation vector continued over the drag
+  std::vector<char> guided;             // per isoline
   std::vector<Eigen::Matrix3d> target;  // per isoline: the guide's linear part (when guided)
 
   void reset(int region_handles, int isolines);
