@@ -29,6 +29,7 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "test_meshes.h"
@@ -69,6 +70,14 @@ inline std::unique_ptr<Deformer> make_arap(const TriMesh& m, int iterations, dou
   return std::make_unique<ArapDeformer>(m, o);
 }
 
+// Converged far below the interactive default, for the fixed-point checks.
+inline std::unique_ptr<Deformer> make_isolines(const TriMesh& m) {
+  IsolinesOptions o;
+  o.tolerance = 1e-10;
+  o.max_iterations = 400;
+  return std::make_unique<IsolinesDeformer>(m, o);
+}
+
 // Every method of the module, with the invariance it promises.
 inline std::vector<MethodCase> methods() {
   using I = MethodCase::Invariance;
@@ -92,6 +101,7 @@ inline std::vector<MethodCase> methods() {
       {"implicit", implicit(ShearingRemoval::RetainFeatures), I::Rigid, 1e-5},
       {"implicit scale", implicit(ShearingRemoval::ScaleFeatures), I::Similarity, 1e-5},
       {"arap", [](const TriMesh& m) { return make_arap(m, 10, 0); }, I::Rigid, 1e-7},
+      {"isolines", make_isolines, I::Rigid, 1e-8},
   };
 }
 
