@@ -256,7 +256,7 @@ inline bool known_to_fold(const std::string& mesh, const std::string& method) {
 }
 
 // A bend of the top handle (30° and 0.1 diagonals, dragged over `frames` frames) folds and
-// collapses nothing (ARAP: folds no more than CGAL's ARAP under the same drag).
+// collapses nothing (ARAP and isolines: fold no more than CGAL's ARAP under the same drag).
 inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std::string& mesh_name, int frames = 4) {
   const Selection s = selection(m, false);
   auto d = method.make(m);
@@ -273,9 +273,9 @@ inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std
     return X;
   }
   int allowed = 0;
-  if (method.name == "arap") {
-    // Where CGAL's ARAP folds under the same drag (one edge of the Chinese dragon), ARAP may
-    // fold as much and no more.
+  if (method.name == "arap" || method.name == "isolines") {
+    // Where CGAL's ARAP folds under the same drag (one edge of the Chinese dragon), ARAP and the
+    // isolines model (which folds that one edge too) may fold as much and no more.
     peers::CgalArap cgal(m, s.roi, s.region_handles[0]);
     for (int f = 1; f <= frames; ++f) {
       cgal.set_targets(transformed(m, bend(m, s.region_handles[0], 30.0 * f / frames, 0.1 * f / frames)));
