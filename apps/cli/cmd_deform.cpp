@@ -15,6 +15,7 @@
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/feature_io.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/selection_io.h"
@@ -33,6 +34,7 @@ constexpr const char* kUsageRest =
     "                    [--frame world|principal] [--tolerance T] [--warm-start] [--soft-handles]\n"
     "                    [--features FEATURES.json] [--no-detect] [--subspace-vertices N] [--eigenpairs K]\n"
     "                    [--subspace lattice|cgal]\n"
+    "                    [--isolines N] [--solve reduced|full] [--fit rotation|similarity|paper]\n"
     "                    --out OUT.obj [--report OUT.json]\n"
     "  ROI: vertex indices, as a JSON array or whitespace-separated text; 'all' for every vertex.\n"
     "  HANDLES.json: {\"regions\": [{\"vertices\": [..], \"transforms\": [M, ...]}],\n"
@@ -50,6 +52,9 @@ constexpr const char* kUsageRest =
     "  `lapis features`) to the detected ones, or replaces them with --no-detect; the solid\n"
     "  subspace has about --subspace-vertices vertices (100), a lattice of cubes or CGAL's alpha\n"
     "  wrap tetrahedralised (--subspace cgal); --eigenpairs of the heat kernel (100).\n"
+    "  isolines (Au et al.): --isolines per handle (20), --solve reduced (Eq. 10, independent of\n"
+    "  #V) or full (Eq. 6), --fit of each isoline's transform, --iterations at most per frame (50)\n"
+    "  and --tolerance of the step size (1e-4).\n"
     "  Writes the last frame to OUT; the report holds timings, degenerate vertices, metrics.\n";
 
 const char* usage() {
@@ -107,6 +112,19 @@ json salient_report(const SalientReport& r) {
           {"feature_residual", r.feature_residual}};
 }
 
+// The isolines method's flags over its defaults.
+void read_isolines_options(const Args& args, IsolinesOptions& o) {
+  try {
+    o.isolines = static_cast<int>(args.get_int("--isolines", o.isolines, 2, 100000));
+    o.solve = isoline_solve_from_name(args.get("--solve", to_string(o.solve)));
+    o.fit = isoline_fit_from_name(args.get("--fit", to_string(o.fit)));
+    o.max_iterations = static_cast<int>(args.get_int("--iterations", o.max_iterations, 1, 1000000));
+    o.tolerance = args.get_double("--tolerance", o.tolerance, 0, 1);
+  } catch (const InvalidArgument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 json summary(const Summary& s) { return {{"mean", s.mean}, {"max", s.max}, {"p95", s.p95}}; }
 
 int run(const std::vector<std::string>& argv) {
@@ -114,7 +132,7 @@ int run(const std::vector<std::string>& argv) {
   args.allow_only({"--mesh",       "--roi",        "--handles",      "--method",   "--weights",   "--scale-features",
                    "--iterations", "--out",        "--report",       "--domain",   "--transform", "--frame",
                    "--tolerance",  "--warm-start", "--soft-handles", "--features", "--no-detect", "--subspace-vertices",
-                   "--eigenpairs", "--subspace"});
+                   "--eigenpairs", "--subspace",   "--isolines",     "--solve",    "--fit"});
   const std::string method = args.get("--method");
   bool known = false;
   for (const MethodInfo& m : methods()) known = known || method == m.name;
@@ -139,6 +157,7 @@ int run(const std::vector<std::string>& argv) {
   for (const char* flag : {"--features", "--no-detect", "--subspace-vertices", "--eigenpairs", "--subspace"})
     if (args.has(flag) && settings.method != Method::Salient)
       throw UsageError(std::string(flag) + " is an option of --method salient");
+  if (settings.method == Method::Isolines) read_isolines_options(args, settings.isolines);
   const std::unique_ptr<Deformer> d = make_deformer(mesh, settings);
   if (auto* s = dynamic_cast<SalientDeformer*>(d.get())) {
     if (args.has("--features")) s->set_features(read_features(args.get("--features")));
@@ -192,6 +211,19 @@ int run(const std::vector<std::string>& argv) {
                  {"solve_ms", er.solve_ms}};
   }
   if (const auto* s = dynamic_cast<const SalientDeformer*>(d.get())) r["salient"] = salient_report(s->report());
+  if (const auto* iso = dynamic_cast<const IsolinesDeformer*>(d.get())) {
+    const IsolinesReport& ir = iso->report();
+    r["isolines"] = {{"solve", to_string(settings.isolines.solve)},
+                     {"fit", to_string(settings.isolines.fit)},
+                     {"handles", ir.handles},
+                     {"sets", ir.sets},
+                     {"unknowns", ir.unknowns},
+                     {"sampled_triangles", ir.sampled_triangles},
+                     {"iterations", ir.iterations},
+                     {"iterate_ms", ir.iterate_ms},
+                     {"reconstruct_ms", ir.reconstruct_ms},
+                     {"field_overshoot", ir.field_overshoot}};
+  }
   require_finite_numbers(r, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;        // the mesh and the report: both new or both old
   geometry::write_mesh(out_path, result);
@@ -203,7 +235,8 @@ int run(const std::vector<std::string>& argv) {
 }  // namespace
 
 extern const Command kDeformCommand = {
-    "deform", "drag handles of a mesh: implicit, naive or edge-based Laplacian, ARAP, or salient features", usage(),
-    run};
+    "deform",
+    "drag handles of a mesh: implicit, naive or edge-based Laplacian, ARAP, salient features or handle-aware isolines",
+    usage(), run};
 
 }  // namespace lapis::cli

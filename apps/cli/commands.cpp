@@ -8,10 +8,11 @@ extern const Command kHairCommand;
 extern const Command kMergeCommand;
 extern const Command kDeformCommand;
 extern const Command kFeaturesCommand;
+extern const Command kTransferCommand;
 
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
-      kMeshCommand, kHairCommand, kMergeCommand, kDeformCommand, kFeaturesCommand,
+      kMeshCommand, kHairCommand, kMergeCommand, kDeformCommand, kFeaturesCommand, kTransferCommand,
   };
   return all;
 }

@@ -214,7 +214,12 @@ void DeformApp::receive(viewer::Viewer& v) {
   if (!s || s->epoch != epoch_) return;  // nothing new, or from a mesh no longer open
   engine_error_.clear();
   received_ = s->request;
-  if (s->frame.did_setup) setup_ms_.push_back(s->frame.setup_ms);
+  if (s->frame.did_setup) {
+    setup_ms_.push_back(s->frame.setup_ms);
+    isoline_field_ = s->frame.isoline_field;
+    rigidity_ = s->frame.rigidity;
+    isolines_ = s->frame.isolines;
+  }
   if (s->revision == selection_revision_ && s->settings == settings_) setup_started_ = -1;
   solve_ms_.push_back(s->frame.solve_ms);
   shown_.V = s->frame.positions;
@@ -386,15 +391,22 @@ bool DeformApp::export_result(viewer::Viewer& v) {
     write_roi(roi, last_->selection->roi);
     write_handles(handles, *last_->selection, last_->frame.history);
     const MethodSettings& s = last_->settings;
-    const bool edge = s.method == Method::Edge;
+    const bool edge = s.method == Method::Edge, iso = s.method == Method::Isolines;
     const LaplacianWeights weights = edge ? s.edge.weights : s.weights;
+    const int iterations = edge                          ? s.edge.iterations
+                           : iso                         ? s.isolines.max_iterations
+                           : s.method == Method::Salient ? s.salient.iterations
+                                                         : s.arap_iterations;
     std::string command = "lapis deform --mesh " + paths_.mesh.string() + " --roi " + roi.string() + " --handles " +
                           handles.string() + " --method " + method_info(s.method).name + " --weights " +
                           to_string(weights) + (s.scale_features ? " --scale-features" : "") + " --iterations " +
-                          std::to_string(edge ? s.edge.iterations : s.arap_iterations);
+                          std::to_string(iterations);
     if (edge)
       command += std::string(" --domain ") + to_string(s.edge.domain) + " --transform " + to_string(s.edge.transform) +
                  " --frame " + to_string(s.edge.frame) + (s.edge.warm_start ? " --warm-start" : "");
+    if (iso)
+      command += " --isolines " + std::to_string(s.isolines.isolines) + " --solve " + to_string(s.isolines.solve) +
+                 " --fit " + to_string(s.isolines.fit);
     command += " --out OUT.obj";
     nlohmann::json j = {{"mesh", paths_.mesh.string()},
                         {"roi", roi.string()},
@@ -402,7 +414,7 @@ bool DeformApp::export_result(viewer::Viewer& v) {
                         {"method", method_info(s.method).name},
                         {"weights", to_string(weights)},
                         {"scale_features", s.scale_features},
-                        {"iterations", edge ? s.edge.iterations : s.arap_iterations},
+                        {"iterations", iterations},
                         {"frames", last_->frame.history.size()},
                         {"cli", command}};
     core::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 enum class Tool { Move, Brush, Lasso };
 const char* tool_name(Tool t);
 
-enum class ColorMode { Selection, Distortion, Saliency };
+enum class ColorMode { Selection, Distortion, Saliency, IsolineField, Rigidity };
 
 // Colour of region handle `label` on the surface and in the panels.
 Eigen::Vector3f handle_color(int label);
@@ -175,6 +175,9 @@ class DeformApp final : public viewer::ViewerApp {
   DistortionField field_ = DistortionField::EdgeLength;
   bool show_degenerate_ = true;
   double legend_hi_ = 0;
+  // The isolines method's view of its last setup: a handle field, ψ and the isolines (rest mesh).
+  Eigen::VectorXd isoline_field_, rigidity_;
+  std::vector<mesh_deform::IsolineSegment> isolines_;
 
   // Engine: solves never block input; the previous result stays until a newer one arrives.
   // One per opened mesh, with its own copy of the mesh: a job still running on an old slot

@@ -151,6 +151,19 @@ void draw_salient_controls(SalientOptions& o) {
   ImGui::Checkbox("warm start from the last frame", &o.warm_start);
 }
 
+// The isolines model's choices (Au et al.): isolines per handle, Eq. 10 or Eq. 6, the fit of
+// each isoline's transform and the iterations a frame may take.
+void draw_isolines_controls(IsolinesOptions& o) {
+  ImGui::SliderInt("isolines / handle", &o.isolines, 2, 80);
+  int solve = o.solve == IsolineSolve::Reduced ? 0 : 1;
+  if (ImGui::Combo("iteration", &solve, "Eq. 10 (sampled triangles)\0Eq. 6 (whole mesh)\0"))
+    o.solve = solve == 0 ? IsolineSolve::Reduced : IsolineSolve::Full;
+  int fit = static_cast<int>(o.fit);
+  if (ImGui::Combo("isoline fit", &fit, "rotation\0rotation and scale\0Eq. 9 (the paper)\0"))
+    o.fit = static_cast<IsolineFit>(fit);
+  ImGui::SliderInt("max iterations", &o.max_iterations, 1, 200);
+}
+
 }  // namespace
 
 // The features: pick the one the brush paints (target "feature"; Shift erases), start a new
@@ -201,7 +214,7 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
       if (ImGui::Selectable(m.label, m.method == s.method)) s.method = m.method;
     ImGui::EndCombo();
   }
-  if (s.method != Method::Arap && s.method != Method::Salient) {  // those two use cotangents only
+  if (s.method != Method::Arap && s.method != Method::Salient && s.method != Method::Isolines) {  // cotangents only
     LaplacianWeights& weights = s.method == Method::Edge ? s.edge.weights : s.weights;
     int w = weights == LaplacianWeights::Cotangent ? 0 : 1;
     if (ImGui::Combo("weights", &w, "cotangent\0uniform\0"))
@@ -218,20 +231,35 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
   }
   if (s.method == Method::Edge) draw_edge_controls(s.edge);
   if (s.method == Method::Salient) draw_salient_controls(s.salient);
+  if (s.method == Method::Isolines) {
+    draw_isolines_controls(s.isolines);
+    int mode = preview_while_dragging_ ? 0 : 1;
+    if (ImGui::Combo("while dragging", &mode, "every 8th vertex (preview)\0every vertex every frame\0"))
+      preview_while_dragging_ = mode == 0;
+  }
   if (!(s == settings_)) settings_ = s;  // the next request sets up again
   ImGui::Separator();
-  constexpr int kSaliencyMode = 4;  // after the three distortion fields
-  int mode = color_mode_ == ColorMode::Selection  ? 0
-             : color_mode_ == ColorMode::Saliency ? kSaliencyMode
-                                                  : 1 + static_cast<int>(field_);
+  // Distortion fields first (their order is DistortionField's), then the salient and the
+  // isolines methods' views.
+  constexpr int kFields = 3, kSaliency = 1 + kFields, kField = 2 + kFields, kRigidity = 3 + kFields;
+  int mode = color_mode_ == ColorMode::Selection      ? 0
+             : color_mode_ == ColorMode::Distortion   ? 1 + static_cast<int>(field_)
+             : color_mode_ == ColorMode::Saliency     ? kSaliency
+             : color_mode_ == ColorMode::IsolineField ? kField
+                                                      : kRigidity;
   if (ImGui::Combo("colour (C)", &mode,
-                   "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0saliency (salient)\0")) {
-    color_mode_ = mode == 0               ? ColorMode::Selection
-                  : mode == kSaliencyMode ? ColorMode::Saliency
-                                          : ColorMode::Distortion;
-    if (mode > 0 && mode < kSaliencyMode) field_ = static_cast<DistortionField>(mode - 1);
-    surface_dirty_ = true;
+                   "selection\0edge-length ratio\0angle distortion\0Laplacian magnitude ratio\0saliency (salient)\0"
+                   "isolines: field φ\0isolines: rigidity ψ\0")) {
+    color_mode_ = mode == 0           ? ColorMode::Selection
+                  : mode <= kFields   ? ColorMode::Distortion
+                  : mode == kSaliency ? ColorMode::Saliency
+                  : mode == kField    ? ColorMode::IsolineField
+                                      : ColorMode::Rigidity;
+    if (color_mode_ == ColorMode::Distortion) field_ = static_cast<DistortionField>(mode - 1);
+    surface_dirty_ = markers_dirty_ = true;
   }
+  if ((color_mode_ == ColorMode::IsolineField || color_mode_ == ColorMode::Rigidity) && isolines_.empty())
+    ImGui::TextDisabled("(the isolines method's setup shows them)");
   if (ImGui::Checkbox("degenerate vertices", &show_degenerate_)) markers_dirty_ = true;
   ImGui::End();
 }

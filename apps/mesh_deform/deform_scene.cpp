@@ -29,11 +29,17 @@ void DeformApp::update_surface(viewer::Viewer& v) {
   const bool distortion =
       color_mode_ == ColorMode::Distortion && last_ && last_->frame.distortion.size() == n && !stroke_;
   const bool saliency = color_mode_ == ColorMode::Saliency && last_ && last_->frame.saliency.size() == n;
+  const bool field = color_mode_ == ColorMode::IsolineField && isoline_field_.size() == n && !stroke_;
+  const bool rigidity = color_mode_ == ColorMode::Rigidity && rigidity_.size() == n && !stroke_;
   if (distortion) {
     item.colors = viewer::colorize(last_->frame.distortion, 0.0, legend_hi_);
   } else if (saliency) {
     const Eigen::VectorXd& s = last_->frame.saliency;
     item.colors = viewer::colorize(s, viewer::percentile(s, 0.02), viewer::percentile(s, 0.98));
+  } else if (field) {
+    item.colors = viewer::colorize(isoline_field_, 0.0, 1.0);
+  } else if (rigidity) {
+    item.colors = viewer::colorize(rigidity_, 0.0, std::max(1e-12, viewer::percentile(rigidity_, 0.95)));
   } else {
     const VertexLabels& labels = stroke_ ? *stroke_ : *state_.labels;
     const bool roi_painted = labels.any(VertexLabels::kRoi);
@@ -81,6 +87,18 @@ void DeformApp::update_markers(viewer::Viewer& v) {
   points.size = 6.0f;
   points.on_top = false;
   ++points.version;
+
+  // The isolines of the method's first set, where the deformed surface carries them.
+  auto& iso = v.scene().lines["isolines"];
+  iso.clear();
+  if ((color_mode_ == ColorMode::IsolineField || color_mode_ == ColorMode::Rigidity) &&
+      isoline_field_.size() == rest_.num_vertices())
+    for (const auto& seg : isolines_)
+      iso.add_strip({mesh_deform::isoline_point(shown_.V, shown_.F, seg.face, seg.p),
+                     mesh_deform::isoline_point(shown_.V, shown_.F, seg.face, seg.q)},
+                    {0.1f, 0.1f, 0.1f});
+  iso.width = 1.5f;
+  ++iso.version;
 
   // The lasso, just behind the near plane so it covers what it encloses.
   auto& lasso = v.scene().lines["lasso"];

@@ -70,7 +70,10 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   (edge ? settings.edge.weights : settings.weights) = w;
   settings.scale_features = args.has("--scale-features");
   const bool salient = settings.method == mesh_deform::Method::Salient;
-  int& iterations = edge ? settings.edge.iterations : salient ? settings.salient.iterations : settings.arap_iterations;
+  int& iterations = edge                                               ? settings.edge.iterations
+                    : salient                                          ? settings.salient.iterations
+                    : settings.method == mesh_deform::Method::Isolines ? settings.isolines.max_iterations
+                                                                       : settings.arap_iterations;
   iterations = static_cast<int>(args.get_int("--iterations", iterations, 1, 1000));
 
   auto app =

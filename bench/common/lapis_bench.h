@@ -101,4 +101,20 @@ inline double peak_rss_mib() {
   return 0.0;
 }
 
+// Runs `cmd` (a child benchmark process printing one line of JSON) and returns its output;
+// empty with a message on stderr when it fails. Each row in its own process keeps its peak
+// memory its own.
+inline std::string run_child(const std::string& cmd, const char* who) {
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (p && std::fgets(buf, sizeof buf, p)) out += buf;
+  const int status = p ? pclose(p) : -1;
+  if (status != 0 || out.empty()) {
+    std::fprintf(stderr, "%s: '%s' failed (status %d)\n", who, cmd.c_str(), status);
+    return {};
+  }
+  return out;
+}
+
 }  // namespace lapis::bench

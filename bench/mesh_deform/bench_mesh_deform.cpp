@@ -238,15 +238,8 @@ int main(int argc, char** argv) {
       if (std::string(method).starts_with("implicit") && (s.name == "416k" || s.name == "1m") && !implicit_large)
         continue;
       const std::string cmd = std::string(argv[0]) + " --one " + s.name + " " + method;
-      FILE* p = popen(cmd.c_str(), "r");
-      std::string out;
-      char buf[4096];
-      while (p && std::fgets(buf, sizeof buf, p)) out += buf;
-      const int status = p ? pclose(p) : -1;
-      if (status != 0 || out.empty()) {
-        std::fprintf(stderr, "bench_mesh_deform: '%s' failed (status %d)\n", cmd.c_str(), status);
-        continue;
-      }
+      const std::string out = bench::run_child(cmd, "bench_mesh_deform");
+      if (out.empty()) continue;
       const json r = json::parse(out);
       results.push_back(r);
       table.row({s.name, std::to_string(r["vertices"].get<int>()), method, field(r, "setup_s", 2), field(r, "frame_ms"),

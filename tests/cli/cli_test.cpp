@@ -137,7 +137,7 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
     std::ofstream handles(d / "handles.json");
     handles << R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0.5],[0,0,0,1]]]}]})";
   }
-  for (const std::string method : {"naive", "implicit", "arap", "edge"}) {
+  for (const std::string method : {"naive", "implicit", "arap", "edge", "isolines"}) {
     CAPTURE(method);
     const Result r = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
                                " --handles " + (d / "handles.json").string() + " --method " + method + " --out " +
@@ -153,6 +153,10 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
       CHECK(j["edge"]["iterations"] == 4);
       CHECK(j["edge"]["domain"] == "edges");
     }
+    if (method == "isolines") {
+      CHECK(j["isolines"]["solve"] == "reduced");
+      CHECK(j["isolines"]["unknowns"] == 4 * 20);  // the fixed region and one handle: one set of 20
+    }
   }
   const Result edge_vertex = lapis_cli(
       "deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
@@ -166,6 +170,23 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
     CHECK(j["edge"]["transform"] == "isotropic");
     CHECK(j["edge"]["iterations"] == 7);
   }
+  const Result isolines_full =
+      lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
+                (d / "handles.json").string() + " --method isolines --isolines 5 --solve full --fit paper --out " +
+                (d / "out.obj").string() + " --report " + (d / "report.json").string());
+  REQUIRE(isolines_full.status == 0);
+  {
+    std::ifstream report(d / "report.json");
+    const auto j = nlohmann::json::parse(report);
+    CHECK(j["isolines"]["solve"] == "full");
+    CHECK(j["isolines"]["fit"] == "paper");
+    CHECK(j["isolines"]["unknowns"] == 4 * 5);
+  }
+  const Result bad_solve =
+      lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
+                (d / "handles.json").string() + " --method isolines --solve exact --out x.obj");
+  CHECK(bad_solve.status == 2);
+  CHECK(bad_solve.output.find("unknown mode 'exact', expected reduced or full") != std::string::npos);
   const Result bad_domain =
       lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() + " --handles " +
                 (d / "handles.json").string() + " --method edge --domain faces --out x.obj");
@@ -174,8 +195,8 @@ TEST_CASE("cli: lapis deform drags a handle and reports timings and distortion")
   const Result bad = lapis_cli("deform --mesh " + (d / "grid.obj").string() + " --roi " + (d / "roi.txt").string() +
                                " --handles " + (d / "handles.json").string() + " --method magic --out x.obj");
   CHECK(bad.status == 2);
-  CHECK(bad.output.find("--method must be one of naive, implicit, arap, edge") != std::string::npos);
-  CHECK(bad.output.find("not 'magic'") != std::string::npos);
+  CHECK(bad.output.find("--method must be one of naive, implicit, arap, edge, salient, isolines, not 'magic'") !=
+        std::string::npos);
   {
     std::ofstream roi(d / "small_roi.txt");
     roi << "1 4 7\n";
@@ -243,4 +264,36 @@ TEST_CASE("cli: lapis features writes features, a saliency PLY and a report; lap
   const Result misplaced = lapis_cli(base + " --method arap --features " + (d / "grid_features.json").string());
   CHECK(misplaced.status == 2);
   CHECK(misplaced.output.find("--features is an option of --method salient") != std::string::npos);
+}
+
+TEST_CASE("cli: lapis transfer carries poses onto a target and names mismatched handles") {
+  const fs::path d = scratch();
+  lapis::cli_test::write_grid_obj(d / "grid.obj");
+  {
+    std::ofstream roi(d / "roi.txt");
+    roi << "1 2 4 5 7 8\n";
+    std::ofstream handles(d / "handles.json");
+    handles << R"({"regions": [{"vertices": [2, 5, 8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+    std::ofstream two(d / "two.json");
+    two << R"({"regions": [{"vertices": [2], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]},)"
+        << R"({"vertices": [8], "transforms": [[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]]}]})";
+  }
+  const std::string common = "transfer --source " + (d / "grid.obj").string() + " --source-handles " +
+                             (d / "handles.json").string() + " --source-roi " + (d / "roi.txt").string() +
+                             " --target " + (d / "grid.obj").string() + " --target-roi " + (d / "roi.txt").string();
+  const Result r = lapis_cli(common + " --source-deformed " + (d / "grid.obj").string() + "," +
+                             (d / "grid.obj").string() + " --target-handles " + (d / "handles.json").string() +
+                             " --out " + (d / "t.obj").string() + " --report " + (d / "t.json").string());
+  REQUIRE(r.status == 0);
+  CHECK(fs::file_size(d / "t_0.obj") > 0);
+  CHECK(fs::file_size(d / "t_1.obj") > 0);
+  std::ifstream report(d / "t.json");
+  const auto j = nlohmann::json::parse(report);
+  CHECK(j["poses"].size() == 2);
+  CHECK(j["poses"][0]["eq11_residual"].get<double>() < 1e-12);  // the rest pose: the identity
+  CHECK(j["handles"] == 2);
+  const Result bad = lapis_cli(common + " --source-deformed " + (d / "grid.obj").string() + " --target-handles " +
+                               (d / "two.json").string() + " --out " + (d / "t.obj").string());
+  CHECK(bad.status == 1);
+  CHECK(bad.output.find("the handles do not correspond: the source has 1 region") != std::string::npos);
 }

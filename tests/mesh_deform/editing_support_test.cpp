@@ -153,10 +153,13 @@ TEST_CASE("mesh_deform: per-vertex distortion is zero under rigid motion and sho
 }
 
 TEST_CASE("mesh_deform: the method list makes every method and the preview equals the first system alone") {
-  CHECK(methods().size() == 5);
+  CHECK(methods().size() == 6);
   CHECK(method_from_name("edge") == Method::Edge);
+  CHECK(method_from_name("salient") == Method::Salient);
+  CHECK(method_from_name("isolines") == Method::Isolines);
   CHECK(method_from_name("arap") == Method::Arap);
-  CHECK_THROWS_WITH_AS(method_from_name("magic"), doctest::Contains("expected one of naive, implicit, arap, edge"),
+  CHECK_THROWS_WITH_AS(method_from_name("magic"),
+                       doctest::Contains("expected one of naive, implicit, arap, edge, salient, isolines"),
                        lapis::InvalidArgument);
   const TriMesh m = test::box_bar(3, 1.0, 4.0);
   const Selection sel = bar_selection(m);

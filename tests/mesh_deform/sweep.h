@@ -29,6 +29,7 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "test_meshes.h"
@@ -69,6 +70,14 @@ inline std::unique_ptr<Deformer> make_arap(const TriMesh& m, int iterations, dou
   return std::make_unique<ArapDeformer>(m, o);
 }
 
+// Converged far below the interactive default, for the fixed-point checks.
+inline std::unique_ptr<Deformer> make_isolines(const TriMesh& m) {
+  IsolinesOptions o;
+  o.tolerance = 1e-10;
+  o.max_iterations = 400;
+  return std::make_unique<IsolinesDeformer>(m, o);
+}
+
 // Every method of the module, with the invariance it promises.
 inline std::vector<MethodCase> methods() {
   using I = MethodCase::Invariance;
@@ -92,6 +101,7 @@ inline std::vector<MethodCase> methods() {
       {"implicit", implicit(ShearingRemoval::RetainFeatures), I::Rigid, 1e-5},
       {"implicit scale", implicit(ShearingRemoval::ScaleFeatures), I::Similarity, 1e-5},
       {"arap", [](const TriMesh& m) { return make_arap(m, 10, 0); }, I::Rigid, 1e-7},
+      {"isolines", make_isolines, I::Rigid, 1e-8},
   };
 }
 
@@ -246,7 +256,7 @@ inline bool known_to_fold(const std::string& mesh, const std::string& method) {
 }
 
 // A bend of the top handle (30° and 0.1 diagonals, dragged over `frames` frames) folds and
-// collapses nothing (ARAP: folds no more than CGAL's ARAP under the same drag).
+// collapses nothing (ARAP and isolines: fold no more than CGAL's ARAP under the same drag).
 inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std::string& mesh_name, int frames = 4) {
   const Selection s = selection(m, false);
   auto d = method.make(m);
@@ -263,9 +273,9 @@ inline Vertices check_bend(const MethodCase& method, const TriMesh& m, const std
     return X;
   }
   int allowed = 0;
-  if (method.name == "arap") {
-    // Where CGAL's ARAP folds under the same drag (one edge of the Chinese dragon), ARAP may
-    // fold as much and no more.
+  if (method.name == "arap" || method.name == "isolines") {
+    // Where CGAL's ARAP folds under the same drag (one edge of the Chinese dragon), ARAP and the
+    // isolines model (which folds that one edge too) may fold as much and no more.
     peers::CgalArap cgal(m, s.roi, s.region_handles[0]);
     for (int f = 1; f <= frames; ++f) {
       cgal.set_targets(transformed(m, bend(m, s.region_handles[0], 30.0 * f / frames, 0.1 * f / frames)));

@@ -6,6 +6,7 @@
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/salient_deformer.h"
 
 namespace lapis::mesh_deform {
@@ -33,6 +34,10 @@ std::string timing_of(const Deformer& d) {
     const EdgeLaplacianReport& s = e->report();
     std::snprintf(buf, sizeof buf, "%d iterations: fits %.0f ms, solves %.0f ms, last move %.2g", s.iterations,
                   s.fit_ms, s.solve_ms, s.last_move);
+  } else if (const auto* iso = dynamic_cast<const IsolinesDeformer*>(&d)) {
+    const IsolinesReport& s = iso->report();
+    std::snprintf(buf, sizeof buf, "%d iterations %.1f ms (%d triangles), reconstruction %.0f ms", s.iterations,
+                  s.iterate_ms, s.sampled_triangles, s.reconstruct_ms);
   }
   return buf;
 }
@@ -78,6 +83,15 @@ LiveFrame LiveDeformer::update(const LiveRequest& r) {
     implicit->set_preview(r.preview);
     f.preview = r.preview;
     f.degenerate_vertices = implicit->degenerate_vertices();
+  }
+  if (auto* iso = dynamic_cast<IsolinesDeformer*>(deformer_.get())) {
+    iso->set_preview_stride(r.preview ? kIsolinePreviewStride : 0);
+    f.preview = r.preview;
+    if (f.did_setup) {
+      f.isoline_field = iso->fields().col(iso->isoline_sets() == 1 ? 1 : 0);
+      f.rigidity = iso->rigidity();
+      f.isolines = iso->isolines_of_set(0);
+    }
   }
   auto t0 = std::chrono::steady_clock::now();
   f.positions = deformer_->deform(r.transforms);

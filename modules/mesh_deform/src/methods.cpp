@@ -3,6 +3,7 @@
 #include "lapis/mesh_deform/arap.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/naive_laplacian.h"
 #include "lapis/mesh_deform/salient_deformer.h"
 
@@ -15,6 +16,7 @@ const std::vector<MethodInfo>& methods() {
       {Method::Arap, "arap", "ARAP (Sorkine & Alexa)"},
       {Method::Edge, "edge", "edge-based Laplacian (Wang et al.)"},
       {Method::Salient, "salient", "salient features, solid subspace (Zhao et al.)"},
+      {Method::Isolines, "isolines", "handle-aware isolines (Au et al.)"},
   };
   return list;
 }
@@ -63,6 +65,8 @@ std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& s) {
       return std::make_unique<EdgeLaplacianDeformer>(std::move(mesh), s.edge);
     case Method::Salient:
       return std::make_unique<SalientDeformer>(std::move(mesh), s.salient);
+    case Method::Isolines:
+      return std::make_unique<IsolinesDeformer>(std::move(mesh), s.isolines);
   }
   throw InvalidArgument("mesh_deform::make_deformer(): unknown method");
 }

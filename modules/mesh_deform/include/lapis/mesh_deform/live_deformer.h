@@ -14,17 +14,22 @@
 #include <string>
 #include <vector>
 
+#include "lapis/mesh_deform/isolines.h"
 #include "lapis/mesh_deform/methods.h"
 #include "lapis/mesh_deform/vertex_distortion.h"
 
 namespace lapis::mesh_deform {
+
+inline constexpr int kIsolinePreviewStride = 8;
 
 struct LiveRequest {
   MethodSettings settings;
   Selection selection;
   std::uint64_t selection_revision = 0;  // the caller bumps it when the selection changes
   HandleTransforms transforms;
-  bool preview = false;                  // implicit method: first system only (§2.5's preview while dragging)
+  // While dragging: the implicit method's first system only (§2.5); the isolines method's
+  // iteration with every kIsolinePreviewStride-th free vertex reconstructed (§5: a subset is shown).
+  bool preview = false;
   std::optional<DistortionField> field;  // per-vertex distortion to compute, if any
   // Salient method: features given by the user (painted), combined with the detected ones by
   // settings.salient.user_features; the caller bumps features_revision when they change.
@@ -36,7 +41,7 @@ struct LiveFrame {
   Vertices positions;          // #V by 3
   Eigen::VectorXd distortion;  // #V, empty when no field was requested
   bool did_setup = false;      // this frame ran the setup
-  bool preview = false;        // this frame stopped after the first system
+  bool preview = false;        // this frame was a preview (first system only, or a subset reconstructed)
   double setup_ms = 0;         // of the current setup (whenever it ran)
   double solve_ms = 0;         // this frame's deform() call
   double distortion_ms = 0;
@@ -47,6 +52,10 @@ struct LiveFrame {
   // Salient method: the saliency (empty without detection) and the features in use.
   Eigen::VectorXd saliency;
   std::vector<Feature> features;
+  // Isolines method, on a setup frame: the harmonic field of the first isoline set (§4.1), the
+  // rigidity ψ (#V each) and that set's isolines on the rest mesh. Empty otherwise.
+  Eigen::VectorXd isoline_field, rigidity;
+  std::vector<IsolineSegment> isolines;
 };
 
 class LiveDeformer {

@@ -9,16 +9,17 @@
 
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
+#include "lapis/mesh_deform/isolines_deformer.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
 #include "lapis/mesh_deform/salient_deformer.h"
 
 namespace lapis::mesh_deform {
 
-enum class Method { Naive, Implicit, Arap, Edge, Salient };
+enum class Method { Naive, Implicit, Arap, Edge, Salient, Isolines };
 
 struct MethodInfo {
   Method method;
-  const char* name;   // command-line name: naive, implicit, arap, edge
+  const char* name;   // command-line name: naive, implicit, arap, edge, isolines
   const char* label;  // menu text
 };
 
@@ -38,12 +39,13 @@ struct MethodSettings {
   int arap_iterations = 10;   // ARAP iterations per frame (Sorkine & Alexa: 2-3 while dragging)
   EdgeLaplacianOptions edge;  // the edge-based method (Wang et al.), its own weights and iterations
   SalientOptions salient;     // salient features in a solid subspace (Zhao et al.)
+  IsolinesOptions isolines;   // the handle-aware isolines reduced model (Au et al.)
 
   bool operator==(const MethodSettings&) const = default;
 };
 
 // A deformer of the chosen method with these settings. Throws InvalidArgument for
-// arap_iterations < 1 and for edge or salient options their set_options() refuses.
+// arap_iterations < 1 and for edge, salient or isolines options that their set_options() refuses.
 std::unique_ptr<Deformer> make_deformer(TriMesh mesh, const MethodSettings& settings);
 
 }  // namespace lapis::mesh_deform
