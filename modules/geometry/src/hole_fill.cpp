@@ -78,15 +78,15 @@ HoleFill minimal_area_fill(const Vertices& V, const std::vector<int>& loop, int 
   fill.area = best[n - 1];
   fill.faces.resize(k - 2, 3);
   int next = 0;
-  std::vector<std::pair<int, int>> todo{{0, k - 1}};
-  while (!todo.empty()) {
-    const auto [i, j] = todo.back();
-    todo.pop_back();
+  std::vector<std::pair<int, int>> pending{{0, k - 1}};
+  while (!pending.empty()) {
+    const auto [i, j] = pending.back();
+    pending.pop_back();
     if (j - i < 2) continue;
     const int m = split[i * n + j];
     fill.faces.row(next++) << loop[i], loop[j], loop[m];  // against the loop's direction
-    todo.push_back({i, m});
-    todo.push_back({m, j});
+    pending.push_back({i, m});
+    pending.push_back({m, j});
   }
   return fill;
 }

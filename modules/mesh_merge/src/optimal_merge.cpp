@@ -59,15 +59,15 @@ std::vector<int> BoundaryOptimizer::faces_inside(const std::vector<int>& loop) c
   std::set<int> wall;
   for (size_t i = 0; i < loop.size(); ++i) wall.insert(conn.find_edge(loop[i], loop[(i + 1) % loop.size()]));
   std::vector<char> seen(static_cast<size_t>(source_.num_faces()), 0);
-  std::vector<int> todo = feature_faces_, inside;
-  for (int f : todo) seen[f] = 1;
-  while (!todo.empty()) {
-    const int f = todo.back();
-    todo.pop_back();
+  std::vector<int> pending = feature_faces_, inside;
+  for (int f : pending) seen[f] = 1;
+  while (!pending.empty()) {
+    const int f = pending.back();
+    pending.pop_back();
     inside.push_back(f);
     for (int k = 0; k < 3; ++k) {
       const int g = conn.face_neighbor(f, k);
-      if (g >= 0 && !seen[g] && !wall.count(conn.face_edge(f, k))) seen[g] = 1, todo.push_back(g);
+      if (g >= 0 && !seen[g] && !wall.count(conn.face_edge(f, k))) seen[g] = 1, pending.push_back(g);
     }
   }
   std::sort(inside.begin(), inside.end());
