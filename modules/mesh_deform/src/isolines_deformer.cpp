@@ -78,6 +78,7 @@ struct IsolinesDeformer::Impl {
   DenseMatrix UtU_model;       // Eq. 6/10's normal matrix, without the ridge
   DenseMatrix UtU;             // the same with this frame's guide rows
   Eigen::LLT<DenseMatrix> chol;
+  DenseMatrix rest_residual;  // the rounding of Eq. 6/10 at rest, taken out of every step
   double ridge = 0;
   double guide_unit = 0;  // mean diagonal of the Laplacian part
   detail::IsolineGuides guides;
@@ -92,6 +93,8 @@ struct IsolinesDeformer::Impl {
   DenseMatrix reduced_data(const DenseMatrix& R, detail::NormalFit fit);
   DenseMatrix full_data(const DenseMatrix& R);
   DenseMatrix step(const DenseMatrix& rhs) const;
+  DenseMatrix residual_at_rest(const HandleTransforms& identity, int num_regions, IsolineSolve solve,
+                               detail::NormalFit fit);
   void factorize();
   DenseMatrix guide_term(double weight) const;
 };
@@ -119,10 +122,27 @@ DenseMatrix IsolinesDeformer::Impl::guide_term(double weight) const {
 // refinement: ω² makes UᵀU ill-conditioned (~1e10), and a fixed point (the identity, a rigid
 // motion) then comes out exact instead of perturbed by the rounding of the full solve.
 DenseMatrix IsolinesDeformer::Impl::step(const DenseMatrix& rhs) const {
-  const DenseMatrix residual = rhs - UtU * R;
+  const DenseMatrix residual = rhs - rest_residual - UtU * R;
   DenseMatrix d = chol.solve(residual);
   d += chol.solve(residual - UtU * d - ridge * d);
   return d;
+}
+
+// The residual of Eq. 6/10 at the rest transforms with identity handles. It is zero but for the
+// rounding of the assembly (~1e-16 of UᵀU), which ω²'s conditioning (~1e10) would turn into a
+// drift of the identity by 1e-9 of the diagonal that depends on the thread count; taking it out
+// of every step makes the rest pose an exact fixed point. Larger, it would be a model error.
+DenseMatrix IsolinesDeformer::Impl::residual_at_rest(const HandleTransforms& identity, int num_regions,
+                                                     IsolineSolve solve, detail::NormalFit fit) {
+  const DenseMatrix data = solve == IsolineSolve::Reduced ? reduced_data(R, fit) : full_data(R);
+  const DenseMatrix rest = UtU_model * R;
+  DenseMatrix r = data + handle_term(identity, num_regions) - rest;
+  if (r.norm() > 1e-10 * rest.norm())
+    throw SolverFailure(
+        "mesh_deform::IsolinesDeformer::precompute(): the rest pose is not a fixed point of the "
+        "reduced model (relative residual " +
+        std::to_string(r.norm() / rest.norm()) + ")");
+  return r;
 }
 
 // Σ_g ω² G_g C_g: a region handle's C is its transform in normalized coordinates, transposed.
@@ -267,6 +287,8 @@ void IsolinesDeformer::setup(const Layout& layout) {
 
   m->R = identity_transforms(iso);
   m->q.assign(static_cast<size_t>(iso), Eigen::Quaterniond::Identity());
+  m->rest_residual = m->residual_at_rest(HandleTransforms::identity(selection()), layout.num_region_handles,
+                                         options_.solve, normal_fit(options_.fit));
   m->free = layout.free;
   report_.handles = m->sets.size();
   report_.sets = m->basis.sets;
