@@ -54,7 +54,8 @@ TEST_CASE("hair_field: matrix-free normal operator equals the assembled DtD + W"
   CHECK((laplacian_matrix(g) * Eigen::MatrixXd(C)).norm() <= 1e-12);
 }
 
-TEST_CASE("hair_field: multigrid field within 1e-6 of the exact minimizer over an edit sequence") {
+TEST_CASE("hair_field: multigrid field within 1e-6 of the exact minimizer over an edit sequence" *
+          doctest::test_suite("slow")) {
   const Grid g = cube_grid(14);
   MultigridFieldOptions options;
   // Cubic prolongation transfers through stored matrices, linear matrix-free.
@@ -97,7 +98,8 @@ TEST_CASE("hair_field: multigrid on a grid of one level (the dense solve alone) 
   CHECK((mg.field() - ref).norm() <= 1e-6 * ref.norm());
 }
 
-TEST_CASE("hair_field: multigrid within 1e-6 of a direct solve on an 18K grid after a stroke and an edit") {
+TEST_CASE("hair_field: multigrid within 1e-6 of a direct solve on an 18K grid after a stroke and an edit" *
+          doctest::test_suite("slow")) {
   // Closer to the interactive setting than the small grids above: a style of eight curves,
   // then a stroke added, then that stroke replaced, each against a supernodal factorization;
   // with the automatic cycle, with four coarse corrections per visit of every coarser level,

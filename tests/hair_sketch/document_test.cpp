@@ -20,7 +20,8 @@ struct Fresh {
 
 }  // namespace
 
-TEST_CASE("hair_sketch: undo of every command restores the document and the field; redo re-applies") {
+TEST_CASE("hair_sketch: undo of every command restores the document and the field; redo re-applies" *
+          doctest::test_suite("slow")) {
   Fresh f;
   const Head& head = f.head;
   Document& doc = f.doc;

@@ -163,7 +163,8 @@ static int strands_through_first_section(const Strands& strands, const Ponytail&
   return through;
 }
 
-TEST_CASE("hair_sketch: each bundled example session replays to the counts of its report") {
+TEST_CASE("hair_sketch: each bundled example session replays to the counts of its report" *
+          doctest::test_suite("slow")) {
   const fs::path dir = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
   int found = 0;
   for (const char* name : {"smooth", "parting", "ponytails"}) {

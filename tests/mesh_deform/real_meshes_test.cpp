@@ -79,7 +79,8 @@ TEST_CASE("mesh_deform: high genus: a similarity of all handles of the double to
 
 // The sweep's cases (sweep.h) on the camel: many obtuse triangles (negative cotangents),
 // thin legs and a long neck.
-TEST_CASE("mesh_deform: every method on the camel: identity, motion of all handles, bend") {
+TEST_CASE("mesh_deform: every method on the camel: identity, motion of all handles, bend" *
+          doctest::test_suite("slow")) {
   const TriMesh m = sweep::load_external("camel");
   for (const sweep::MethodCase& method : sweep::methods()) {
     CAPTURE(method.name);
@@ -89,7 +90,7 @@ TEST_CASE("mesh_deform: every method on the camel: identity, motion of all handl
   }
 }
 
-TEST_CASE("mesh_deform: ARAP on the dino agrees with CGAL's converged ORIGINAL_ARAP") {
+TEST_CASE("mesh_deform: ARAP on the dino agrees with CGAL's converged ORIGINAL_ARAP" * doctest::test_suite("slow")) {
   sweep::check_arap_against_cgal(sweep::load_external("dino"), 20, 0.01);
 }
 

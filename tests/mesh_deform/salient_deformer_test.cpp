@@ -217,7 +217,8 @@ TEST_CASE("mesh_deform: the live deformer reports the salient features and takes
 // camel's six large features (97–873 vertices) it gets there slowly, each feature's own rigidity
 // holding it near its last rotation: 6.5% of the diagonal after 50 iterations, 0.8% after 300,
 // 4e-5 after 1000 (docs/mesh_deform.md, known limits). Without features it lands at once.
-TEST_CASE("mesh_deform: salient deformation on the camel: detected features, identity, a rigid motion") {
+TEST_CASE("mesh_deform: salient deformation on the camel: detected features, identity, a rigid motion" *
+          doctest::test_suite("slow")) {
   const TriMesh camel = sweep::load_external("camel");
   const double diag = t::bbox_diagonal(camel.V);
   const Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(0.3, 1, 0.2), 25, camel.V.colwise().mean().transpose(),

@@ -132,7 +132,8 @@ void check_zipped_without_band(const TriMesh& source, const SelfCut& s, MergeMod
 
 }  // namespace
 
-TEST_CASE("mesh_merge: real meshes: a target loop within one triangle of itself is zipped without cutting the target") {
+TEST_CASE("mesh_merge: real meshes: a target loop within one triangle of itself is zipped without cutting the target" *
+          doctest::test_suite("slow")) {
   for (const auto& [name, fraction] :
        {std::pair<std::string, double>{"cactus", 0.3}, {"double-torus-example", 0.7}, {"bunny00", 0.5}}) {
     CAPTURE(name);

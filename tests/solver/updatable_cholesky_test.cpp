@@ -224,7 +224,8 @@ TEST_CASE("solver: the parallel simplicial solve equals cholmod's supernodal sol
   }
 }
 
-TEST_CASE("solver: many diagonal weight changes agree with general updates and a fresh factor, any threads") {
+TEST_CASE("solver: many diagonal weight changes agree with general updates and a fresh factor, any threads" *
+          doctest::test_suite("slow")) {
   // N = 18: subtrees worth splitting over threads in the solve.
   const HairSystem sys(18);
   const DenseMatrix B = DenseMatrix::Random(sys.n, 3);
