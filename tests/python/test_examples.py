@@ -1,0 +1,31 @@
+"""The scripts of examples/python run and write what they say."""
+
+import runpy
+
+import meshio
+import numpy as np
+
+import lapis
+from conftest import SOURCE_DIR
+
+EXAMPLES = SOURCE_DIR / "examples" / "python"
+
+
+def run(name, *args):
+    module = runpy.run_path(str(EXAMPLES / name))
+    module["main"](*map(str, args))
+
+
+def test_deform_head(tmp_path):
+    run("deform_head.py", tmp_path / "head.obj")
+    V, F = lapis.read_mesh(str(SOURCE_DIR / "assets" / "head.obj"))
+    W, F2 = lapis.read_mesh(str(tmp_path / "head.obj"))
+    assert np.array_equal(F2, F)
+    held = V[:, 1] <= -1.2
+    assert np.array_equal(W[held], V[held]) and np.abs(W - V).max() > 0.1
+
+
+def test_meshio_deform(tmp_path):
+    run("meshio_deform.py", tmp_path / "plate.vtk")
+    m = meshio.read(tmp_path / "plate.vtk")
+    assert abs(m.points[:, 2].max() - 0.4) < 1e-9  # the handle landed
