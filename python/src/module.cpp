@@ -221,4 +221,5 @@ PYBIND11_MODULE(_lapis, m) {
   lapis::python::bind_geometry(m);
   lapis::python::bind_deform(m);
   lapis::python::bind_solver(m);
+  lapis::python::bind_merge(m);
 }

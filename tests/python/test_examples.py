@@ -29,3 +29,10 @@ def test_meshio_deform(tmp_path):
     run("meshio_deform.py", tmp_path / "plate.vtk")
     m = meshio.read(tmp_path / "plate.vtk")
     assert abs(m.points[:, 2].max() - 0.4) < 1e-9  # the handle landed
+
+
+def test_merge_pair(tmp_path):
+    run("merge_pair.py", tmp_path)
+    for mode in ("independent", "dependent", "transition"):
+        V, F = lapis.read_mesh(str(tmp_path / f"dome_on_neck_{mode}.obj"))
+        assert lapis.validate(V, F)["ok"]
