@@ -9,5 +9,6 @@ void bind_geometry(pybind11::module_& m);
 void bind_deform(pybind11::module_& m);
 void bind_solver(pybind11::module_& m);
 void bind_merge(pybind11::module_& m);
+void bind_hair(pybind11::module_& m);
 
 }  // namespace lapis::python

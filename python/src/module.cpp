@@ -222,4 +222,5 @@ PYBIND11_MODULE(_lapis, m) {
   lapis::python::bind_deform(m);
   lapis::python::bind_solver(m);
   lapis::python::bind_merge(m);
+  lapis::python::bind_hair(m);
 }

@@ -36,3 +36,10 @@ def test_merge_pair(tmp_path):
     for mode in ("independent", "dependent", "transition"):
         V, F = lapis.read_mesh(str(tmp_path / f"dome_on_neck_{mode}.obj"))
         assert lapis.validate(V, F)["ok"]
+
+
+def test_grow_hairstyle(tmp_path):
+    run("grow_hairstyle.py", tmp_path / "style", 300)
+    points, offsets = lapis.read_hair(str(tmp_path / "style.hair"))
+    assert abs(len(offsets) - 1 - 300) < 30 and points.shape == (offsets[-1], 3)
+    assert (tmp_path / "style.obj").stat().st_size > 0
