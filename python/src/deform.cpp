@@ -112,26 +112,29 @@ void bind_settings(py::module_& m) {
       .field("omega", &IsolinesOptions::omega, "§3 Eq. 2: soft handle weight")
       .field("beta", &IsolinesOptions::beta, "§4.2 isoline smoothness")
       .field("triangle_budget", &IsolinesOptions::triangle_budget, "n_tri of §4.3 (0: 30 per isoline)")
-      .field("min_triangles_per_isoline", &IsolinesOptions::min_triangles_per_isoline, "")
+      .field("min_triangles_per_isoline", &IsolinesOptions::min_triangles_per_isoline,
+             "so that a sparse isoline still has >= 3 non-coplanar normals")
       .field("max_iterations", &IsolinesOptions::max_iterations, "per deform()")
       .field("tolerance", &IsolinesOptions::tolerance, "relative step size that stops the iteration")
       .field("anderson_depth", &IsolinesOptions::anderson_depth, "Anderson acceleration depth (0: off)")
       .field("large_rotations", &IsolinesOptions::large_rotations, "guide isolines past guide_angle")
       .field("guide_angle", &IsolinesOptions::guide_angle, "radians")
-      .field("guide_weight", &IsolinesOptions::guide_weight, "")
+      .field("guide_weight", &IsolinesOptions::guide_weight,
+             "of the large-rotation guides, relative to the Laplacian part's mean diagonal")
       .field("fields", &IsolinesOptions::fields, "HandleFieldOptions")
       .done("IsolinesOptions");
   Fields<HeatKernelOptions>(m, "HeatKernelOptions", "Heat kernel signature of the salient detection.")
       .field("eigenpairs", &HeatKernelOptions::eigenpairs, "k")
       .field("time_scales", &HeatKernelOptions::time_scales, "log-spaced times")
-      .field("truncation", &HeatKernelOptions::truncation, "")
+      .field("truncation", &HeatKernelOptions::truncation, "weight of the last eigenpair kept at t_min")
       .done("HeatKernelOptions");
   Fields<FeatureOptions>(m, "FeatureOptions", "Salient feature detection (Zhao et al. §3.1).")
       .field("hks", &FeatureOptions::hks, "HeatKernelOptions")
       .field("max_cluster_fraction", &FeatureOptions::max_cluster_fraction, "Step 2's N_max / #V")
       .field("min_cluster_saliency", &FeatureOptions::min_cluster_saliency, "Step 2's s_min")
       .field("aggregate_saliency", &FeatureOptions::aggregate_saliency, "Step 3's s_agg")
-      .field("stop_seeding_early", &FeatureOptions::stop_seeding_early, "")
+      .field("stop_seeding_early", &FeatureOptions::stop_seeding_early,
+             "skip seeds below aggregate_saliency (same features, faster)")
       .done("FeatureOptions");
   Fields<SalientOptions>(m, "SalientOptions", "Options of the salient method (Zhao et al.).")
       .field("alpha", &SalientOptions::alpha, "Eq. 10: weight of E_ldp")
@@ -140,7 +143,8 @@ void bind_settings(py::module_& m) {
       .field("lambda_", &SalientOptions::lambda, "Eq. 10: weight of E_vibr")
       .field("iterations", &SalientOptions::iterations, "per deform() (§5: three to five)")
       .field("feature_weight", &SalientOptions::feature_weight, "size or uniform")
-      .field("feature_weight_scale", &SalientOptions::feature_weight_scale, "")
+      .field("feature_weight_scale", &SalientOptions::feature_weight_scale,
+             "multiplies every w_i (rigidity against the rest)")
       .field("subspace_vertices", &SalientOptions::subspace_vertices, "of the enclosing lattice")
       .field("detect_features", &SalientOptions::detect_features, "§3.1 detection")
       .field("detection", &SalientOptions::detection, "FeatureOptions")

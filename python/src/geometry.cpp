@@ -82,9 +82,9 @@ face index is out of range. Non-manifold edges keep their first two faces.)")
              return new Connectivity(mesh);
            }),
            "V"_a, "F"_a)
-      .def_property_readonly("num_vertices", &Connectivity::num_vertices)
-      .def_property_readonly("num_faces", &Connectivity::num_faces)
-      .def_property_readonly("num_edges", &Connectivity::num_edges)
+      .def_property_readonly("num_vertices", &Connectivity::num_vertices, "#V")
+      .def_property_readonly("num_faces", &Connectivity::num_faces, "#F")
+      .def_property_readonly("num_edges", &Connectivity::num_edges, "#E, the unique edges")
       .def_property_readonly(
           "edges", [](const Connectivity& c) { return pairs(c.edges()); }, "(#E, 2) int32: edge e joins a < b.")
       .def_property_readonly(
@@ -125,7 +125,7 @@ face index is out of range. Non-manifold edges keep their first two faces.)")
       .def(
           "one_ring_ordered", [](const Connectivity& c, int v) { return to_numpy(c.one_ring_ordered(v)); }, "v"_a,
           "Neighbours of v counter-clockwise seen from outside; raises InvalidArgument at a non-manifold vertex.")
-      .def("degree", &Connectivity::degree, "v"_a);
+      .def("degree", &Connectivity::degree, "v"_a, "Number of neighbours of v.");
 
   m.def(
       "k_ring",

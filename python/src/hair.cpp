@@ -143,7 +143,7 @@ points[offsets[i]:offsets[i + 1]]), the field (dims z, y, x, 3) with its grid, c
                                     " is out of range");
             s.style.primitives.erase(s.style.primitives.begin() + i);
           },
-          "index"_a)
+          "index"_a, "Removes primitive `index` (an index into .primitives).")
       .def(
           "add_stream_curve",
           [](Session& s, const py::handle& points, int tail_segments, const py::object& viewpoint) {

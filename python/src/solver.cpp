@@ -119,8 +119,8 @@ Raises NotPositiveDefinite (with .column) for a matrix that is not positive defi
       .def("compute", with_sparse<Cholesky>([](Cholesky& c, const SparseMatrix& A) { c.compute(A); }), "A"_a,
            "analyze() + factorize().")
       .def("solve", &solve_with<Cholesky>, "B"_a, "X with A X = B; B (n,) or (n, k) float64, X of the same shape.")
-      .def_property_readonly("factorized", &Cholesky::factorized)
-      .def_property_readonly("rows", &Cholesky::rows)
+      .def_property_readonly("factorized", &Cholesky::factorized, "Whether a factor is held (solve() works).")
+      .def_property_readonly("rows", &Cholesky::rows, "n, the order of the factorized matrix.")
       .def(
           "report", [](const Cholesky& c) { return factor_report(c.report()); },
           "What the last analysis, factorization and solve cost and produced.");
@@ -193,12 +193,13 @@ choosing update/downdate or refactorization by a cost model; the report says whi
           },
           "indices"_a, "weights"_a,
           "Sets the diagonal weights of `indices` (increases: one update, decreases: one downdate).")
-      .def("diagonal_weight", &UpdatableCholesky::diagonal_weight, "i"_a)
+      .def("diagonal_weight", &UpdatableCholesky::diagonal_weight, "i"_a,
+           "The weight currently added to A[i, i] through compute() and set_diagonal_weights().")
       .def("solve", &solve_with<UpdatableCholesky>, "B"_a, "X with A X = B for the current A.")
       .def(
           "matrix", [](const UpdatableCholesky& f) { return to_scipy(SparseMatrix(f.matrix())); },
           "The matrix the factor represents now (a scipy.sparse copy).")
-      .def_property_readonly("rows", &UpdatableCholesky::rows)
+      .def_property_readonly("rows", &UpdatableCholesky::rows, "n, the order of the factorized matrix.")
       .def(
           "report", [](const UpdatableCholesky& f) { return factor_report(f.report()); }, "The factorization's report.")
       .def(
