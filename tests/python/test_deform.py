@@ -1,0 +1,107 @@
+"""Deformation: every method of the registry, the same result as `lapis deform` for the same
+input, keyword options routed to the method's options, distortion metrics."""
+
+import numpy as np
+import pytest
+
+import lapis
+from conftest import bar_selection, bend, write_handles
+
+
+def test_every_registry_method_lands_the_handle(bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    T = bend(0.3, 0.2)
+    assert set(lapis.methods()) >= {"naive", "implicit", "arap", "edge", "salient", "isolines"}
+    for method in lapis.methods():
+        d = lapis.Deformer(V, F, method=method)
+        d.set_selection(roi, regions=[handle])
+        d.precompute()
+        W = d.deform([T])
+        assert W.shape == V.shape and W.dtype == np.float64 and W.flags.c_contiguous
+        fixed = np.setdiff1d(np.arange(V.shape[0]), roi)
+        assert np.array_equal(W[fixed], V[fixed]), method
+        moved = V[handle] @ T[:3, :3].T + T[:3, 3]
+        # Hard handles land exactly; the soft ones (salient, isolines) nearly.
+        assert np.abs(W[handle] - moved).max() < 0.05, method
+        assert d.report()["method"] == d.name == method
+
+
+@pytest.mark.parametrize("method,options,flags", [
+    ("implicit", {}, []),
+    ("naive", {"weights": "uniform"}, ["--weights", "uniform"]),
+    ("arap", {"arap_iterations": 3}, ["--iterations", "3"]),
+    ("edge", {"iterations": 2, "domain": "vertices"}, ["--iterations", "2", "--domain", "vertices"]),
+    ("isolines", {"isolines": 8}, ["--isolines", "8"]),
+])
+def test_equals_the_cli(tmp_path, cli, bar, method, options, flags):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    frames = [[bend(0.2, 0.1)], [bend(0.5, 0.3)]]
+    lapis.write_mesh(str(tmp_path / "bar.off"), V, F)
+    (tmp_path / "roi.txt").write_text(" ".join(map(str, roi)))
+    write_handles(tmp_path / "handles.json", [handle], frames)
+    cli("deform", "--mesh", tmp_path / "bar.off", "--roi", tmp_path / "roi.txt", "--handles",
+        tmp_path / "handles.json", "--method", method, *flags, "--out", tmp_path / "out.obj")
+    expected, _ = lapis.read_mesh(str(tmp_path / "out.obj"))
+
+    d = lapis.Deformer(V, F, method, **options)
+    d.set_selection(roi, regions=[handle])
+    d.precompute()
+    for f in frames:
+        W = d.deform(f)
+    # The same code on the same input: bit-identical.
+    assert np.array_equal(W, expected)
+
+
+def test_selection_files_drive_the_deformer(tmp_path, bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    write_handles(tmp_path / "h.json", [handle], [[bend(0.1, 0.0)]])
+    (tmp_path / "roi.txt").write_text(" ".join(map(str, roi)))
+    h = lapis.read_handles(str(tmp_path / "h.json"))
+    assert np.array_equal(h["regions"][0], handle) and len(h["frames"]) == 1
+    assert np.array_equal(lapis.read_roi(str(tmp_path / "roi.txt")), roi)
+    regions_T, points_t = h["frames"][0]
+    assert regions_T.shape == (1, 4, 4) and points_t.shape == (0, 3)
+    assert np.array_equal(regions_T[0], bend(0.1, 0.0))
+
+
+def test_options_reach_the_method():
+    V, F = lapis.make_box_bar(4, 2, 2, 2.0, 1.0, 1.0)
+    d = lapis.Deformer(V, F, "edge", iterations=6, domain="vertices", frame="principal")
+    assert d.settings.edge.iterations == 6
+    assert d.settings.edge.domain == lapis.LaplacianDomain.vertices
+    assert d.settings.edge.frame == lapis.ScaleFrame.principal
+    s = lapis.method_settings("isolines", fields={"point_handle_radius": 0.05}, fit="similarity")
+    assert s.isolines.fields.point_handle_radius == 0.05 and s.isolines.fit == lapis.IsolineFit.similarity
+    assert lapis.method_settings("implicit", scale_features=True).scale_features
+    with pytest.raises(TypeError, match="unknown option 'iterations' for method 'implicit'"):
+        lapis.Deformer(V, F, "implicit", iterations=3)
+    with pytest.raises(ValueError, match="method must be one of naive, implicit"):
+        lapis.Deformer(V, F, "nonsense")
+    with pytest.raises(ValueError, match="edge.domain must be one of edges, vertices"):
+        lapis.Deformer(V, F, "edge", domain="faces")
+    # The C++ set_options() check, with its message.
+    with pytest.raises(lapis.InvalidArgument, match="EdgeLaplacianDeformer::set_options"):
+        lapis.Deformer(V, F, "edge", iterations=0)
+
+
+def test_point_handles_and_dirty_flag(bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    d = lapis.Deformer(V, F, "implicit")
+    d.set_selection(roi, points=[int(handle[0])])
+    assert d.dirty
+    W = d.deform(points=[[0.0, 0.3, 0.0]])  # precomputes on demand
+    assert not d.dirty
+    assert np.allclose(W[handle[0]], V[handle[0]] + [0.0, 0.3, 0.0])
+
+
+def test_distortion_of_a_rigid_motion_is_zero(bar):
+    V, F = bar
+    T = bend(0.7, 1.0)
+    q = lapis.distortion(V, F, V @ T[:3, :3].T + T[:3, 3])
+    assert q["arap_energy"] < 1e-20 and q["edge_length"]["max"] < 1e-12
+    q = lapis.distortion(V, F, V * [1.5, 1.0, 1.0])
+    assert q["edge_length"]["max"] == pytest.approx(0.5) and q["arap_energy"] > 0.01
