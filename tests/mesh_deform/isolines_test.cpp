@@ -294,8 +294,8 @@ TEST_CASE("isolines: a 175° and a 270° twist of a bar turn monotonically along
   const TriMesh m = t::box_bar(6, 1.0, 4.0);
   const Selection s = bar_selection(m);
   // The last case is the paper's model without the guides: it unwinds to −90°.
-  for (const auto [n, total, guides] : {std::tuple{10, 175.0, true}, std::tuple{20, 175.0, true},
-                                        std::tuple{20, 270.0, true}, std::tuple{20, 270.0, false}}) {
+  for (const auto& [n, total, guides] : {std::tuple{10, 175.0, true}, std::tuple{20, 175.0, true},
+                                         std::tuple{20, 270.0, true}, std::tuple{20, 270.0, false}}) {
     IsolinesOptions o;
     o.isolines = n;
     o.large_rotations = guides;
