@@ -58,17 +58,23 @@ MassType mass_type(const std::string& name) {
 
 // The operator functions all take (V, F), build the mesh with the GIL held, then compute
 // without it.
-template <class Result, class Fn>
-auto on_mesh(Fn fn) {
-  return [fn](const py::handle& V, const py::handle& F) {
+// out converts the result to Python (NumPy arrays by default, scipy.sparse for operators).
+template <class Result, class Fn, class Out>
+auto on_mesh(Fn fn, Out out) {
+  return [fn, out](const py::handle& V, const py::handle& F) {
     const TriMesh mesh = to_mesh(V, F);
     Result r;
     {
       py::gil_scoped_release release;
       r = fn(mesh);
     }
-    return to_numpy(std::move(r));
+    return out(std::move(r));
   };
+}
+
+template <class Result, class Fn>
+auto on_mesh(Fn fn) {
+  return on_mesh<Result>(fn, [](Result r) { return to_numpy(std::move(r)); });
 }
 
 void bind_connectivity(py::module_& m) {
@@ -150,15 +156,7 @@ face index is out of range. Non-manifold edges keep their first two faces.)")
 void bind_operators(py::module_& m) {
   // Mesh converted with the GIL held, the operator computed without it.
   auto sparse = [](Sparse (*fn)(const TriMesh&)) {
-    return [fn](const py::handle& V, const py::handle& F) {
-      const TriMesh mesh = to_mesh(V, F);
-      Sparse L;
-      {
-        py::gil_scoped_release release;
-        L = fn(mesh);
-      }
-      return to_scipy(std::move(L));
-    };
+    return on_mesh<Sparse>(fn, [](Sparse L) { return to_scipy(std::move(L)); });
   };
   m.def("cotan_laplacian", sparse(&cotan_laplacian), "V"_a, "F"_a,
         "#V x #V cotangent Laplacian (scipy.sparse csc), negative semi-definite: L_ij = (cot a + cot b) / 2.");
