@@ -139,7 +139,6 @@ struct DeformationTransfer::Impl {
   TriMesh source, target;
   EdgeBasis src, tgt;
   Eigen::LDLT<DenseMatrix> eq11;
-  double ridge = 0;
   solver::LeastSquares eq12{1};
   geometry::Similarity3 frame;  // source frame -> target frame
   std::vector<int> pins;
@@ -158,8 +157,8 @@ DeformationTransfer::DeformationTransfer(const TriMesh& source, const Selection&
   m.tgt = make_edge_basis(target, target_handles, options);
 
   DenseMatrix A = edge_normal_matrix(m.src);
-  m.ridge = 1e-10 * A.trace() / A.rows();  // isolines no edge reaches keep the identity
-  A.diagonal().array() += m.ridge;
+  const double ridge = 1e-10 * A.trace() / A.rows();  // isolines no edge reaches keep the identity
+  A.diagonal().array() += ridge;
   m.eq11.compute(A);
   // Handle centroids give the frames' similarity once they span a plane.
   if (m.src.sets.size() >= 3) m.frame = geometry::fit_similarity(m.src.centroids, m.tgt.centroids);
@@ -182,20 +181,24 @@ Vertices DeformationTransfer::transfer(const Vertices& X) {
     fail("transfer(): the deformed source must be " + std::to_string(m.source.num_vertices()) +
          " finite positions, got " + std::to_string(X.rows()) + " rows");
   const int mm = m.src.count();
-  // Eq. 11: W_e R_e = E X in least squares, with a ridge toward the identity.
+  // Eq. 11: W_e R_e = E X in least squares, with a ridge toward the identity, solved for
+  // R − I: the ridge makes the system as ill-conditioned as 1e10 along isolines few edges
+  // reach, and this way what it amplifies is the rounding of the deformation, not of the
+  // identity (which then comes back exactly at rest).
+  const DenseMatrix identity = DenseMatrix::Identity(3, 3).replicate(mm, 1);
   DenseMatrix rhs = DenseMatrix::Zero(3 * mm, 3);
   Vertices D(m.src.edges.size(), 3);
   for (size_t e = 0; e < m.src.edges.size(); ++e) {
     D.row(e) = X.row(m.src.edges[e][1]) - X.row(m.src.edges[e][0]);
-    const Eigen::Matrix3d ed = m.src.rest.row(e).transpose() * D.row(e);
+    const Eigen::RowVector3d deviation = D.row(e) - m.src.edge(static_cast<int>(e), identity);
+    const Eigen::Matrix3d ed = m.src.rest.row(e).transpose() * deviation;
     for (int i = 0; i < m.src.sets_k; ++i) {
       const auto& b = m.src.bracket[e * m.src.sets_k + i];
       rhs.middleRows<3>(3 * b.lower) += b.w0 * ed;
       rhs.middleRows<3>(3 * b.lower + 3) += b.w1 * ed;
     }
   }
-  for (int l = 0; l < mm; ++l) rhs.middleRows<3>(3 * l).diagonal().array() += m.ridge;
-  const DenseMatrix R = m.eq11.solve(rhs);
+  const DenseMatrix R = identity + m.eq11.solve(rhs);
   double fit = 0, ref = 0;
   for (size_t e = 0; e < m.src.edges.size(); ++e)
     fit += (m.src.edge(static_cast<int>(e), R) - D.row(e)).squaredNorm(), ref += D.row(e).squaredNorm();
