@@ -1,33 +1,30 @@
 // lapis.hair_sketch in Python: a hairstyle session (settings, head, style primitives) loaded
 // from or saved to its JSON file, primitives added from 3D points, the field solved and the
 // strands grown in one build() (thesis ch. 4), strands as a flat (n, 3) float32 points array
-// plus per-strand offsets (the layout of .hair files), and the .hair / OBJ exports.
+// plus per-strand offsets (the layout of .hair files), and the .hair / OBJ exports. The per-edit
+// loop, lapis.LiveHairstyle, is in hair_live.cpp.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
-#include "arrays.h"
 #include "bindings.h"
+#include "hair_session.h"
 #include "lapis/geometry/camera.h"
 #include "lapis/hair_sketch/export.h"
 #include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
 #include "lapis/hair_sketch/stroke_commands.h"
 #include "lapis/hair_sketch/style_field.h"
+#include "strands.h"
 
 namespace lapis::python {
 namespace {
 
 using namespace lapis::hair_sketch;
 using namespace pybind11::literals;
-
-// A session as a user edits it from Python: the document and its head.
-struct Session {
-  Hairstyle style;
-  Head head;
-};
 
 std::vector<Eigen::Vector3d> to_points(const py::handle& obj, const char* name) {
   const geometry::Vertices P = to_vertices(obj, name);
@@ -42,31 +39,6 @@ Eigen::Vector3d to_point(const py::handle& obj, const char* name) {
   return p;
 }
 
-py::tuple strands_tuple(Strands&& s) {
-  Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> P(static_cast<Eigen::Index>(s.points.size()), 3);
-  for (size_t i = 0; i < s.points.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = s.points[i].transpose();
-  return py::make_tuple(to_numpy(std::move(P)), to_numpy(std::move(s.offsets)));
-}
-
-// points (n, 3) float32 and offsets (strands + 1,) int32/int64 from 0 to n, non-decreasing.
-Strands to_strands(const py::handle& points, const py::handle& offsets) {
-  const py::array a = py::isinstance<py::array>(points) ? py::reinterpret_borrow<py::array>(points)
-                                                        : py::array_t<float>::ensure(points);
-  if (a.dtype().kind() != 'f' || a.itemsize() != 4)
-    throw py::type_error("points must be float32, not " + py::str(a.dtype()).cast<std::string>());
-  if (a.ndim() != 2 || a.shape(1) != 3) throw py::value_error("points must have shape (n, 3), not " + shape_text(a));
-  const auto c = py::array_t<float, py::array::c_style>::ensure(a);
-  Strands s;
-  s.offsets = to_indices(offsets, "offsets");
-  if (s.offsets.empty() || s.offsets.front() != 0 || s.offsets.back() != c.shape(0))
-    throw py::value_error("offsets must run from 0 to the " + std::to_string(c.shape(0)) + " points");
-  for (size_t i = 1; i < s.offsets.size(); ++i)
-    if (s.offsets[i] < s.offsets[i - 1]) throw py::value_error("offsets must not decrease");
-  s.points.resize(static_cast<size_t>(c.shape(0)));
-  for (py::ssize_t i = 0; i < c.shape(0); ++i) s.points[static_cast<size_t>(i)] = {c.at(i, 0), c.at(i, 1), c.at(i, 2)};
-  return s;
-}
-
 void add(Session& s, StylePrimitive p, const py::object& viewpoint) {
   p.viewpoint = viewpoint.is_none() ? geometry::eye_position(s.style.camera) : to_point(viewpoint, "viewpoint");
   p.support = s.style.settings.support;
@@ -79,7 +51,7 @@ py::dict build(const Session& s) {
     py::gil_scoped_release release;
     r = build_hairstyle(s.style, s.head);
   }
-  py::tuple strands = strands_tuple(std::move(r.strands));
+  py::tuple strands = strands_to_numpy(std::move(r.strands));
   const std::array<int, 3> d = r.grid.dims;
   py::array field =
       to_numpy(std::move(r.field)).reshape({py::ssize_t{d[2]}, py::ssize_t{d[1]}, py::ssize_t{d[0]}, py::ssize_t{3}});
@@ -125,8 +97,12 @@ points[offsets[i]:offsets[i + 1]]), the field (dims z, y, x, 3) with its grid, c
           "Rebuilds the primitives from the recorded strokes with the current settings (the sketch spacing is "
           "the grid's, so set grid_unknowns first, as `lapis hair --grid-unknowns` does).")
       .def(
-          "save", [](const Session& s, const std::filesystem::path& path) { save_session(path, s.style); }, "path"_a,
-          "Saves the session (atomic, numbers round-trip exactly).")
+          "save",
+          [](const Session& s, const std::filesystem::path& path) {
+            py::gil_scoped_release release;
+            save_session(path, s.style);
+          },
+          "path"_a, "Saves the session (atomic, numbers round-trip exactly).")
       .def_property_readonly(
           "primitives",
           [](const Session& s) {
@@ -184,24 +160,90 @@ points[offsets[i]:offsets[i + 1]]), the field (dims z, y, x, 3) with its grid, c
       .def("build", &build, "Solves the field and grows the strands from scratch; see the class docstring.");
 }
 
+// A number (the file's default) or one value per point of a .hair attribute with
+// `components` floats per point.
+void set_attribute(const py::object& value, const char* name, size_t points, int components, std::vector<float>& array,
+                   float* defaults) {
+  if (value.is_none()) return;
+  const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!a) throw py::type_error(std::string(name) + " must be a number or an array of numbers");
+  const bool one = components == 1 ? a.ndim() == 0 : a.ndim() == 1 && a.shape(0) == components;
+  if (one) {
+    std::copy(a.data(), a.data() + components, defaults);
+    return;
+  }
+  const bool per_point = components == 1
+                             ? a.ndim() == 1 && static_cast<size_t>(a.shape(0)) == points
+                             : a.ndim() == 2 && static_cast<size_t>(a.shape(0)) == points && a.shape(1) == components;
+  if (!per_point)
+    throw py::value_error(std::string(name) + " must be " + (components == 1 ? "a number" : "an RGB triple") +
+                          " or have shape (" + std::to_string(points) + (components == 1 ? ",)" : ", 3)") + ", not " +
+                          shape_text(a));
+  array.assign(a.data(), a.data() + a.size());
+}
+
+void write_hair(const std::filesystem::path& path, const py::handle& points, const py::handle& offsets,
+                const py::object& thickness, const py::object& transparency, const py::object& colors,
+                const py::object& info) {
+  HairFile f = to_hair_file(strands_from_numpy(points, offsets));
+  set_attribute(thickness, "thickness", f.point_count, 1, f.thickness, &f.default_thickness);
+  set_attribute(transparency, "transparency", f.point_count, 1, f.transparency, &f.default_transparency);
+  set_attribute(colors, "colors", f.point_count, 3, f.colors, f.default_color.data());
+  if (!info.is_none()) f.info = info.cast<std::string>();
+  py::gil_scoped_release release;
+  write_hair_file(path, f);
+}
+
+// One attribute per point: the file's array, or its default repeated.
+py::array attribute(std::vector<float>&& array, const float* defaults, size_t points, int components) {
+  if (array.empty())
+    for (size_t i = 0; i < points; ++i) array.insert(array.end(), defaults, defaults + components);
+  py::array a = to_numpy(std::move(array));
+  return components == 1 ? a : a.reshape({static_cast<py::ssize_t>(points), py::ssize_t{components}});
+}
+
+py::dict read_hair_attributes(const std::filesystem::path& path) {
+  HairFile f;
+  {
+    py::gil_scoped_release release;
+    f = read_hair_file(path);
+  }
+  const size_t n = f.point_count;
+  return py::dict("thickness"_a = attribute(std::move(f.thickness), &f.default_thickness, n, 1),
+                  "transparency"_a = attribute(std::move(f.transparency), &f.default_transparency, n, 1),
+                  "colors"_a = attribute(std::move(f.colors), f.default_color.data(), n, 3), "info"_a = f.info);
+}
+
 }  // namespace
 
 void bind_hair(py::module_& m) {
   bind_session(m);
-  m.def(
-      "write_hair",
-      [](const std::filesystem::path& path, const py::handle& points, const py::handle& offsets) {
-        write_hair_file(path, to_hair_file(to_strands(points, offsets)));
-      },
-      "path"_a, "points"_a, "offsets"_a, "Writes strands (points (n, 3) float32, offsets) as a .hair file.");
+  m.def("write_hair", &write_hair, "path"_a, "points"_a, "offsets"_a, "thickness"_a = py::none(),
+        "transparency"_a = py::none(), "colors"_a = py::none(), "info"_a = py::none(),
+        R"(Writes strands (points (n, 3) float32, offsets) as a .hair file (Cem Yuksel's format).
+
+thickness, transparency: a number (the file's default for every point) or one value per point
+(n,); colors: an RGB triple (the default) or (n, 3); info: up to 87 characters of text.)");
   m.def(
       "read_hair",
-      [](const std::filesystem::path& path) { return strands_tuple(strands_from_hair_file(read_hair_file(path))); },
+      [](const std::filesystem::path& path) {
+        Strands s;
+        {
+          py::gil_scoped_release release;
+          s = strands_from_hair_file(read_hair_file(path));
+        }
+        return strands_to_numpy(std::move(s));
+      },
       "path"_a, "A .hair file's strands as (points (n, 3) float32, offsets (strands + 1,) int32).");
+  m.def("read_hair_attributes", &read_hair_attributes, "path"_a,
+        R"(A .hair file's per-point attributes: {'thickness': (n,), 'transparency': (n,),
+'colors': (n, 3)} float32, the file's defaults where it stores no array, and its 'info' text.)");
   m.def(
       "write_strands_obj",
       [](const std::filesystem::path& path, const py::handle& points, const py::handle& offsets) {
-        write_strands_obj(path, to_strands(points, offsets));
+        const Strands s = strands_from_numpy(points, offsets);
+        py::gil_scoped_release release;
+        write_strands_obj(path, s);
       },
       "path"_a, "points"_a, "offsets"_a, "Writes strands as OBJ polylines (strands of one point are skipped).");
 }

@@ -66,3 +66,67 @@ def test_strand_arrays_are_checked(tmp_path):
         lapis.write_hair(str(tmp_path / "x.hair"), np.zeros((2, 3), np.float32), [0, 1])
     with pytest.raises(lapis.IoError, match="missing.json"):
         lapis.HairSession.load(str(tmp_path / "missing.json"))
+
+
+def test_live_hairstyle_follows_the_session():
+    s = small(lapis.HairSession.load(str(SESSIONS / "parting.json"), replay=False))
+    s.replay()
+    live = lapis.LiveHairstyle(s)
+    r = live.update()
+    b = s.build()
+    # The first update solves from scratch, like build(): the same strands and field.
+    assert np.array_equal(r["points"], b["points"]) and np.array_equal(r["offsets"], b["offsets"])
+    assert np.array_equal(live.field, b["field"]) and live.roots.shape == (len(b["offsets"]) - 1, 3)
+    assert r["constraints"] == b["constraints"]
+    kept = r["points"].copy()
+
+    # An edit: only the diff reaches the solver, and the result is the one build() finds.
+    s.remove_primitive(len(s.primitives) - 1)
+    r2 = live.update()
+    assert r2["solves"][0]["removed"] > 0 and r2["solves"][0]["added"] == 0
+    b2 = s.build()
+    assert np.array_equal(r2["offsets"], b2["offsets"])
+    assert np.abs(r2["points"] - b2["points"]).max() < 1e-4
+    # The earlier result is still alive, so its storage was not written into.
+    assert np.array_equal(r["points"], kept)
+    assert not np.shares_memory(r["points"], r2["points"])
+
+
+def test_live_hairstyle_regrows_into_dropped_storage():
+    s = small(lapis.HairSession.load(str(SESSIONS / "parting.json"), replay=False))
+    s.replay()
+    live = lapis.LiveHairstyle(s)
+    r = live.update()
+    address = r["points"].__array_interface__["data"][0]
+    view = r["offsets"]  # a view keeps the storage: it is not reused while any array is alive
+    del r
+    r = live.update()
+    assert r["points"].__array_interface__["data"][0] != address
+    del view
+    r = None
+    r = live.update()
+    r = live.update()  # two buffers alternate once every older result is gone
+    addresses = {live.update()["points"].__array_interface__["data"][0] for _ in range(3)}
+    assert len(addresses) <= 2
+
+
+def test_hair_attributes_round_trip(tmp_path):
+    points = np.array([[0, 0, 0], [0, 1, 0], [0, 2, 0], [1, 0, 0], [1, 1, 0]], dtype=np.float32)
+    offsets = np.array([0, 3, 5], dtype=np.int32)
+    thickness = np.linspace(1, 2, 5).astype(np.float32)
+    lapis.write_hair(str(tmp_path / "a.hair"), points, offsets, thickness=thickness, transparency=0.25,
+                     colors=[0.5, 0.25, 0.125], info="two strands")
+    a = lapis.read_hair_attributes(str(tmp_path / "a.hair"))
+    assert np.array_equal(a["thickness"], thickness)
+    assert np.array_equal(a["transparency"], np.full(5, 0.25, np.float32))
+    assert a["colors"].shape == (5, 3) and np.array_equal(a["colors"][3], np.float32([0.5, 0.25, 0.125]))
+    assert a["info"] == "two strands"
+    p, o = lapis.read_hair(str(tmp_path / "a.hair"))
+    assert np.array_equal(p, points) and np.array_equal(o, offsets)
+    colors = np.random.default_rng(1).random((5, 3)).astype(np.float32)
+    lapis.write_hair(str(tmp_path / "b.hair"), points, offsets, colors=colors)
+    assert np.array_equal(lapis.read_hair_attributes(str(tmp_path / "b.hair"))["colors"], colors)
+    with pytest.raises(ValueError, match=r"thickness must be a number or have shape \(5,\), not \(4,\)"):
+        lapis.write_hair(str(tmp_path / "c.hair"), points, offsets, thickness=thickness[:4])
+    with pytest.raises(ValueError, match=r"colors must be an RGB triple or have shape \(5, 3\)"):
+        lapis.write_hair(str(tmp_path / "c.hair"), points, offsets, colors=[1, 2])
