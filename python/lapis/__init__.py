@@ -17,6 +17,6 @@ See docs/python.md for the whole API.
 
 from ._lapis import *  # noqa: F401,F403  (the compiled core: every public name)
 from ._lapis import Error, InvalidArgument, IoError, NotPositiveDefinite, ResourceLimit, SolverFailure, UsageError
-from ._deform import Deformer, method_settings
+from ._deform import DeformationTransfer, Deformer, method_settings
 
 __all__ = [name for name in dir() if not name.startswith("_")]

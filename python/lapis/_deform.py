@@ -68,6 +68,15 @@ def _index_array(x):
     return x if isinstance(x, np.ndarray) else np.asarray(x, dtype=np.int64).reshape(-1)
 
 
+def _roi(roi, num_vertices, name):
+    """Vertex indices, or "all" of them."""
+    if isinstance(roi, str):
+        if roi != "all":
+            raise ValueError(f"{name} must be vertex indices or 'all', not '{roi}'")
+        return np.arange(num_vertices, dtype=np.int32)
+    return _index_array(roi)
+
+
 class Deformer:
     """Handle-based deformation of a mesh with one of the C++ methods (lapis.methods()).
 
@@ -95,11 +104,8 @@ class Deformer:
         """roi: vertex indices that may move, or "all"; regions: a list of index arrays, each a
         handle moved by a 4x4 transform; points: vertex indices moved by a translation each.
         Marks the deformer dirty: the next deform() precomputes again."""
-        if isinstance(roi, str):
-            if roi != "all":
-                raise ValueError(f"roi must be vertex indices or 'all', not '{roi}'")
-            roi = np.arange(self._num_vertices, dtype=np.int32)
-        self._impl.set_selection(_index_array(roi), [_index_array(r) for r in regions], _index_array(points))
+        self._impl.set_selection(_roi(roi, self._num_vertices, "roi"), [_index_array(r) for r in regions],
+                                 _index_array(points))
 
     def precompute(self):
         """Validates the selection and runs the method's setup; raises InvalidArgument for a bad
@@ -125,5 +131,92 @@ class Deformer:
         """The method's report of its setup and last frame (sizes, iterations, timings) as a dict."""
         return self._impl.report()
 
+    # The salient method (Zhao et al.): features and the solid subspace.
+
+    def set_features(self, features):
+        """salient: user features (§3.1), a list of vertex index arrays, combined with the detected
+        ones as the option user_features says ("union" by default, or "replace"). Checked by the
+        next precompute()."""
+        self._impl.set_features([_index_array(f) for f in features])
+
+    def set_subspace(self, V, T):
+        """salient: a given solid subspace, tetrahedra T (#T, 4) over V (#TV, 3) enclosing the
+        mesh (e.g. from a tetrahedral mesher), instead of the lattice. Checked by the next
+        precompute()."""
+        self._impl.set_subspace(V, T)
+
+    @property
+    def features(self):
+        """salient, after precompute(): the features in use, a list of int32 vertex index arrays."""
+        return self._impl.features
+
+    @property
+    def saliency(self):
+        """salient, after precompute(): the per-vertex saliency (#V,) (empty without detection)."""
+        return self._impl.saliency
+
+    @property
+    def subspace(self):
+        """salient, after precompute(): the solid subspace as (V (#TV, 3), T (#T, 4))."""
+        return self._impl.subspace
+
+    # The isolines method (Au et al.): the harmonic handle fields.
+
+    @property
+    def fields(self):
+        """isolines, after precompute(): the harmonic fields (#V, H), one column per handle, the
+        fixed region first (§4.1)."""
+        return self._impl.fields
+
+    @property
+    def rigidity(self):
+        """isolines, after precompute(): psi = sqrt(sum |grad phi_i|^2) per vertex (#V,) (§4.1)."""
+        return self._impl.rigidity
+
     def __repr__(self):
         return f"lapis.Deformer(method='{self.name}', vertices={self._num_vertices})"
+
+
+def _handles(h, num_vertices, name):
+    """(roi, regions, points) from a dict with keys roi ("all" or indices), regions, points."""
+    if not isinstance(h, dict):
+        raise TypeError(f"{name} must be a dict with keys roi, regions, points")
+    unknown = set(h) - {"roi", "regions", "points"}
+    if unknown:
+        raise TypeError(f"{name} has unknown keys {sorted(unknown)}; keys: roi, regions, points")
+    roi = _roi(h.get("roi", "all"), num_vertices, f"{name}['roi']")
+    return (roi, [_index_array(r) for r in h.get("regions", ())], _index_array(h.get("points")))
+
+
+class DeformationTransfer:
+    """Deformation transfer by handle correspondence (Au et al. 2007, §6).
+
+        x = lapis.DeformationTransfer(source_V, source_F, target_V, target_F,
+                                      source_handles={"roi": roi_s, "regions": [h0_s, h1_s]},
+                                      target_handles={"roi": roi_t, "regions": [h0_t, h1_t]})
+        W_target = x.transfer(W_source)     # per pose of the source (GIL released)
+
+    Handles pair by index: the ROI's complement is the fixed region (handle 0) on both meshes,
+    then the region handles and the point handles in order. The source's deformation is fitted
+    as one 3x3 transform per isoline (Eq. 11) and the target rebuilt from its own edges turned
+    by them (Eq. 12), one vertex per component held. Mismatched handle counts raise
+    lapis.InvalidArgument. isolines: n_iso on both meshes (TransferOptions: 20);
+    point_handle_radius: the disc of a point handle's field, relative to each mesh's
+    bounding-box diagonal (HandleFieldOptions: 0.02).
+    """
+
+    def __init__(self, source_V, source_F, target_V, target_F, source_handles, target_handles, isolines=None,
+                 point_handle_radius=None):
+        s = _handles(source_handles, int(np.shape(source_V)[0]), "source_handles")
+        t = _handles(target_handles, int(np.shape(target_V)[0]), "target_handles")
+        given = {"isolines": isolines, "point_handle_radius": point_handle_radius}  # None: the C++ default
+        options = {k: v for k, v in given.items() if v is not None}
+        self._impl = _lapis._DeformationTransfer(source_V, source_F, s, target_V, target_F, t, **options)
+
+    def transfer(self, source_deformed):
+        """The target deformed (#V_target, 3) as source_deformed (#V_source, 3) deforms the source."""
+        return self._impl.transfer(source_deformed)
+
+    def report(self):
+        """Sizes, the Eq. 11 / Eq. 12 residuals of the last transfer, the held vertices, setup time."""
+        return self._impl.report()

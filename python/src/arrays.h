@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "lapis/geometry/tet_mesh.h"
 #include "lapis/geometry/tri_mesh.h"
 
 namespace lapis::python {
@@ -31,6 +32,8 @@ Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> to_dense(
 geometry::Vertices to_vertices(const py::handle& obj, const char* name);
 // An (n, 3) int32 or int64 array; int64 values must fit in int.
 geometry::Faces to_faces(const py::handle& obj, const char* name);
+// An (n, 4) int32 or int64 array of tetrahedra.
+geometry::Tets to_tets(const py::handle& obj, const char* name);
 // A 1-D int32 or int64 array (or a sequence of ints) as indices.
 std::vector<int> to_indices(const py::handle& obj, const char* name);
 // A 1-D float64 array.

@@ -10,5 +10,6 @@ void bind_deform(pybind11::module_& m);
 void bind_solver(pybind11::module_& m);
 void bind_merge(pybind11::module_& m);
 void bind_hair(pybind11::module_& m);
+void bind_hair_live(pybind11::module_& m);  // after bind_hair: it takes a HairSession
 
 }  // namespace lapis::python

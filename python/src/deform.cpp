@@ -11,6 +11,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "deform_bindings.h"
 #include "lapis/mesh_deform/edge_laplacian.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_deform/isolines_deformer.h"
@@ -222,7 +223,8 @@ py::dict drag_dict(Drag&& drag) {
 }
 
 void bind_deformer(py::module_& m) {
-  py::class_<Deformer>(m, "_Deformer", "make_deformer() behind lapis.Deformer.")
+  py::class_<Deformer> deformer(m, "_Deformer", "make_deformer() behind lapis.Deformer.");
+  deformer
       .def(py::init([](const py::handle& V, const py::handle& F, const MethodSettings& settings) {
              TriMesh mesh = to_mesh(V, F);
              py::gil_scoped_release release;
@@ -232,11 +234,7 @@ void bind_deformer(py::module_& m) {
       .def(
           "set_selection",
           [](Deformer& d, const py::handle& roi, const py::handle& regions, const py::handle& points) {
-            Selection s;
-            s.roi = to_indices(roi, "roi");
-            for (const py::handle& h : regions) s.region_handles.push_back(to_indices(h, "regions[i]"));
-            s.point_handles = to_indices(points, "points");
-            d.set_selection(std::move(s));
+            d.set_selection(to_selection(roi, regions, points));
           },
           "roi"_a, "regions"_a, "points"_a)
       .def("precompute", &Deformer::precompute, py::call_guard<py::gil_scoped_release>())
@@ -255,14 +253,24 @@ void bind_deformer(py::module_& m) {
       .def_property_readonly("name", &Deformer::name)
       .def_property_readonly("dirty", &Deformer::dirty)
       .def("report", &report);
+  bind_method_members(deformer);
 }
 
 }  // namespace
+
+Selection to_selection(const py::handle& roi, const py::handle& regions, const py::handle& points) {
+  Selection s;
+  s.roi = to_indices(roi, "roi");
+  for (const py::handle& h : regions) s.region_handles.push_back(to_indices(h, "regions[i]"));
+  s.point_handles = to_indices(points, "points");
+  return s;
+}
 
 void bind_deform(py::module_& m) {
   bind_enums(m);
   bind_settings(m);
   bind_deformer(m);
+  bind_transfer(m);
   m.def(
       "methods",
       [] {

@@ -75,13 +75,24 @@ Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> to_dense(
 
 geometry::Vertices to_vertices(const py::handle& obj, const char* name) { return to_dense(obj, name, 3); }
 
-geometry::Faces to_faces(const py::handle& obj, const char* name) {
+namespace {
+
+// An (n, Cols) int32 or int64 array as row-major ints.
+template <int Cols>
+Eigen::Matrix<int, Eigen::Dynamic, Cols, Eigen::RowMajor> to_index_rows(const py::handle& obj, const char* name) {
   const py::array a = as_array<std::int64_t>(obj);
-  require_shape(a, name, 2, 3, "(n, 3)");
-  geometry::Faces F(a.shape(0), 3);
-  copy_indices(a, name, F.data());
-  return F;
+  const std::string expected = "(n, " + std::to_string(Cols) + ")";
+  require_shape(a, name, 2, Cols, expected.c_str());
+  Eigen::Matrix<int, Eigen::Dynamic, Cols, Eigen::RowMajor> out(a.shape(0), Cols);
+  copy_indices(a, name, out.data());
+  return out;
 }
+
+}  // namespace
+
+geometry::Faces to_faces(const py::handle& obj, const char* name) { return to_index_rows<3>(obj, name); }
+
+geometry::Tets to_tets(const py::handle& obj, const char* name) { return to_index_rows<4>(obj, name); }
 
 std::vector<int> to_indices(const py::handle& obj, const char* name) {
   const py::array a = as_array<std::int64_t>(obj);
@@ -223,4 +234,5 @@ PYBIND11_MODULE(_lapis, m) {
   lapis::python::bind_solver(m);
   lapis::python::bind_merge(m);
   lapis::python::bind_hair(m);
+  lapis::python::bind_hair_live(m);
 }

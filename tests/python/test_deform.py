@@ -105,3 +105,75 @@ def test_distortion_of_a_rigid_motion_is_zero(bar):
     assert q["arap_energy"] < 1e-20 and q["edge_length"]["max"] < 1e-12
     q = lapis.distortion(V, F, V * [1.5, 1.0, 1.0])
     assert q["edge_length"]["max"] == pytest.approx(0.5) and q["arap_energy"] > 0.01
+
+
+def test_transfer_equals_the_cli(tmp_path, cli, bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    d = lapis.Deformer(V, F, "implicit")
+    d.set_selection(roi, regions=[handle])
+    d.precompute()
+    pose = d.deform([bend(0.4, 0.2)])
+    # The target: the same bar at another resolution, its handles picked by the same rule.
+    V2, F2 = lapis.make_box_bar(24, 4, 4, 4.0, 1.0, 1.0)
+    roi2, handle2 = bar_selection(V2)
+    x = lapis.DeformationTransfer(V, F, V2, F2, {"roi": roi, "regions": [handle]}, {"roi": roi2, "regions": [handle2]})
+    W2 = x.transfer(pose)
+    assert W2.shape == V2.shape and x.report()["handles"] == 2
+
+    for name, mesh in (("s.off", (V, F)), ("pose.off", (pose, F)), ("t.off", (V2, F2))):
+        lapis.write_mesh(str(tmp_path / name), *mesh)
+    for name, r in (("roi.txt", roi), ("roi2.txt", roi2)):
+        (tmp_path / name).write_text(" ".join(map(str, r)))
+    write_handles(tmp_path / "h.json", [handle], [[np.eye(4)]])
+    write_handles(tmp_path / "h2.json", [handle2], [[np.eye(4)]])
+    cli("transfer", "--source", tmp_path / "s.off", "--source-deformed", tmp_path / "pose.off", "--source-roi",
+        tmp_path / "roi.txt", "--source-handles", tmp_path / "h.json", "--target", tmp_path / "t.off",
+        "--target-roi", tmp_path / "roi2.txt", "--target-handles", tmp_path / "h2.json", "--out", tmp_path / "out.obj")
+    expected, _ = lapis.read_mesh(str(tmp_path / "out.obj"))
+    assert np.array_equal(W2, expected)
+
+    # The rest pose transfers to the rest target (up to rounding); unpaired handles are an error.
+    assert np.abs(x.transfer(V) - V2).max() < 1e-9
+    with pytest.raises(lapis.InvalidArgument, match="do not correspond"):
+        lapis.DeformationTransfer(V, F, V2, F2, {"roi": roi, "regions": [handle]},
+                                  {"roi": roi2, "regions": [handle2[:4], handle2[4:]]})
+
+
+def test_salient_features_and_subspace(bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    d = lapis.Deformer(V, F, "salient", detect_features=False, subspace_vertices=64)
+    middle = np.flatnonzero(np.abs(V[:, 0] - 2.0) < 0.3)
+    d.set_features([middle[::-1]])
+    d.set_selection(roi, regions=[handle])
+    d.precompute()
+    assert len(d.features) == 1 and np.array_equal(d.features[0], np.sort(middle))
+    assert d.saliency.size == 0  # no detection ran
+    TV, T = d.subspace
+    assert TV.shape[1] == 3 and T.shape[1] == 4 and T.max() < TV.shape[0]
+    # The same tetrahedra given back: the same deformation.
+    e = lapis.Deformer(V, F, "salient", detect_features=False, subspace_vertices=64)
+    e.set_features([middle])
+    e.set_subspace(TV, T)
+    e.set_selection(roi, regions=[handle])
+    assert np.array_equal(e.deform([bend(0.3, 0.1)]), d.deform([bend(0.3, 0.1)]))
+    with pytest.raises(ValueError, match=r"T must have shape \(n, 4\)"):
+        e.set_subspace(TV, T[:, :3])
+
+
+def test_isolines_fields_and_method_members(bar):
+    V, F = bar
+    roi, handle = bar_selection(V)
+    d = lapis.Deformer(V, F, "isolines")
+    d.set_selection(roi, regions=[handle])
+    d.precompute()
+    phi = d.fields
+    assert phi.shape == (V.shape[0], 2)
+    assert np.abs(phi.sum(axis=1) - 1).max() < 1e-10  # §4.1: the fields partition unity
+    assert d.rigidity.shape == (V.shape[0],) and (d.rigidity >= 0).all()
+    implicit = lapis.Deformer(V, F, "implicit")
+    with pytest.raises(lapis.UsageError, match="only the salient method has it; this deformer's method is 'implicit'"):
+        implicit.features
+    with pytest.raises(lapis.UsageError, match="only the isolines method"):
+        implicit.fields
