@@ -64,6 +64,12 @@ py::dict build(const Session& s) {
 }
 
 void bind_session(py::module_& m) {
+  // Named as in session files.
+  py::enum_<hair_field::FieldMethod>(m, "FieldMethod", "How the style field is solved per edit (thesis §4.4.2).")
+      .value("auto", hair_field::FieldMethod::Auto, "thesis while its factor fits, else multigrid")
+      .value("thesis", hair_field::FieldMethod::Thesis, "Cholesky update/downdate of the changed constraints")
+      .value("refactorize", hair_field::FieldMethod::Refactorize, "a numeric refactorization per edit")
+      .value("multigrid", hair_field::FieldMethod::Multigrid, "warm-started PCG with a multigrid V-cycle");
   py::class_<Session>(m, "HairSession", R"(A hairstyle session (thesis ch. 4): settings, the head, style primitives.
 
     s = lapis.HairSession.load("assets/sessions/parting.json")   # replays its strokes
@@ -157,6 +163,10 @@ points[offsets[i]:offsets[i + 1]]), the field (dims z, y, x, 3) with its grid, c
       .def_property(
           "roots", [](const Session& s) { return s.style.settings.roots.count; },
           [](Session& s, int n) { s.style.settings.roots.count = n; }, "Strands to grow.")
+      .def_property(
+          "field_method", [](const Session& s) { return s.style.settings.field_method; },
+          [](Session& s, hair_field::FieldMethod f) { s.style.settings.field_method = f; },
+          "lapis.FieldMethod of the field solves.")
       .def("build", &build, "Solves the field and grows the strands from scratch; see the class docstring.");
 }
 

@@ -130,3 +130,20 @@ def test_hair_attributes_round_trip(tmp_path):
         lapis.write_hair(str(tmp_path / "c.hair"), points, offsets, thickness=thickness[:4])
     with pytest.raises(ValueError, match=r"colors must be an RGB triple or have shape \(5, 3\)"):
         lapis.write_hair(str(tmp_path / "c.hair"), points, offsets, colors=[1, 2])
+
+
+def test_field_method_is_a_setting_each_method_solves_alike():
+    s = small(lapis.HairSession.load(str(SESSIONS / "parting.json")))
+    s.field_method = lapis.FieldMethod.thesis
+    exact = s.build()["field"]
+    s.field_method = lapis.FieldMethod.multigrid
+    assert s.field_method == lapis.FieldMethod.multigrid
+    iterative = s.build()["field"]
+    s.field_method = lapis.FieldMethod.refactorize
+    refactorized = s.build()["field"]
+    # The direct paths agree to rounding, the multigrid one to its tolerance; none is zero.
+    assert np.abs(exact).max() > 0.1
+    assert 0 < np.abs(iterative - exact).max() < 1e-3 * np.abs(exact).max()
+    assert np.abs(refactorized - exact).max() < 1e-9 * np.abs(exact).max()
+    with pytest.raises(TypeError):
+        s.field_method = "multigrid"
