@@ -22,6 +22,8 @@ const char* tool_name(Tool t) {
       return "brush";
     case Tool::Lasso:
       return "lasso";
+    case Tool::Pair:
+      return "pair (transfer)";
   }
   return "?";
 }
@@ -57,15 +59,18 @@ DeformApp::~DeformApp() = default;
 
 void DeformApp::on_start(viewer::Viewer& v) {
   worker_.set_on_done([&v] { v.wake(); });  // a finished solve: redraw now
+  transfer_worker_.set_on_done([&v] { v.wake(); });
   now_ = v.time();
   update_surface(v);
   v.frame_scene();
   labels_changed();
   if (load_on_start_) load_selection(v);
+  if (!transfer_target_on_start_.empty()) open_transfer_target(v, transfer_target_on_start_);
 }
 
 bool DeformApp::busy() const {
   if (pending_export_ || frame_ - result_frame_ < 3) return true;
+  if (transfer_worker_.busy() || transfer_received_ != transfer_submitted_) return true;
   return worker_.busy() || (selection_ && received_ != submitted_);
 }
 
@@ -94,6 +99,7 @@ void DeformApp::labels_changed() {
     selection_.reset();
     selection_error_ = e.what();
   }
+  transfer_source_changed();
 }
 
 void DeformApp::undo(viewer::Viewer& v) { step_history(v, false); }
@@ -243,14 +249,18 @@ void DeformApp::on_frame(viewer::Viewer& v) {
   frame_ = v.frame();
   receive(v);
   request_solve();  // no-op unless something changed
+  receive_transfer(v);
+  request_transfer();
   if (pending_export_ && export_ready()) export_result(v);
   if (surface_dirty_) update_surface(v);
   if (markers_dirty_) update_markers(v);
+  if (target_dirty_ && pairing_) update_target_surface(v);
   update_gizmo(v);
 }
 
 void DeformApp::on_exit(viewer::Viewer& v) {
   worker_.set_on_done({});  // the window goes away after this
+  transfer_worker_.set_on_done({});
   if (paths_.export_on_exit) {
     // Batch runs: let the newest request finish so the export holds it (twice: the result
     // of a drag preview asks for the full pipeline once more).
@@ -259,6 +269,9 @@ void DeformApp::on_exit(viewer::Viewer& v) {
       receive(v);
       request_solve();
     }
+    request_transfer();
+    transfer_worker_.wait();
+    receive_transfer(v);
     pending_export_ = true;
     if (!export_ready()) {
       std::fprintf(stderr, "lapis-deform: nothing to export (%s)\n",
@@ -298,6 +311,7 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
   try {
     geometry::TriMesh mesh = geometry::read_mesh(path);
     auto conn = std::make_unique<geometry::Connectivity>(mesh);
+    if (pairing_) close_transfer_target(v);  // its pairs were made on the old mesh
     rest_ = std::move(mesh);
     conn_ = std::move(conn);
     paths_.mesh = path;
@@ -366,7 +380,8 @@ void DeformApp::load_selection(viewer::Viewer& v) {
 
 bool DeformApp::export_ready() const {
   // The newest request solved, by the full pipeline (not a drag preview).
-  return last_ && !worker_.busy() && received_ == submitted_ && last_->request == submitted_ && !last_->frame.preview;
+  return last_ && !worker_.busy() && received_ == submitted_ && last_->request == submitted_ && !last_->frame.preview &&
+         transfer_ready();
 }
 
 bool DeformApp::export_result(viewer::Viewer& v) {
@@ -417,9 +432,11 @@ bool DeformApp::export_result(viewer::Viewer& v) {
                         {"iterations", iterations},
                         {"frames", last_->frame.history.size()},
                         {"cli", command}};
+    const bool transferred = export_transfer(stem, out, j);
     core::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
     files.commit();
-    v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json)");
+    v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json" +
+            (transferred ? ", the transfer target" : "") + ")");
     std::printf("exported %s\n", out.string().c_str());
     return true;
   } catch (const Error& e) {

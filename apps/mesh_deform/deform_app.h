@@ -14,6 +14,7 @@
 
 #include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
+#include "lapis/mesh_deform/deformation_transfer.h"
 #include "lapis/mesh_deform/feature_labels.h"
 #include "lapis/mesh_deform/live_deformer.h"
 #include "lapis/mesh_deform/vertex_labels.h"
@@ -21,19 +22,22 @@
 #include "lapis/viewer/latest_worker.h"
 #include "lapis/viewer/undo_history.h"
 #include "lapis/viewer/viewer.h"
+#include "transfer_pairing.h"
 
 namespace lapis::deform_app {
 
 using namespace lapis::mesh_deform;
 namespace fs = std::filesystem;
 
-enum class Tool { Move, Brush, Lasso };
+enum class Tool { Move, Brush, Lasso, Pair };  // Pair: place the transfer target's handles
 const char* tool_name(Tool t);
 
 enum class ColorMode { Selection, Distortion, Saliency, IsolineField, Rigidity };
 
 // Colour of region handle `label` on the surface and in the panels.
 Eigen::Vector3f handle_color(int label);
+// Colour of the fixed region (outside the ROI).
+Eigen::Vector3f fixed_color();
 // Colour of salient feature `index` (the salient method's rigid parts).
 Eigen::Vector3f feature_color(int index);
 
@@ -65,6 +69,16 @@ struct Solved {
   LiveFrame frame;
 };
 
+// What the transfer worker hands back: the target deformed like one source frame.
+struct Transferred {
+  std::uint64_t request = 0, epoch = 0;  // request id, target epoch
+  std::uint64_t source_request = 0;      // the source frame it carries (Solved::request)
+  std::uint64_t pairing_revision = 0;    // the target handles it was set up with
+  geometry::Vertices positions;          // in the target's own frame
+  TransferReport report;
+  double ms = 0;
+};
+
 class DeformApp final : public viewer::ViewerApp {
  public:
   DeformApp(geometry::TriMesh mesh, DeformPaths paths, MethodSettings settings, bool preview_while_dragging = true);
@@ -81,6 +95,8 @@ class DeformApp final : public viewer::ViewerApp {
 
   // Opens the ROI and handles files of the paths when the app starts.
   void open_selection_on_start() { load_on_start_ = true; }
+  // Opens a deformation-transfer target beside the mesh when the app starts.
+  void open_transfer_target_on_start(fs::path path) { transfer_target_on_start_ = std::move(path); }
 
  private:
   // Loads the ROI and handles files (CLI formats); errors are shown, not thrown.
@@ -123,11 +139,26 @@ class DeformApp final : public viewer::ViewerApp {
   void request_solve();
   void receive(viewer::Viewer& v);
 
+  // Deformation transfer (deform_transfer.cpp): a target beside the mesh, its handles placed
+  // by clicking (Tool::Pair), the newest frame carried onto it on a second worker.
+  void open_transfer_target(viewer::Viewer& v, const fs::path& path);
+  void close_transfer_target(viewer::Viewer& v);
+  bool pair_at(viewer::Viewer& v, const Eigen::Vector2d& p);
+  void transfer_source_changed();  // the painted selection changed: the pairs follow
+  void request_transfer();
+  void receive_transfer(viewer::Viewer& v);
+  bool transfer_ready() const;  // nothing to transfer, or the newest frame transferred
+  // Writes the target deformed and the files `lapis transfer` reproduces it from (in the
+  // export's file group); adds their names and the command to `j`. False: nothing written.
+  bool export_transfer(const fs::path& stem, const fs::path& source_out, nlohmann::json& j);
+  void draw_transfer_panel(viewer::Viewer& v);
+
   // Drawing (deform_scene.cpp) and panels (deform_panels.cpp).
   void update_surface(viewer::Viewer& v);
   void update_gizmo(viewer::Viewer& v);
   bool gizmo_shown() const;  // a valid selection and a painted active handle
   void update_markers(viewer::Viewer& v);
+  void update_target_surface(viewer::Viewer& v);
   void draw_tools_panel(viewer::Viewer& v);
   void draw_method_panel(viewer::Viewer& v);
   void draw_handle_panel(viewer::Viewer& v);
@@ -201,6 +232,27 @@ class DeformApp final : public viewer::ViewerApp {
   double now_ = 0;
   long frame_ = 0, result_frame_ = -10;  // a new result settles (panels resize) before it counts as shown
 
+  // Deformation transfer: the target as paired, and its engine (its own copies of both meshes).
+  struct TransferSlot {
+    TransferSlot(geometry::TriMesh s, geometry::TriMesh t) : source(std::move(s)), target(std::move(t)) {}
+    geometry::TriMesh source, target;
+    std::unique_ptr<DeformationTransfer> transfer;
+    std::uint64_t pairing_revision = 0;  // what `transfer` was set up for
+  };
+  std::optional<TransferPairing> pairing_;
+  fs::path target_path_, transfer_target_on_start_;
+  Placement target_placement_;
+  std::shared_ptr<TransferSlot> transfer_slot_;
+  std::uint64_t target_epoch_ = 0, transfer_submitted_ = 0, transfer_received_ = 0;
+  std::uint64_t transfer_source_request_ = 0, transfer_pairing_revision_ = 0;  // of the newest request
+  std::optional<Transferred> transferred_;
+  std::string transfer_error_;
+  geometry::Vertices target_shown_;  // the target as drawn (placed beside the mesh)
+  std::unique_ptr<geometry::Bvh> target_bvh_;
+  bool target_dirty_ = true, target_pick_stale_ = true, show_target_ = true;
+  int active_pair_ = 0;
+
+  viewer::LatestWorker<Transferred> transfer_worker_;
   viewer::LatestWorker<Solved> worker_;  // last: joined first, before what jobs use
 };
 

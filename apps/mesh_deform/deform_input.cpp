@@ -68,6 +68,10 @@ bool DeformApp::handle_tool_key(int key) {
     case GLFW_KEY_L:
       tool_ = Tool::Lasso;
       return true;
+    case GLFW_KEY_P:
+      if (!pairing_) return false;
+      tool_ = Tool::Pair;
+      return true;
     case GLFW_KEY_1:
       target_ = VertexLabels::kRoi;
       return true;
@@ -153,6 +157,7 @@ bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
     return true;
   }
   if (tool_ == Tool::Move) return false;  // the camera's
+  if (tool_ == Tool::Pair) return pair_at(v, p);
   erase_ = mods & GLFW_MOD_SHIFT;
   stroke_ = std::make_shared<VertexLabels>(*state_.labels);
   if (target_ == kFeatureTarget) feature_stroke_ = features_.feature_of;

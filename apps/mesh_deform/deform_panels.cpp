@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "deform_app.h"
@@ -58,6 +59,7 @@ void DeformApp::on_gui(viewer::Viewer& v) {
   draw_method_panel(v);
   draw_handle_panel(v);
   draw_file_panel(v);
+  draw_transfer_panel(v);
   draw_legend(v);
   draw_overlay(v);
   draw_cursor(v);
@@ -67,7 +69,8 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Selection");
-  for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso}) {
+  for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso, Tool::Pair}) {
+    if (t == Tool::Pair && !pairing_) continue;
     if (t != Tool::Move) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(t), tool_ == t)) tool_ = t;
   }
@@ -316,6 +319,66 @@ void DeformApp::draw_file_panel(viewer::Viewer& v) {
   ImGui::SameLine();
   if (ImGui::Button("screenshot (Ctrl+P)")) v.request_screenshot("out/deform_screenshot.png");
   ImGui::End();
+}
+
+// Deformation transfer: the target mesh, one row per source handle to place on it, the result.
+void DeformApp::draw_transfer_panel(viewer::Viewer& v) {
+  // Below the overlay's lines; its rows come and go with the handles, so it sizes itself.
+  ImGui::SetNextWindowPos(ImVec2(10, 160), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowCollapsed(!pairing_, ImGuiCond_FirstUseEver);
+  ImGui::Begin("Transfer (Au et al. 2007)", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushTextWrapPos(340);
+  ImGui::PushItemWidth(240);
+  static char target[512] = "";
+  if (!target[0] && !target_path_.empty()) std::snprintf(target, sizeof target, "%s", target_path_.string().c_str());
+  ImGui::InputText("target mesh", target, sizeof target);
+  if (ImGui::Button("open target")) open_transfer_target(v, target);
+  auto end = [] {
+    ImGui::PopItemWidth();
+    ImGui::PopTextWrapPos();
+    ImGui::End();
+  };
+  if (!pairing_) {
+    ImGui::TextDisabled("carry this mesh's deformation onto another one");
+    return end();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("close target")) return close_transfer_target(v), end();
+  ImGui::SameLine();
+  if (ImGui::Checkbox("show", &show_target_)) target_dirty_ = true;
+  ImGui::Text("%s, %d vertices", target_path_.filename().string().c_str(), pairing_->target().num_vertices());
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("pair tool (P): click where each one is on the target, a click per part");
+  ImGui::PopStyleColor();
+  for (size_t k = 0; k < pairing_->slots().size(); ++k) {
+    const PairSlot& s = pairing_->slots()[k];
+    ImGui::PushID(static_cast<int>(k));
+    ImGui::ColorButton("##c", to_imvec(s.label < 0 ? fixed_color() : handle_color(s.label)),
+                       ImGuiColorEditFlags_NoTooltip, ImVec2(12, 12));
+    ImGui::SameLine();
+    const std::string clicks = std::to_string(s.seeds.size()) + " of " + std::to_string(s.parts()) + " part(s) placed";
+    const std::string status = !s.problem.empty() ? s.problem
+                               : !s.placed()      ? clicks + ", click on the target"
+                                                  : std::to_string(s.region.size()) + " vertices";
+    const std::string row = s.name + ": " + status;
+    if (ImGui::Selectable(row.c_str(), active_pair_ == static_cast<int>(k))) {
+      active_pair_ = static_cast<int>(k);
+      tool_ = Tool::Pair;
+    }
+    ImGui::PopID();
+  }
+  if (pairing_->slots().empty()) ImGui::TextDisabled("paint a handle on the mesh first");
+  if (!transfer_error_.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.55f, 0.35f, 1.0f));
+    ImGui::TextWrapped("%s", transfer_error_.c_str());
+    ImGui::PopStyleColor();
+  } else if (transferred_) {
+    ImGui::Text("transfer %.0f ms, Eq. 11 residual %.2g, Eq. 12 %.2g", transferred_->ms,
+                transferred_->report.eq11_residual, transferred_->report.eq12_residual);
+  } else if (pairing_->complete()) {
+    ImGui::TextDisabled("transferring after the next solve ...");
+  }
+  end();
 }
 
 void DeformApp::draw_legend(viewer::Viewer& v) {

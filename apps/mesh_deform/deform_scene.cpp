@@ -19,6 +19,7 @@ const Eigen::Vector3f kFeatureColors[] = {{0.2f, 0.45f, 0.95f}, {0.1f, 0.7f, 0.6
 }  // namespace
 
 Eigen::Vector3f handle_color(int label) { return kHandleColors[label % 6]; }
+Eigen::Vector3f fixed_color() { return kFixedColor; }
 Eigen::Vector3f feature_color(int index) { return kFeatureColors[index % 6]; }
 
 void DeformApp::update_surface(viewer::Viewer& v) {
@@ -113,6 +114,32 @@ void DeformApp::update_markers(viewer::Viewer& v) {
   lasso.on_top = true;
   lasso.width = 2.0f;
   markers_dirty_ = false;
+}
+
+void DeformApp::update_target_surface(viewer::Viewer& v) {
+  auto& item = v.scene().meshes["transfer target"];
+  item.mesh = geometry::TriMesh{target_shown_, pairing_->target().F};
+  item.visible = show_target_;
+  // Coloured like the source: each paired region in its handle's colour, the rest as ROI.
+  item.colors = kRoiColor.transpose().replicate(pairing_->target().num_vertices(), 1);
+  auto& seeds = v.scene().points["transfer seeds"];
+  seeds.points.resize(0, 3);
+  seeds.colors.resize(0, 3);
+  for (const PairSlot& s : pairing_->slots()) {
+    const Eigen::Vector3f c = s.label < 0 ? kFixedColor : handle_color(s.label);
+    for (int i : s.region) item.colors.row(i) = c.transpose();
+    for (int seed : s.seeds) {  // the clicks, lighter than their regions
+      seeds.points.conservativeResize(seeds.points.rows() + 1, 3);
+      seeds.colors.conservativeResize(seeds.colors.rows() + 1, 3);
+      seeds.points.row(seeds.points.rows() - 1) = target_shown_.row(seed).cast<float>();
+      seeds.colors.row(seeds.colors.rows() - 1) = (0.6f * c + Eigen::Vector3f::Constant(0.4f)).transpose();
+    }
+  }
+  seeds.size = 9.0f;
+  seeds.visible = show_target_;
+  ++item.version;
+  ++seeds.version;
+  target_dirty_ = false;
 }
 
 }  // namespace lapis::deform_app

@@ -1,6 +1,7 @@
 // lapis-deform [MESH] [--mesh MESH] [--subdivide N] [--roi ROI] [--handles HANDLES.json]
 //              [--method naive|implicit|arap|edge|salient] [--weights cotan|uniform] [--scale-features]
-//              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit] [--msaa N]
+//              [--iterations N] [--full-while-dragging] [--export OUT.obj] [--export-on-exit]
+//              [--transfer-target MESH] [--msaa N]
 //              [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]
 //              [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]
 #include <memory>
@@ -20,7 +21,7 @@ namespace {
 constexpr const char* kUsageRest =
     "] [--weights cotan|uniform] [--scale-features]\n"
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
-    "                    [--msaa SAMPLES]\n"
+    "                    [--transfer-target MESH] [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
     "                    [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
     "Opens MESH (OBJ/OFF/PLY/STL; default external/armadillo.off of the assets: $LAPIS_ASSET_DIR,\n"
@@ -31,7 +32,10 @@ constexpr const char* kUsageRest =
     "wheel zooms, F frames. Ctrl+Z / Ctrl+Shift+Z undo / redo, R reset pose, C colour by distortion,\n"
     "Ctrl+S / Ctrl+O save / open the selection (ROI and handles files of `lapis deform`), Ctrl+E\n"
     "export the deformed mesh with OUT.roi.txt, OUT.handles.json (every solved frame) and\n"
-    "OUT.deform.json (the `lapis deform` command that reproduces it), Ctrl+P screenshot, Ctrl+Q quit.\n";
+    "OUT.deform.json (the `lapis deform` command that reproduces it), Ctrl+P screenshot, Ctrl+Q quit.\n"
+    "--transfer-target opens MESH beside it (deformation transfer, Au et al. 2007): with P (pair) click\n"
+    "where each handle, the fixed region first, is on it; every solved frame is carried onto it and\n"
+    "Ctrl+E also writes OUT.target.obj with the files `lapis transfer` reproduces it from.\n";
 
 std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest) {
   using namespace lapis;
@@ -39,7 +43,7 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
   const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
   args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features",
-                   "--iterations", "--full-while-dragging", "--export", "--export-on-exit"});
+                   "--iterations", "--full-while-dragging", "--export", "--export-on-exit", "--transfer-target"});
   // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
   // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
   deform_app::DeformPaths paths;
@@ -82,6 +86,7 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   // shown in the window, like every other); a ROI file that does not exist yet is where
   // Ctrl+S will save.
   if (args.has("--roi") && std::filesystem::exists(paths.roi)) app->open_selection_on_start();
+  if (args.has("--transfer-target")) app->open_transfer_target_on_start(args.get("--transfer-target"));
   return app;
 }
 
