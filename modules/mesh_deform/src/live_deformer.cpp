@@ -101,6 +101,7 @@ LiveFrame LiveDeformer::update(const LiveRequest& r) {
   f.setup_ms = setup_ms_;
   f.method = deformer_->name();
   f.timing = timing_of(*deformer_);
+  if (const auto* a = dynamic_cast<const ArapDeformer*>(deformer_.get())) f.energy = a->report().energy;
   if (const auto* s = dynamic_cast<const SalientDeformer*>(deformer_.get())) {
     f.saliency = s->saliency();
     f.features = s->features();

@@ -47,6 +47,7 @@ struct LiveFrame {
   double distortion_ms = 0;
   std::string method;                     // deformer name
   std::string timing;                     // the method's own breakdown of the frame ("Eq. 2.8 12 ms, ...")
+  double energy = -1;                     // ARAP: the result's energy (ArapReport::energy); -1 for the others
   std::vector<int> degenerate_vertices;   // implicit: found by the current setup
   std::vector<HandleTransforms> history;  // every frame solved since the setup, this one last
   // Salient method: the saliency (empty without detection) and the features in use.
