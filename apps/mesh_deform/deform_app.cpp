@@ -10,6 +10,7 @@
 #include "lapis/core/atomic_file.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_deform/selection_io.h"
+#include "lapis/mesh_deform/vertex_distortion.h"
 #include "lapis/viewer/colormap.h"
 
 namespace lapis::deform_app {
@@ -180,9 +181,17 @@ void DeformApp::request_solve() {
     append_bytes(key, v);
   append_bytes(key, features_revision_);
   append_bytes(key, r.preview);
-  append_bytes(key, r.field ? static_cast<int>(*r.field) : -1);
   for (const auto& T : r.transforms.regions) key.append(reinterpret_cast<const char*>(T.data()), sizeof(double) * 16);
-  if (key == last_key_) return;
+  // The colour mode is not part of the key: a new colouring of the same frame is no reason to
+  // solve again (ARAP would go on iterating and change the shape).
+  if (key != solve_key_) {
+    solve_key_ = key;
+    arap_round_ = 0;
+    arap_energy_ = -1;
+    convergence_.clear();
+  }
+  append_bytes(key, arap_round_);
+  if (key == last_key_) return request_recolor();
   last_key_ = key;
 
   // The progress indicator: shown while a request that needs a new setup is running.
@@ -200,9 +209,45 @@ void DeformApp::request_solve() {
     s.revision = revision;
     s.selection = selection;
     s.settings = settings;
+    s.field = r.field;
     s.frame = slot->live.update(r);
     return s;
   });
+}
+
+void DeformApp::request_recolor() {
+  const std::optional<DistortionField> wanted =
+      color_mode_ == ColorMode::Distortion ? std::optional<DistortionField>(field_) : std::nullopt;
+  // Only for the newest frame, solved and shown, when it measures something else.
+  if (!wanted || !last_ || last_->epoch != epoch_ || last_->request != submitted_ || received_ != submitted_ ||
+      last_->field == wanted)
+    return;
+  Solved s = *last_;
+  s.request = ++submitted_;
+  s.recolor = true;
+  s.field = wanted;
+  auto slot = engine_;
+  worker_.submit([slot, s = std::move(s)]() mutable {
+    s.frame.distortion = vertex_distortion(slot->live.rest(), s.frame.positions, *s.field);
+    return s;
+  });
+}
+
+void DeformApp::continue_arap() {
+  const double energy = last_->frame.energy;
+  const double decrease = arap_energy_ < 0 ? 1.0 : (arap_energy_ - energy) / std::max(arap_energy_, 1e-300);
+  arap_energy_ = energy;
+  char buf[160];
+  if (decrease <= kArapRoundTolerance || arap_round_ >= kArapMaxRounds) {
+    std::snprintf(buf, sizeof buf, "ARAP %s after %d round(s) of %d iterations, energy %.4g",
+                  decrease <= kArapRoundTolerance ? "converged" : "stopped", arap_round_ + 1,
+                  last_->settings.arap_iterations, energy);
+    convergence_ = buf;
+    return;
+  }
+  ++arap_round_;  // the next request_solve() runs the round
+  std::snprintf(buf, sizeof buf, "ARAP converging: round %d, energy %.4g", arap_round_ + 1, energy);
+  convergence_ = buf;
 }
 
 void DeformApp::receive(viewer::Viewer& v) {
@@ -220,6 +265,12 @@ void DeformApp::receive(viewer::Viewer& v) {
   if (!s || s->epoch != epoch_) return;  // nothing new, or from a mesh no longer open
   engine_error_.clear();
   received_ = s->request;
+  if (s->recolor) {
+    if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));
+    last_ = std::move(s);
+    surface_dirty_ = true;
+    return;
+  }
   if (s->frame.did_setup) {
     setup_ms_.push_back(s->frame.setup_ms);
     isoline_field_ = s->frame.isoline_field;
@@ -235,6 +286,8 @@ void DeformApp::receive(viewer::Viewer& v) {
   result_frame_ = v.frame();
   pick_stale_ = true;
   surface_dirty_ = markers_dirty_ = true;
+  // ARAP goes on iterating on the pose once the user lets go, until the energy settles.
+  if (last_->frame.energy >= 0 && !last_->frame.preview && last_->request == submitted_ && !dragging_) continue_arap();
 }
 
 // The detected features seed the painted ones until the user edits them.
@@ -262,12 +315,14 @@ void DeformApp::on_exit(viewer::Viewer& v) {
   worker_.set_on_done({});  // the window goes away after this
   transfer_worker_.set_on_done({});
   if (paths_.export_on_exit) {
-    // Batch runs: let the newest request finish so the export holds it (twice: the result
-    // of a drag preview asks for the full pipeline once more).
-    for (int k = 0; k < 2; ++k) {
+    // Batch runs: let the newest request finish so the export holds it, and what it asks for
+    // next (the full pipeline after a drag preview, ARAP's rounds to convergence).
+    for (;;) {
       worker_.wait();
       receive(v);
+      const std::uint64_t before = submitted_;
       request_solve();
+      if (submitted_ == before) break;
     }
     request_transfer();
     transfer_worker_.wait();

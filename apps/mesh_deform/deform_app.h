@@ -67,7 +67,14 @@ struct Solved {
   std::shared_ptr<const Selection> selection;
   MethodSettings settings;
   LiveFrame frame;
+  std::optional<DistortionField> field;  // what frame.distortion measures
+  bool recolor = false;                  // the previous frame with another distortion field, not a solve
 };
+
+// ARAP after an edit: rounds of ArapOptions' iterations on the same pose until a round lowers
+// the energy by less than this fraction, or kArapMaxRounds.
+inline constexpr double kArapRoundTolerance = 1e-4;
+inline constexpr int kArapMaxRounds = 100;
 
 // What the transfer worker hands back: the target deformed like one source frame.
 struct Transferred {
@@ -137,6 +144,8 @@ class DeformApp final : public viewer::ViewerApp {
 
   // Engine.
   void request_solve();
+  void request_recolor();  // the newest frame's distortion for another colour mode, no solve
+  void continue_arap();    // another round on the same pose while the energy still falls
   void receive(viewer::Viewer& v);
 
   // Deformation transfer (deform_transfer.cpp): a target beside the mesh, its handles placed
@@ -222,6 +231,10 @@ class DeformApp final : public viewer::ViewerApp {
   std::uint64_t submitted_ = 0;  // id of the newest request
   std::uint64_t received_ = 0;   // id of the newest result taken (or failed)
   std::string last_key_;         // what the newest request asked for, to skip repeats
+  std::string solve_key_;        // the same without the ARAP round: an edit when it changes
+  int arap_round_ = 0;           // rounds run on the current pose after the first solve
+  double arap_energy_ = -1;      // the energy the last round ended with
+  std::string convergence_;      // what the rounds did, for the overlay
   std::optional<Solved> last_;
   std::string engine_error_;
   double setup_started_ = -1;  // time a request needing setup was submitted

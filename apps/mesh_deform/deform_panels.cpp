@@ -438,6 +438,7 @@ void DeformApp::draw_overlay(viewer::Viewer& v) {
   } else if (worker_.busy()) {
     v.overlay("solving...");
   }
+  if (!convergence_.empty()) v.overlay(convergence_);
   if (!engine_error_.empty()) v.overlay("error: " + engine_error_);
   if (!selection_error_.empty()) v.overlay("selection: " + selection_error_);
   if (pending_export_) v.overlay("export waits for the solve");

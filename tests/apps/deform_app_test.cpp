@@ -11,6 +11,7 @@
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/laplacian.h"
 #include "lapis/geometry/procedural.h"
+#include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/selection_io.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/input_events.h"
@@ -651,4 +652,63 @@ TEST_CASE("apps: deform app — a transfer target paired by clicks follows the d
   // camel's own: measured 23% and 14% of the handle's move.
   CHECK(fixed_moved < 0.4 * source_move.norm());
   CHECK(shared < 0.25 * source_move.norm());
+}
+
+TEST_CASE("apps: deform app — ARAP iterates to convergence once posed, and toggling the colours changes nothing") {
+  const fs::path dir = scratch_dir();
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  mesh_deform::Selection selection = mesh_deform::read_handles(kHandles).selection;
+  // The head turned 35 degrees about x and lifted: a pose ten iterations leave far from rest.
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int v : selection.region_handles.at(0)) c += mesh.V.row(v).transpose();
+  c /= static_cast<double>(selection.region_handles[0].size());
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.6, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  T.topLeftCorner<3, 3>() = R;
+  T.topRightCorner<3, 1>() = c - R * c + Eigen::Vector3d(0, 0.1, 0);
+  const fs::path pose = dir / "pose.handles.json";
+  mesh_deform::write_handles(pose, selection, {mesh_deform::HandleTransforms{{T}, {}}});
+
+  // Export once it settles, keep a copy, toggle the colours twice, export again.
+  const std::string d = dir.string();
+  const std::string actions =
+      "xdotool key --window $w ctrl+e\n"
+      "for i in $(seq 1 2400); do [ -e " +
+      d +
+      "/arap.deform.json ] && break; sleep 0.1; done\n"
+      "mkdir -p " +
+      d + "/first && cp " + d + "/arap.* " + d + "/first/ && rm " + d +
+      "/arap.deform.json\n"
+      "mark; xdotool key --window $w c key --window $w c; wait_handled 4 0 || { kill $app; exit 5; }\n"
+      "xdotool key --window $w ctrl+e";
+  const fs::path out = dir / "arap.obj";
+  REQUIRE(run_window("--mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " + pose.string() +
+                         " --method arap --export " + out.string(),
+                     actions, dir / "arap.deform.json") == 0);
+  const geometry::TriMesh first = geometry::read_mesh(dir / "first" / "arap.obj"), second = geometry::read_mesh(out);
+  CHECK(max_difference(first.V, second.V) == 0);  // the colours did not solve again
+  std::ifstream a(dir / "first" / "arap.deform.json"), b(dir / "arap.deform.json");
+  const auto ja = nlohmann::json::parse(a), jb = nlohmann::json::parse(b);
+  CHECK(ja["frames"] == jb["frames"]);
+  CHECK(ja["frames"].get<int>() > 2);  // rounds after the first solve
+
+  // The rounds lowered the energy past one frame's ten iterations, toward a long run's.
+  auto cli_arap = [&](int iterations, const fs::path& handles) {
+    const fs::path o = dir / ("cli_" + std::to_string(iterations) + ".obj");
+    REQUIRE(run(kCli + " deform --mesh " + kMesh.string() + " --roi " + kRoi.string() + " --handles " +
+                handles.string() + " --method arap --iterations " + std::to_string(iterations) + " --out " +
+                o.string() + " > /dev/null") == 0);
+    return geometry::read_mesh(o);
+  };
+  const double app = mesh_deform::distortion(mesh, second.V).arap_energy;
+  const double ten = mesh_deform::distortion(mesh, cli_arap(10, pose).V).arap_energy;
+  const double long_run = mesh_deform::distortion(mesh, cli_arap(2000, pose).V).arap_energy;
+  CAPTURE(app);
+  CAPTURE(ten);
+  CAPTURE(long_run);
+  CHECK(app < 0.9 * ten);
+  CHECK(app < long_run * 1.01);
+  // The frames it recorded replay to the same mesh.
+  const geometry::TriMesh replayed = cli_arap(10, dir / "arap.handles.json");
+  CHECK(max_difference(replayed.V, second.V) < 1e-9);
 }
