@@ -6,6 +6,14 @@
 // fit. Each row runs in its own child process so its peak memory is its own.
 //
 //   bench_isolines [--sizes bar,26k,151k,416k,1m,1.66m] [--configs h2n20,h3n20,...] [--peers]
+//                  [--repeat N] [--results NAME]
+//
+// --repeat runs the whole set N times over, each row in its own process, and keeps each row's
+// run with the median time per iteration (frame time for ARAP's and the implicit method's
+// rows), with every run's figure and their minimum beside it. Sub-millisecond iterations move
+// by a third between runs on a shared machine, and a slow spell lasts longer than a row: the
+// repetitions take turns so that it falls on every size, not on one. --results names the JSON
+// (bench/results/NAME.json; default mesh_deform_isolines).
 //
 // Fixed region: the lowest 10% of the vertices along the mesh's long axis (y; z for the bar);
 // region handle 1: the top 5%, turned 45° about the cross axis and moved 0.15 × the diagonal;
@@ -13,6 +21,7 @@
 // point handles spread over the free vertices, each moved 0.02 × the diagonal.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <numeric>
@@ -224,6 +233,24 @@ json run_child(const char* self, const std::string& size, const std::string& con
   return out.empty() ? json() : json::parse(out);
 }
 
+// The run with the median time per iteration (or frame time), every run's figure beside it.
+json median_run(std::vector<json> runs) {
+  auto figure = [](const json& r) {
+    return r.contains("ms_per_iteration") ? r["ms_per_iteration"].get<double>() : r["frame_ms"].get<double>();
+  };
+  std::sort(runs.begin(), runs.end(), [&](const json& a, const json& b) { return figure(a) < figure(b); });
+  json r = runs[runs.size() / 2];
+  if (runs.size() > 1) {
+    json all = json::array();
+    for (const json& x : runs) all.push_back(figure(x));
+    const bool per_iteration = r.contains("ms_per_iteration");
+    r["runs"] = runs.size();
+    r[per_iteration ? "ms_per_iteration_runs" : "frame_ms_runs"] = all;
+    r[per_iteration ? "ms_per_iteration_min" : "frame_ms_min"] = figure(runs.front());
+  }
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,15 +259,24 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::string sizes = "bar,26k,151k,416k,1m,1.66m", configs = "h2n20,h3n20,h4n20,h2n10,h2n40,h12n20";
+  std::string results_name = "mesh_deform_isolines";
   bool peers = false;
+  int repeat = 1;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) sizes = argv[++i];
     if (std::strcmp(argv[i], "--configs") == 0 && i + 1 < argc) configs = argv[++i];
     if (std::strcmp(argv[i], "--peers") == 0) peers = true;
+    if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    if (std::strcmp(argv[i], "--results") == 0 && i + 1 < argc) results_name = argv[++i];
   }
-  json results = json::array();
-  bench::Table table({"mesh", "#V", "config", "method", "setup s", "fields s", "extract s", "assembly s", "n_tri",
-                      "ms/iter", "1st ms", "warm ms", "iters", "recon ms", "frame ms", "peak MiB"});
+  // Every row of the set, then the set run `repeat` times over.
+  struct Row {
+    const Size* size;
+    const Config* config;
+    std::string method;
+    std::vector<json> runs;
+  };
+  std::vector<Row> rows;
   for (const Size& s : kSizes) {
     if (!listed(sizes, s.name)) continue;
     for (const Config& c : kConfigs) {
@@ -253,24 +289,34 @@ int main(int argc, char** argv) {
         methods.push_back("arap");
         if (s.name == "bar" || s.name == "26k" || s.name == "151k") methods.push_back("implicit");
       }
-      for (const std::string& method : methods) {
-        const json r = run_child(argv[0], s.name, c.name, method);
-        if (r.is_null()) continue;
-        results.push_back(r);
-        const double fields = r.contains("fields_factorize_s")
-                                  ? r["fields_factorize_s"].get<double>() + r["fields_solve_s"].get<double>()
-                                  : -1;
-        table.row({s.name, std::to_string(r["vertices"].get<int>()), c.name, method, field(r, "setup_s", 2),
-                   fields >= 0 ? bench::fmt(fields, 2) : "-", field(r, "extraction_s", 2), field(r, "assembly_s", 2),
-                   r.contains("sampled_triangles") ? std::to_string(r["sampled_triangles"].get<int>()) : "-",
-                   field(r, "ms_per_iteration", 2), field(r, "first_iteration_ms", 2), field(r, "warm_iteration_ms", 3),
-                   field(r, "iterations", 0), field(r, "reconstruct_ms"), field(r, "frame_ms"),
-                   field(r, "peak_rss_mib", 0)});
-        std::fprintf(stderr, "%s %s %s done\n", s.name.c_str(), c.name.c_str(), method.c_str());
-      }
+      for (const std::string& method : methods) rows.push_back({&s, &c, method, {}});
     }
   }
+  for (int k = 0; k < repeat; ++k)
+    for (Row& row : rows) {
+      json run = run_child(argv[0], row.size->name, row.config->name, row.method);
+      if (run.is_null()) continue;
+      row.runs.push_back(std::move(run));
+      std::fprintf(stderr, "%s %s %s done\n", row.size->name.c_str(), row.config->name.c_str(), row.method.c_str());
+    }
+  json results = json::array();
+  bench::Table table({"mesh", "#V", "config", "method", "setup s", "fields s", "extract s", "assembly s", "n_tri",
+                      "ms/iter", "1st ms", "warm ms", "iters", "recon ms", "frame ms", "peak MiB"});
+  for (Row& row : rows) {
+    if (row.runs.empty()) continue;
+    const json r = median_run(std::move(row.runs));
+    results.push_back(r);
+    const double fields = r.contains("fields_factorize_s")
+                              ? r["fields_factorize_s"].get<double>() + r["fields_solve_s"].get<double>()
+                              : -1;
+    table.row(
+        {row.size->name, std::to_string(r["vertices"].get<int>()), row.config->name, row.method, field(r, "setup_s", 2),
+         fields >= 0 ? bench::fmt(fields, 2) : "-", field(r, "extraction_s", 2), field(r, "assembly_s", 2),
+         r.contains("sampled_triangles") ? std::to_string(r["sampled_triangles"].get<int>()) : "-",
+         field(r, "ms_per_iteration", 2), field(r, "first_iteration_ms", 2), field(r, "warm_iteration_ms", 3),
+         field(r, "iterations", 0), field(r, "reconstruct_ms"), field(r, "frame_ms"), field(r, "peak_rss_mib", 0)});
+  }
   table.print();
-  bench::write_results("mesh_deform_isolines", {{"frames", kFrames}, {"results", results}});
+  bench::write_results(results_name, {{"frames", kFrames}, {"repeat", repeat}, {"results", results}});
   return 0;
 }
