@@ -123,23 +123,52 @@ TEST_CASE("viewer: rotation about a point and scale about a point keep that poin
   CHECK(((S * Eigen::Vector4d(2, -2, 0.5, 1)).head<3>() - Eigen::Vector3d(3.5, -2, 0.5)).norm() < 1e-12);
 }
 
-TEST_CASE("viewer: dragging the centre square away doubles the size when the screen distance doubles") {
+TEST_CASE("viewer: the centre square scales in proportion to the pointer's travel, wherever it was grabbed") {
   Gizmo g;
   const Eigen::Vector3d center(0.5, 0, 0);
   g.set_center(center);
   const auto cam = front_camera();
   const Eigen::Vector2d c = pixel_of(cam, center);
+  const double size = g.options().size_px;
+  auto factor = [](const Eigen::Matrix4d& T) { return T.topLeftCorner<3, 3>().determinant(); };
+  // Grabbed beside the centre: size_px · ln 2 outwards doubles, as far inwards halves.
   REQUIRE(g.begin_drag(cam, c + Eigen::Vector2d(6, 0)));
   REQUIRE(g.active() == GizmoPart::Scale);
-  const Eigen::Matrix4d T = g.drag_to(c + Eigen::Vector2d(0, 12));
+  Eigen::Matrix4d T = g.drag_to(c + Eigen::Vector2d(6 + size * std::log(2.0), 0));
   CHECK((T.topLeftCorner<3, 3>() - 2 * Eigen::Matrix3d::Identity()).norm() < 1e-12);
   CHECK(((T * center.homogeneous()).head<3>() - center).norm() < 1e-12);
-  // set_center is ignored mid-drag: the mapping stays anchored.
-  g.set_center(Eigen::Vector3d(9, 9, 9));
-  CHECK((g.center() - center).norm() == 0);
+  T = g.drag_to(c + Eigen::Vector2d(6 - size * std::log(2.0), 0));
+  CHECK(std::cbrt(factor(T)) == doctest::Approx(0.5));
   g.end_drag();
-  g.set_center(Eigen::Vector3d(9, 9, 9));
-  CHECK(g.center().x() == 9);
+  // Grabbed at the very centre, a small move makes a small change, not a jump (it was 50×).
+  REQUIRE(g.begin_drag(cam, c));
+  T = g.drag_to(c + Eigen::Vector2d(10, -10));
+  CHECK(std::cbrt(factor(T)) == doctest::Approx(std::exp(std::sqrt(200.0) / size)));
+  CHECK(std::cbrt(factor(g.drag_to(c + Eigen::Vector2d(-3, 3)))) > 0.95);
+  g.end_drag();
+}
+
+TEST_CASE("viewer: mid-drag the gizmo is drawn where its handle is, while the drag stays anchored") {
+  Gizmo g;
+  const Eigen::Vector3d center(0.5, 0, 0);
+  g.set_center(center);
+  const auto cam = front_camera();
+  const double L = g.world_size(cam);
+  const Eigen::Vector2d grab = pixel_of(cam, center + 0.8 * L * Eigen::Vector3d::UnitX());
+  REQUIRE(g.begin_drag(cam, grab));
+  REQUIRE(g.active() == GizmoPart::TranslateX);
+  const Eigen::Vector2d to = grab + Eigen::Vector2d(80, 0);
+  const Eigen::Matrix4d T = g.drag_to(to);
+  REQUIRE(T(0, 3) > 0);
+  // The app moves the gizmo with the handle every frame; the same pointer maps the same.
+  g.set_center(center + T.topRightCorner<3, 1>());
+  CHECK(g.center().x() == doctest::Approx(center.x() + T(0, 3)));
+  CHECK((g.drag_to(to) - T).norm() == 0);
+  viewer::LineItem item;
+  g.draw(cam, item);
+  Eigen::Vector3f mean = item.points.colwise().mean().transpose();
+  CHECK(std::abs(mean.x() - static_cast<float>(g.center().x())) < 0.2 * L);  // drawn around the moved centre
+  g.end_drag();
 }
 
 TEST_CASE("viewer: closest axis parameter and segment distance") {

@@ -100,12 +100,12 @@ Eigen::Matrix4d scale_about(const Eigen::Vector3d& center, double factor) {
 
 Gizmo::Gizmo(GizmoOptions options) : options_(options) {}
 
-void Gizmo::set_center(const Eigen::Vector3d& center) {
-  if (!dragging()) center_ = center;
-}
+void Gizmo::set_center(const Eigen::Vector3d& center) { center_ = center; }
 
-double Gizmo::world_size(const CameraMatrices& camera) const {
-  const Eigen::Vector3d s = geometry::project(camera, center_);
+double Gizmo::world_size(const CameraMatrices& camera) const { return world_size_at(camera, center_); }
+
+double Gizmo::world_size_at(const CameraMatrices& camera, const Eigen::Vector3d& point) const {
+  const Eigen::Vector3d s = geometry::project(camera, point);
   const double depth = std::clamp(s.z(), 0.0, 1.0);
   const Eigen::Vector3d a = geometry::unproject(camera, s.x(), s.y(), depth);
   const Eigen::Vector3d b = geometry::unproject(camera, s.x() + options_.size_px, s.y(), depth);
@@ -181,6 +181,7 @@ bool Gizmo::begin_drag(const CameraMatrices& camera, const Eigen::Vector2d& pixe
     start_parameter_ = *t;
   }
   active_ = part;
+  anchor_ = center_;
   drag_camera_ = camera;
   start_pixel_ = pixel;
   const Eigen::Vector2d c = geometry::project(camera, center_).head<2>();
@@ -192,16 +193,17 @@ bool Gizmo::begin_drag(const CameraMatrices& camera, const Eigen::Vector2d& pixe
 Eigen::Matrix4d Gizmo::drag_to(const Eigen::Vector2d& pixel) {
   if (!dragging()) return Eigen::Matrix4d::Identity();
   const int a = gizmo_axis(active_);
-  const Eigen::Vector2d c = geometry::project(drag_camera_, center_).head<2>();
+  const Eigen::Vector3d& o = anchor_;
+  const Eigen::Vector2d c = geometry::project(drag_camera_, o).head<2>();
   switch (active_) {
     case GizmoPart::TranslateX:
     case GizmoPart::TranslateY:
     case GizmoPart::TranslateZ: {
       const auto t =
-          closest_axis_parameter(geometry::unproject_ray(drag_camera_, pixel.x(), pixel.y()), center_, unit_axis(a));
+          closest_axis_parameter(geometry::unproject_ray(drag_camera_, pixel.x(), pixel.y()), o, unit_axis(a));
       // Near the horizon of a steep axis the closest point runs off to infinity: cap a
       // single drag at a hundred gizmo lengths.
-      const double limit = 100 * world_size(drag_camera_);
+      const double limit = 100 * world_size_at(drag_camera_, o);
       const double d = t ? std::clamp(*t - start_parameter_, -limit, limit) : 0.0;
       return translation(d * unit_axis(a));
     }
@@ -216,13 +218,18 @@ Eigen::Matrix4d Gizmo::drag_to(const Eigen::Vector2d& pixel) {
       while (step < -std::numbers::pi) step += 2 * std::numbers::pi;
       if ((pixel - c).norm() > 2) turned_ += step, last_angle_ = angle;  // at the centre the angle is noise
       const Eigen::Vector3d axis = unit_axis(a);
-      const double facing = axis.dot(geometry::eye_position(drag_camera_) - center_);
-      return rotation_about(center_, axis, facing >= 0 ? turned_ : -turned_);
+      const double facing = axis.dot(geometry::eye_position(drag_camera_) - o);
+      return rotation_about(o, axis, facing >= 0 ? turned_ : -turned_);
     }
     case GizmoPart::Scale: {
-      // Distance from the centre on screen, relative to where the drag started.
-      const double r0 = std::max((start_pixel_ - c).norm(), 4.0), r = (pixel - c).norm();
-      return scale_about(center_, std::clamp(r / r0, 0.02, 50.0));
+      // Travel outwards from the grab point, along centre → grab point on screen (up and to
+      // the right when the square was grabbed at its centre): the same travel scales as much
+      // wherever the square was grabbed, and no grab near the centre makes a drag jump.
+      const Eigen::Vector2d out = start_pixel_ - c;
+      const Eigen::Vector2d dir =
+          out.norm() > 2 ? Eigen::Vector2d(out.normalized()) : Eigen::Vector2d(1, -1).normalized();
+      const double travel = (pixel - start_pixel_).dot(dir);
+      return scale_about(o, std::exp(std::clamp(travel / options_.size_px, -4.0, 4.0)));
     }
     case GizmoPart::None:
       break;

@@ -36,8 +36,9 @@ class Gizmo {
  public:
   explicit Gizmo(GizmoOptions options = {});
 
-  // Where the gizmo sits (the active handle's centroid). Ignored while a drag is running, so
-  // the drag's mapping stays anchored where it started.
+  // Where the gizmo is drawn (the active handle's centroid where its transform puts it). Also
+  // mid-drag, so the gizmo follows the handle; the drag's mapping stays anchored at the centre
+  // the drag started from.
   void set_center(const Eigen::Vector3d& center);
   const Eigen::Vector3d& center() const { return center_; }
   const GizmoOptions& options() const { return options_; }
@@ -52,7 +53,9 @@ class Gizmo {
   bool begin_drag(const geometry::CameraMatrices& camera, const Eigen::Vector2d& pixel);
   // The transform from the drag's start to the cursor now: world 4x4, a translation along
   // the grabbed axis, a rotation about it through the centre, or a uniform scale about the
-  // centre. Uses the camera given to begin_drag(). Identity when no drag is running.
+  // centre of exp(travel / size_px), travel the cursor's screen distance outwards from where
+  // it grabbed the square (size_px out doubles it 2.7 times, as far in shrinks it as much).
+  // Uses the camera and the centre of begin_drag(). Identity when no drag is running.
   Eigen::Matrix4d drag_to(const Eigen::Vector2d& pixel);
   void end_drag();
   bool dragging() const { return active_ != GizmoPart::None; }
@@ -71,10 +74,12 @@ class Gizmo {
     bool closed;
   };
   std::vector<Polyline> parts(const geometry::CameraMatrices& camera) const;
+  double world_size_at(const geometry::CameraMatrices& camera, const Eigen::Vector3d& point) const;
 
   GizmoOptions options_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   // Drag state.
+  Eigen::Vector3d anchor_ = Eigen::Vector3d::Zero();  // the centre when the drag began
   GizmoPart active_ = GizmoPart::None;
   geometry::CameraMatrices drag_camera_;
   Eigen::Vector2d start_pixel_ = Eigen::Vector2d::Zero();
