@@ -279,6 +279,12 @@ void DeformApp::receive(viewer::Viewer& v) {
   }
   if (s->revision == selection_revision_ && s->settings == settings_) setup_started_ = -1;
   solve_ms_.push_back(s->frame.solve_ms);
+  // The full solve after a drag's previews: say how far the shape moved from the last one shown.
+  if (last_ && last_->frame.preview && !s->frame.preview && s->frame.method == "implicit" &&
+      last_->revision == s->revision && last_->frame.positions.rows() == s->frame.positions.rows()) {
+    const double diagonal = (rest_.V.colwise().maxCoeff() - rest_.V.colwise().minCoeff()).norm();
+    preview_gap_ = (s->frame.positions - last_->frame.positions).rowwise().norm().maxCoeff() / diagonal;
+  }
   shown_.V = s->frame.positions;
   features_received(s->frame);
   if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));

@@ -235,6 +235,7 @@ class DeformApp final : public viewer::ViewerApp {
   int arap_round_ = 0;           // rounds run on the current pose after the first solve
   double arap_energy_ = -1;      // the energy the last round ended with
   std::string convergence_;      // what the rounds did, for the overlay
+  double preview_gap_ = -1;      // implicit: how far the release moved the last preview shown (of the diagonal)
   std::optional<Solved> last_;
   std::string engine_error_;
   double setup_started_ = -1;  // time a request needing setup was submitted

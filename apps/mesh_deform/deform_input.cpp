@@ -153,6 +153,7 @@ bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
   const auto cam = v.camera_matrices();
   if (gizmo_shown() && gizmo_.begin_drag(cam, p)) {
     dragging_ = true;
+    preview_gap_ = -1;
     drag_start_ = active_transform();
     return true;
   }

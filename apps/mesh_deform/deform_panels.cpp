@@ -439,6 +439,12 @@ void DeformApp::draw_overlay(viewer::Viewer& v) {
     v.overlay("solving...");
   }
   if (!convergence_.empty()) v.overlay(convergence_);
+  if (preview_gap_ >= 0 && !dragging_) {
+    std::snprintf(buf, sizeof buf,
+                  "on release: up to %.2g%% of the diagonal from the drag's preview (first system, §2.5)",
+                  100 * preview_gap_);
+    v.overlay(buf);
+  }
   if (!engine_error_.empty()) v.overlay("error: " + engine_error_);
   if (!selection_error_.empty()) v.overlay("selection: " + selection_error_);
   if (pending_export_) v.overlay("export waits for the solve");
