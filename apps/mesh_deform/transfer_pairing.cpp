@@ -20,6 +20,9 @@ PairSlot unplaced(std::string name, int label, std::vector<double> part_areas) {
 
 }  // namespace
 
+// Its own Dijkstra rather than geometry::dijkstra(): that one splits the mesh into the seeds'
+// Voronoi cells, so a small handle next to a large fixed region could not cover its share;
+// here a region that has its share stops and its neighbours grow on past it.
 std::vector<std::vector<int>> grow_regions(const geometry::Vertices& V, const geometry::Connectivity& conn,
                                            const Eigen::VectorXd& vertex_areas, const std::vector<int>& seeds,
                                            const std::vector<double>& area_fractions) {
