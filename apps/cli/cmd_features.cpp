@@ -18,8 +18,9 @@ using namespace lapis::mesh_deform;
 constexpr const char* kUsage =
     "usage: lapis features --mesh IN --out FEATURES.json [--ply OUT.ply] [--eigenpairs K]\n"
     "                      [--time-scales N] [--max-cluster F] [--min-saliency S] [--aggregate S]\n"
-    "                      [--report OUT.json]\n"
-    "  Heat kernel signature over K eigenpairs (100) and N log-spaced times (16), the saliency\n"
+    "                      [--denoise D] [--report OUT.json]\n"
+    "  D passes of bilateral denoising (--denoise, 1; 0: none) on a copy of the mesh, then the\n"
+    "  heat kernel signature over K eigenpairs (100) and N log-spaced times (16), the saliency\n"
     "  s = mean_t A h_t - 1, clusters grown best-first up to a fraction F of the vertices (0.01)\n"
     "  while their mean stays >= --min-saliency (0.1), and connected clusters with mean >=\n"
     "  --aggregate (0.25) joined into features. FEATURES.json: {\"features\": [[v, ...], ...]}.\n"
@@ -27,6 +28,7 @@ constexpr const char* kUsage =
 
 FeatureOptions read_options(const Args& args) {
   FeatureOptions o;
+  o.denoise.iterations = static_cast<int>(args.get_int("--denoise", o.denoise.iterations, 0, 1000));
   o.hks.eigenpairs = static_cast<int>(args.get_int("--eigenpairs", o.hks.eigenpairs, 2, 100000));
   o.hks.time_scales = static_cast<int>(args.get_int("--time-scales", o.hks.time_scales, 1, 10000));
   o.max_cluster_fraction = args.get_double("--max-cluster", o.max_cluster_fraction, 1e-9, 1);
@@ -38,7 +40,7 @@ FeatureOptions read_options(const Args& args) {
 int run(const std::vector<std::string>& argv) {
   const Args args(argv);
   args.allow_only({"--mesh", "--out", "--ply", "--eigenpairs", "--time-scales", "--max-cluster", "--min-saliency",
-                   "--aggregate", "--report"});
+                   "--aggregate", "--denoise", "--report"});
   const std::string out_path = args.get("--out");
   const FeatureOptions options = read_options(args);
   const geometry::TriMesh mesh = read_valid_mesh(args.get("--mesh"));
@@ -61,6 +63,7 @@ int run(const std::vector<std::string>& argv) {
                        {"features", r.features},
                        {"dropped_features", r.dropped_features},
                        {"feature_sizes", sizes},
+                       {"denoise_ms", r.denoise_ms},
                        {"spectrum_ms", r.spectrum_ms},
                        {"saliency_ms", r.saliency_ms},
                        {"clustering_ms", r.clustering_ms}};

@@ -150,7 +150,10 @@ SalientFeatures detect_salient_features(const geometry::TriMesh& mesh, const Fea
   SalientFeatures out;
   FeatureReport& r = out.report;
   auto t0 = std::chrono::steady_clock::now();
-  const solver::Eigenpairs spectrum = laplacian_spectrum(mesh, o.hks.eigenpairs, o.hks.eigen);
+  const geometry::TriMesh denoised = geometry::bilateral_denoise(mesh, o.denoise);
+  r.denoise_ms = ms_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  const solver::Eigenpairs spectrum = laplacian_spectrum(denoised, o.hks.eigenpairs, o.hks.eigen);
   r.spectrum_ms = ms_since(t0);
   r.eigen = spectrum.report;
   r.eigenpairs = static_cast<int>(spectrum.values.size());
@@ -161,7 +164,7 @@ SalientFeatures detect_salient_features(const geometry::TriMesh& mesh, const Fea
   const Eigen::VectorXd times = heat_kernel_times(spectrum.values, o.hks.time_scales, o.hks.truncation);
   r.t_min = times[0];
   r.t_max = times[times.size() - 1];
-  out.saliency = hks_saliency(spectrum, times, geometry::face_areas(mesh).sum());
+  out.saliency = hks_saliency(spectrum, times, geometry::face_areas(denoised).sum());
   r.saliency_ms = ms_since(t0);
 
   t0 = std::chrono::steady_clock::now();

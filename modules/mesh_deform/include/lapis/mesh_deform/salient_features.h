@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "lapis/geometry/bilateral_denoise.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/mesh_deform/heat_kernel.h"
 
@@ -20,6 +21,10 @@ using Feature = std::vector<int>;  // vertex indices, ascending
 // calibrated on the four-spike sphere of Fig. 2 (salient_features_test.cpp): its apexes reach
 // s ≈ 0.56, the sphere around them s ≈ −0.1, and the spikes come out as exactly four features.
 struct FeatureOptions {
+  // §3.1: "the bilateral filtering [41] is first applied to remove the noises". It runs on a
+  // copy the spectrum is computed on; the features are vertex sets of the mesh itself.
+  // iterations = 0 detects on the mesh as it is.
+  geometry::BilateralOptions denoise;
   HeatKernelOptions hks;
   // Step 2's size threshold N_max, as a fraction of #V (at least 4 vertices), so the same
   // options cluster a mesh alike at any resolution.
@@ -45,7 +50,7 @@ struct FeatureReport {
   int features = 0;
   int dropped_features = 0;  // with fewer than four non-coplanar vertices
   solver::EigenReport eigen;
-  double spectrum_ms = 0, saliency_ms = 0, clustering_ms = 0;
+  double denoise_ms = 0, spectrum_ms = 0, saliency_ms = 0, clustering_ms = 0;
 };
 
 struct SalientFeatures {
