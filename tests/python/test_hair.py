@@ -74,9 +74,12 @@ def test_live_hairstyle_follows_the_session():
     live = lapis.LiveHairstyle(s)
     r = live.update()
     b = s.build()
-    # The first update solves from scratch, like build(): the same strands and field.
+    # The first update solves from scratch, like build(): the same strands and field. The field
+    # agrees to rounding only: the multigrid's residual norms are OpenMP reductions, whose
+    # partial sums add up in the order the threads finish (5e-13 seen on a loaded machine).
     assert np.array_equal(r["points"], b["points"]) and np.array_equal(r["offsets"], b["offsets"])
-    assert np.array_equal(live.field, b["field"]) and live.roots.shape == (len(b["offsets"]) - 1, 3)
+    assert np.abs(live.field - b["field"]).max() <= 1e-10 * np.abs(b["field"]).max()
+    assert live.roots.shape == (len(b["offsets"]) - 1, 3)
     assert r["constraints"] == b["constraints"]
     kept = r["points"].copy()
 
