@@ -86,6 +86,9 @@ void bind_enums(py::module_& m) {
   py::enum_<FeatureWeight>(m, "FeatureWeight", "w_i of the salient method's Eq. 2.")
       .value("size", FeatureWeight::Size)
       .value("uniform", FeatureWeight::Uniform);
+  py::enum_<SalientStart>(m, "SalientStart", "The rotations a salient frame without a previous result starts from.")
+      .value("handle_rotations", SalientStart::HandleRotations)
+      .value("identity", SalientStart::Identity);
   py::enum_<FeatureMerge>(m, "FeatureMerge", "How user features combine with detected ones.")
       .value("replace", FeatureMerge::Replace)
       .value("union", FeatureMerge::Union);
@@ -129,7 +132,12 @@ void bind_settings(py::module_& m) {
       .field("time_scales", &HeatKernelOptions::time_scales, "log-spaced times")
       .field("truncation", &HeatKernelOptions::truncation, "weight of the last eigenpair kept at t_min")
       .done("HeatKernelOptions");
+  Fields<geometry::BilateralOptions>(m, "BilateralOptions", "Bilateral mesh denoising (Fleishman et al. 2003).")
+      .field("iterations", &geometry::BilateralOptions::iterations, "passes of the filter")
+      .field("sigma_c", &geometry::BilateralOptions::sigma_c, "spatial falloff; 0: the mean edge length")
+      .done("BilateralOptions");
   Fields<FeatureOptions>(m, "FeatureOptions", "Salient feature detection (Zhao et al. §3.1).")
+      .field("denoise", &FeatureOptions::denoise, "BilateralOptions of the copy the spectrum is computed on")
       .field("hks", &FeatureOptions::hks, "HeatKernelOptions")
       .field("max_cluster_fraction", &FeatureOptions::max_cluster_fraction, "Step 2's N_max / #V")
       .field("min_cluster_saliency", &FeatureOptions::min_cluster_saliency, "Step 2's s_min")
@@ -151,6 +159,7 @@ void bind_settings(py::module_& m) {
       .field("detection", &SalientOptions::detection, "FeatureOptions")
       .field("user_features", &SalientOptions::user_features, "replace or union")
       .field("warm_start", &SalientOptions::warm_start, "start a frame from the last rotations")
+      .field("cold_start", &SalientOptions::cold_start, "SalientStart of a frame without a previous result")
       .done("SalientOptions");
   Fields<MethodSettings>(m, "MethodSettings", "A method and its options, as make_deformer() takes them.")
       .field("method", &MethodSettings::method, "Method")

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "handle_rotation_blend.h"
 #include "lapis/core/parallel_for.h"
-#include "lapis/geometry/polar.h"
 #include "lapis/solver/cholesky.h"
 #include "rotation_fit.h"
 #include "stencil.h"
@@ -81,19 +81,10 @@ void ArapDeformer::Impl::build_handle_fields(const Layout& layout) {
 // rigid motion shared by every handle then holds everywhere and the first global step
 // reproduces it exactly.
 void ArapDeformer::Impl::blend_handle_rotations(const HandleTransforms& transforms) {
-  const Eigen::Index nh = handle_fields.cols();
-  std::vector<Eigen::Vector3d> r(static_cast<size_t>(nh));
-  for (Eigen::Index h = 0; h < nh; ++h) {
-    const Eigen::AngleAxisd aa(
-        geometry::polar_rotation(transforms.regions[static_cast<size_t>(h)].topLeftCorner<3, 3>()));
-    r[static_cast<size_t>(h)] = aa.angle() * aa.axis();
-  }
+  const std::vector<Eigen::Vector3d> r = detail::region_rotation_vectors(transforms);
   detail::for_vertices(fitted.size(), [&](std::ptrdiff_t k) {
     const int i = fitted[static_cast<size_t>(k)];
-    Eigen::Vector3d ri = Eigen::Vector3d::Zero();
-    for (Eigen::Index h = 0; h < nh; ++h) ri += handle_fields(i, h) * r[static_cast<size_t>(h)];
-    const double angle = ri.norm();
-    q[i] = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, ri / angle)) : Eigen::Quaterniond::Identity();
+    q[i] = detail::blended_rotation(handle_fields.row(i), r);
     R[i] = q[i].toRotationMatrix();
   });
 }

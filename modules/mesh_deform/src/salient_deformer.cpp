@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "handle_rotation_blend.h"
 #include "lapis/core/parallel_for.h"
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/feature_rigidity.h"
@@ -38,6 +39,9 @@ struct SalientDeformer::Frame {
   std::vector<Eigen::Matrix3d> R;     // #V: Eq. 3's R_i (used at detail vertices)
   std::vector<Eigen::Quaterniond> q;  // the same, each fit's starting guess
   std::vector<Eigen::Matrix3d> R_feature;
+  // #V by #region handles: the subspace's scalar field of each region handle (1 on it, 0 on
+  // the other constrained vertices), with each feature's mean; weights of a cold start.
+  solver::DenseMatrix handle_fields, feature_fields;
   solver::DenseMatrix Z;  // subspace coefficients of the last solve
   Vertices P;             // C Z
   bool have_previous = false;
@@ -168,7 +172,44 @@ void SalientDeformer::setup(const Layout& layout) {
   f->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
   f->q.assign(static_cast<size_t>(n), Eigen::Quaterniond::Identity());
   f->R_feature.assign(model_->features.size(), Eigen::Matrix3d::Identity());
+  build_handle_fields(*f, layout);
   frame_ = std::move(f);
+}
+
+// The cold start's weights: system (11) with zero detail and rigid offsets, solved for one
+// scalar per vertex with the handle rows pulling handle h's vertices to 1 and every other
+// constrained vertex to 0. The fields sum to one wherever the fixed region is empty (the
+// subspace reproduces constants) and are nearly constant on each feature (Eq. 1 pulls a
+// feature's values to their mean). One solve of #region-handle right-hand sides.
+void SalientDeformer::build_handle_fields(Frame& f, const Layout& layout) const {
+  const detail::SalientSystem& s = model_->system;
+  const int n = mesh_.num_vertices(), nh = layout.num_region_handles;
+  solver::DenseMatrix pull = solver::DenseMatrix::Zero(n, nh);
+  for (int v : f.constrained)
+    if (layout.role[v] == VertexRole::RegionHandle) pull(v, layout.handle_of[v]) = options_.beta;
+  f.handle_fields = s.C * f.chol.solve(s.Ct * pull);
+  f.feature_fields = solver::DenseMatrix::Zero(static_cast<Eigen::Index>(s.features.size()), nh);
+  for (size_t i = 0; i < s.features.size(); ++i) {
+    for (int v : s.features[i]) f.feature_fields.row(static_cast<Eigen::Index>(i)) += f.handle_fields.row(v);
+    f.feature_fields.row(static_cast<Eigen::Index>(i)) /= static_cast<double>(s.features[i].size());
+  }
+}
+
+// Rotations of a frame without a previous result (SalientOptions::cold_start).
+void SalientDeformer::start_cold(Frame& f, const HandleTransforms& transforms) const {
+  if (options_.cold_start == SalientStart::Identity) {
+    std::fill(f.R.begin(), f.R.end(), Eigen::Matrix3d::Identity());
+    std::fill(f.q.begin(), f.q.end(), Eigen::Quaterniond::Identity());
+    std::fill(f.R_feature.begin(), f.R_feature.end(), Eigen::Matrix3d::Identity());
+    return;
+  }
+  const std::vector<Eigen::Vector3d> r = detail::region_rotation_vectors(transforms);
+  detail::for_vertices(f.R.size(), [&](std::ptrdiff_t i) {
+    f.q[i] = detail::blended_rotation(f.handle_fields.row(i), r);
+    f.R[i] = f.q[i].toRotationMatrix();
+  });
+  for (size_t i = 0; i < f.R_feature.size(); ++i)
+    f.R_feature[i] = detail::blended_rotation(f.feature_fields.row(static_cast<Eigen::Index>(i)), r).toRotationMatrix();
 }
 
 namespace {
@@ -216,15 +257,11 @@ Vertices right_hand_side(const detail::SalientSystem& s, const std::vector<Eigen
 
 }  // namespace
 
-void SalientDeformer::solve(const HandleTransforms&, const Vertices& targets, Vertices& out) {
+void SalientDeformer::solve(const HandleTransforms& transforms, const Vertices& targets, Vertices& out) {
   const auto t_frame = Clock::now();
   Frame& f = *frame_;
   const detail::SalientSystem& s = model_->system;
-  if (!(options_.warm_start && f.have_previous)) {
-    std::fill(f.R.begin(), f.R.end(), Eigen::Matrix3d::Identity());
-    std::fill(f.q.begin(), f.q.end(), Eigen::Quaterniond::Identity());
-    std::fill(f.R_feature.begin(), f.R_feature.end(), Eigen::Matrix3d::Identity());
-  }
+  if (!(options_.warm_start && f.have_previous)) start_cold(f, transforms);
   Vertices handle_part = Vertices::Zero(targets.rows(), 3);
   for (int v : f.constrained) handle_part.row(v) = options_.beta * targets.row(v);
   Vertices previous = f.have_previous ? f.P : mesh_.V;

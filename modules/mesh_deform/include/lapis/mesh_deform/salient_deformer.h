@@ -22,6 +22,17 @@ enum class FeatureWeight {
   Uniform,  // w_i = 1
 };
 
+// The rotations a frame without a previous result starts from; §5 leaves the start open.
+enum class SalientStart {
+  // Every vertex and feature turned by the blend of the region handles' rotations, weighted
+  // by a field solved in the subspace (1 on a handle, 0 on the fixed region, constant on each
+  // feature): a motion shared by all handles is reproduced by the first solve, and a bend
+  // starts near its result.
+  HandleRotations,
+  // R = I everywhere (spec §1.4): the first solve is Laplacian editing with rigid features.
+  Identity,
+};
+
 struct SalientOptions {
   double alpha = 1.0;   // Eq. 10: weight of E_ldp (the paper's default)
   double beta = 2.0;    // Eq. 10: weight of E_p, the soft handles
@@ -36,8 +47,9 @@ struct SalientOptions {
   FeatureOptions detection;
   FeatureMerge user_features = FeatureMerge::Union;  // how set_features() combines with detection
   // Start a frame from the rotations the previous one ended with (an interactive drag);
-  // otherwise every R is the identity before the first solve (spec §1.4).
+  // otherwise from cold_start's.
   bool warm_start = true;
+  SalientStart cold_start = SalientStart::HandleRotations;
 
   bool operator==(const SalientOptions&) const = default;
 };
@@ -98,6 +110,8 @@ class SalientDeformer final : public Deformer {
   struct Model;  // per mesh, features and subspace: detection, C, the selection-free system
   struct Frame;  // per selection: the factor, rotations, the last iterate
   void build_model();
+  void build_handle_fields(Frame& frame, const Layout& layout) const;
+  void start_cold(Frame& frame, const HandleTransforms& transforms) const;
   SalientOptions options_;
   SalientReport report_;
   std::vector<Feature> user_features_;

@@ -1,0 +1,25 @@
+// Private: the start of a cold frame for the local–global methods (ARAP, salient features):
+// every vertex turned by the blend of the region handles' rotation vectors, weighted by a
+// field that is 1 on a handle and 0 on the fixed region. Where the weights of every vertex sum
+// to one and all handles share one rotation, every vertex starts with that rotation, so the
+// first global step reproduces a rigid motion shared by all handles.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "lapis/mesh_deform/deformer.h"
+
+namespace lapis::mesh_deform::detail {
+
+// The rotation vector (axis · angle, angle in [0, π]) of each region handle's transform (the
+// rotation factor of its linear part, so a scaled handle turns by its rotation alone).
+std::vector<Eigen::Vector3d> region_rotation_vectors(const HandleTransforms& transforms);
+
+// The rotation by Σ_h weights(h) r_h (point handles and the fixed region count as the identity).
+Eigen::Quaterniond blended_rotation(const Eigen::Ref<const Eigen::RowVectorXd>& weights,
+                                    const std::vector<Eigen::Vector3d>& r);
+
+}  // namespace lapis::mesh_deform::detail
