@@ -77,6 +77,7 @@ TriMesh bilateral_denoise(const TriMesh& mesh, const BilateralOptions& options) 
   if (options.iterations < 0) throw InvalidArgument(fn + "iterations = " + std::to_string(options.iterations) + " < 0");
   if (!(options.sigma_c >= 0) || !std::isfinite(options.sigma_c))
     throw InvalidArgument(fn + "sigma_c must be finite and >= 0");
+  if (options.iterations == 0) return mesh;
   const Connectivity conn(mesh);
   const double sigma_c = options.sigma_c > 0 ? options.sigma_c : mean_edge_length(mesh, conn);
   TriMesh result = mesh;
