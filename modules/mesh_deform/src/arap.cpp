@@ -262,7 +262,7 @@ void ArapDeformer::solve(const HandleTransforms& transforms, const Vertices& tar
   int it = 0, fallbacks = 0;
   auto t0 = std::chrono::steady_clock::now();
   if (cold) {
-    if (options_.cold_start == ArapStart::HandleRotations)
+    if (options_.cold_start == ColdStart::HandleRotations)
       m.blend_handle_rotations(transforms);
     else
       m.identity_rotations();

@@ -6,6 +6,7 @@
 
 #include "cell_fit.h"
 #include "edge_cell_sums.h"
+#include "handle_rotation_blend.h"
 #include "lapis/core/parallel_for.h"
 #include "lapis/solver/least_squares.h"
 #include "laplacian_cells.h"
@@ -79,6 +80,12 @@ struct EdgeLaplacianDeformer::Impl {
   std::unique_ptr<detail::EdgeCellSums> sums;
   std::vector<double> row_omega;
   bool have_previous = false;  // state holds the transforms of the last frame's result
+  // #rows by #region handles: each handle's harmonic field at the row's node (the mean of its
+  // edge's ends in the edge domain), the weights of ColdStart::HandleRotations.
+  solver::DenseMatrix node_fields;
+
+  void build_node_fields(const Layout& layout, const std::vector<int>& fixed);
+  void start_from_handles(const HandleTransforms& transforms, bool scale);
 
   solver::DenseMatrix solve_with_transforms(const Vertices& rest, const solver::DenseMatrix& fixed,
                                             const solver::DenseMatrix& soft_rhs) const;
@@ -97,6 +104,49 @@ solver::DenseMatrix EdgeLaplacianDeformer::Impl::solve_with_transforms(const Ver
   std::vector<solver::DenseMatrix> rhs{std::move(b)};
   if (!soft.empty()) rhs.push_back(soft_rhs);
   return ls.solve(rhs, fixed);
+}
+
+// φ_h with Dᵀ D φ_h = 0 (the same factor): 1 on handle h, 0 on every other constrained vertex.
+void EdgeLaplacianDeformer::Impl::build_node_fields(const Layout& layout, const std::vector<int>& fixed) {
+  const int nh = layout.num_region_handles;
+  auto indicator = [&](const std::vector<int>& vertices) {
+    solver::DenseMatrix e = solver::DenseMatrix::Zero(static_cast<Eigen::Index>(vertices.size()), nh);
+    for (size_t k = 0; k < vertices.size(); ++k) {
+      const int v = order[static_cast<size_t>(vertices[k])];
+      if (layout.role[v] == VertexRole::RegionHandle) e(static_cast<Eigen::Index>(k), layout.handle_of[v]) = 1;
+    }
+    return e;
+  };
+  const solver::DenseMatrix ends = indicator(fixed);
+  std::vector<solver::DenseMatrix> rhs{solver::DenseMatrix()};
+  if (!soft.empty()) rhs.push_back(indicator(soft));
+  solver::DenseMatrix phi = ls.solve(rhs, ends);
+  for (size_t k = 0; k < fixed.size(); ++k) phi.row(fixed[k]) = ends.row(static_cast<Eigen::Index>(k));
+  node_fields.resize(static_cast<Eigen::Index>(rows.size()), nh);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const int a = rows[r];
+    if (cells.ends.empty())
+      node_fields.row(static_cast<Eigen::Index>(r)) = phi.row(a);
+    else
+      node_fields.row(static_cast<Eigen::Index>(r)) = 0.5 * (phi.row(cells.ends[a][0]) + phi.row(cells.ends[a][1]));
+  }
+}
+
+// Every node's T as the φ-blend of the handles' rotation vectors and (with scale) log-scales;
+// the fixed region counts as the identity.
+void EdgeLaplacianDeformer::Impl::start_from_handles(const HandleTransforms& transforms, bool scale) {
+  const std::vector<Eigen::Vector3d> r = detail::region_rotation_vectors(transforms);
+  Eigen::VectorXd log_scale = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(r.size()));
+  if (scale)
+    for (size_t h = 0; h < r.size(); ++h)
+      log_scale[static_cast<Eigen::Index>(h)] =
+          std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+  detail::for_vertices(rows.size(), [&](std::ptrdiff_t k) {
+    detail::CellState& st = state[static_cast<size_t>(k)];
+    st.q1 = detail::blended_rotation(node_fields.row(k), r);
+    st.q2.setIdentity();
+    st.T = std::exp(node_fields.row(k).dot(log_scale)) * st.q1.toRotationMatrix();
+  });
 }
 
 // Every row's T fitted to its cell on X (Eq. 7–8, one node per task); negative weights count
@@ -240,6 +290,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
       m->row_omega[static_cast<size_t>(r)] = uniform ? c.w[static_cast<size_t>(c.offsets[a])] : 1.0;
     }
   }
+  m->build_node_fields(layout, fixed);
   impl_ = std::move(m);
   report_ = {};
   report_.nodes = report_.rows = nr;
@@ -252,7 +303,7 @@ void EdgeLaplacianDeformer::setup(const Layout& layout) {
 // vertices; then each iteration fits every T on the current positions and solves again
 // (§4: "three to four iterations for calculating the rotation and scale matrices and
 // updating the new positions").
-void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& mesh_targets, Vertices& out) {
+void EdgeLaplacianDeformer::solve(const HandleTransforms& transforms, const Vertices& mesh_targets, Vertices& out) {
   const auto t_frame = std::chrono::steady_clock::now();
   Impl& m = *impl_;
   const Vertices& rest = m.rest;
@@ -262,8 +313,12 @@ void EdgeLaplacianDeformer::solve(const HandleTransforms&, const Vertices& mesh_
   for (size_t k = 0; k < fixed_ids.size(); ++k) fixed.row(k) = targets.row(fixed_ids[k]) - rest.row(fixed_ids[k]);
   solver::DenseMatrix soft_rhs(static_cast<Eigen::Index>(m.soft.size()), 3);
   for (size_t k = 0; k < m.soft.size(); ++k) soft_rhs.row(k) = targets.row(m.soft[k]) - rest.row(m.soft[k]);
-  if (!(options_.warm_start && m.have_previous))
-    for (auto& s : m.state) s.T.setIdentity();
+  if (!(options_.warm_start && m.have_previous)) {
+    if (options_.cold_start == ColdStart::Identity)
+      for (auto& s : m.state) s = detail::CellState{};
+    else
+      m.start_from_handles(transforms, options_.transform != CellTransform::Rotation);
+  }
 
   double fit_ms = 0, solve_ms = 0, move = 0;
   int fallbacks = 0, it = 0;

@@ -197,7 +197,7 @@ void SalientDeformer::build_handle_fields(Frame& f, const Layout& layout) const 
 
 // Rotations of a frame without a previous result (SalientOptions::cold_start).
 void SalientDeformer::start_cold(Frame& f, const HandleTransforms& transforms) const {
-  if (options_.cold_start == SalientStart::Identity) {
+  if (options_.cold_start == ColdStart::Identity) {
     std::fill(f.R.begin(), f.R.end(), Eigen::Matrix3d::Identity());
     std::fill(f.q.begin(), f.q.end(), Eigen::Quaterniond::Identity());
     std::fill(f.R_feature.begin(), f.R_feature.end(), Eigen::Matrix3d::Identity());

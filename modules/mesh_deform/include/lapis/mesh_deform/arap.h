@@ -5,21 +5,10 @@
 
 #include <memory>
 
+#include "lapis/mesh_deform/cold_start.h"
 #include "lapis/mesh_deform/deformer.h"
 
 namespace lapis::mesh_deform {
-
-// The rotations a frame without a previous result (the first, or any with warm_start off)
-// starts its first global step from. Sorkine & Alexa §4 leave the initial guess open and
-// suggest naive Laplacian editing.
-enum class ArapStart {
-  // Every vertex turned by the harmonic blend of the region handles' rotations: a motion
-  // shared by all handles is reproduced by the first global step.
-  HandleRotations,
-  // Identity rotations, so the first global step is naive Laplacian editing: CGAL's
-  // Surface_mesh_deformation, iteration for iteration.
-  NaiveLaplacian,
-};
 
 struct ArapOptions {
   int max_iterations = 10;  // per deform(); Sorkine & Alexa report 2–3 suffice while dragging
@@ -29,7 +18,7 @@ struct ArapOptions {
   // Start from the rotations of the previous frame's result (interactive drag, Sorkine &
   // Alexa §4) rather than from cold_start's.
   bool warm_start = true;
-  ArapStart cold_start = ArapStart::HandleRotations;
+  ColdStart cold_start = ColdStart::HandleRotations;
 };
 
 struct ArapReport {

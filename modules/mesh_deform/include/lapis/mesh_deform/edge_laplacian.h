@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "lapis/mesh_deform/cold_start.h"
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/laplacian_weights.h"
 
@@ -49,8 +50,13 @@ struct EdgeLaplacianOptions {
   // Stop early once an iteration moves no vertex by more than tolerance × bbox diagonal; 0:
   // always run `iterations` (with scale the iteration drifts instead of converging).
   double tolerance = 0.0;
-  // Start a frame from the previous frame's transforms instead of T = I (a naive solve).
+  // Start a frame from the previous frame's transforms instead of cold_start's.
   bool warm_start = false;
+  // The paper leaves the start open. HandleRotations: each node's T starts as the blend of the
+  // region handles' rotations and log-scales by their harmonic fields (Dᵀ D φ = 0, 1 on the
+  // handle), so a similarity shared by every handle is the first solve; Identity: T = I, a
+  // naive edge-Laplacian solve first.
+  ColdStart cold_start = ColdStart::HandleRotations;
   // §3.2: Eq. 6 penalizes handles with weight 1 ("behaves better"); default hard, the
   // Deformer contract (handles land exactly).
   bool soft_handles = false;

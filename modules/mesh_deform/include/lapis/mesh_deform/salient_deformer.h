@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lapis/geometry/tet_mesh.h"
+#include "lapis/mesh_deform/cold_start.h"
 #include "lapis/mesh_deform/deformer.h"
 #include "lapis/mesh_deform/salient_features.h"
 
@@ -20,17 +21,6 @@ namespace lapis::mesh_deform {
 enum class FeatureWeight {
   Size,     // w_i = |F_i| / mean |F| (spec §5.3; Eq. 1 already sums over the vertices)
   Uniform,  // w_i = 1
-};
-
-// The rotations a frame without a previous result starts from; §5 leaves the start open.
-enum class SalientStart {
-  // Every vertex and feature turned by the blend of the region handles' rotations, weighted
-  // by a field solved in the subspace (1 on a handle, 0 on the fixed region, constant on each
-  // feature): a motion shared by all handles is reproduced by the first solve, and a bend
-  // starts near its result.
-  HandleRotations,
-  // R = I everywhere (spec §1.4): the first solve is Laplacian editing with rigid features.
-  Identity,
 };
 
 struct SalientOptions {
@@ -47,9 +37,11 @@ struct SalientOptions {
   FeatureOptions detection;
   FeatureMerge user_features = FeatureMerge::Union;  // how set_features() combines with detection
   // Start a frame from the rotations the previous one ended with (an interactive drag);
-  // otherwise from cold_start's.
+  // otherwise from cold_start's. HandleRotations blends the handles' rotations over a field
+  // solved in the subspace, nearly constant on each feature (which takes its mean); Identity is
+  // the spec's R = I (§1.4).
   bool warm_start = true;
-  SalientStart cold_start = SalientStart::HandleRotations;
+  ColdStart cold_start = ColdStart::HandleRotations;
 
   bool operator==(const SalientOptions&) const = default;
 };
