@@ -167,12 +167,12 @@ void SalientDeformer::setup(const Layout& layout) {
                               -1);
   }
   report_.factorize_ms = ms_since(tf);
-  report_.precompute_ms = report_.system_ms + ms_since(t0);
   const int n = mesh_.num_vertices();
   f->R.assign(static_cast<size_t>(n), Eigen::Matrix3d::Identity());
   f->q.assign(static_cast<size_t>(n), Eigen::Quaterniond::Identity());
   f->R_feature.assign(model_->features.size(), Eigen::Matrix3d::Identity());
   build_handle_fields(*f, layout);
+  report_.precompute_ms = report_.system_ms + ms_since(t0);
   frame_ = std::move(f);
 }
 

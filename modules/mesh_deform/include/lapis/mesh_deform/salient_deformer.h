@@ -55,7 +55,7 @@ struct SalientReport {
   double subspace_ms = 0;    // building the tetrahedra (once per mesh)
   double embedding_ms = 0;   // location and C (once per mesh)
   double system_ms = 0;      // system (11) without the handle rows (once per mesh)
-  double precompute_ms = 0;  // Table 1's precomputation: system_ms, the handle rows, the Cholesky
+  double precompute_ms = 0;  // Table 1's precomputation: system_ms, the handle rows, the Cholesky, the start's fields
   double factorize_ms = 0;   // of which the factorization
   int iterations = 0;        // in the last deform()
   double frame_ms = 0, rotations_ms = 0, solves_ms = 0, interpolation_ms = 0;
