@@ -162,11 +162,23 @@ TEST_CASE("cli: lapis merge --mode optimal finds a cheaper boundary, merges alon
   CHECK(b["stopped_by"] == "fixed point");
   CHECK(b["iterations"].size() >= 2);
   CHECK(b["iterations"][0]["energy"] == b["user_energy"]);
+  // ∂Ω0 runs around the rough region, the optimal loop inside it: the shorter of the two.
+  CHECK(b["loop_length"].get<double>() > 0);
+  CHECK(b["loop_length"].get<double>() < b["user_loop_length"].get<double>());
+  CHECK(b["loop_vertices"].get<int>() >= 3);
   CHECK(j["optimal_merge"]["seam"]["valid"] == true);
   CHECK(j["user_boundary_merge"]["seam"]["valid"] == true);
   CHECK(j["optimal_merge"]["detail"]["max_distance"].get<double>() <
         j["user_boundary_merge"]["detail"]["max_distance"].get<double>());
   CHECK(fs::file_size(d / "o.obj") > 1000);
+
+  const Run capped = lapis_merge(common + " --max-iterations 1 --out " + (d / "c.obj").string() + " --report " +
+                                 (d / "c.json").string());
+  REQUIRE_MESSAGE(capped.status == 0, capped.output);
+  std::ifstream capped_in(d / "c.json");
+  const nlohmann::json c = nlohmann::json::parse(capped_in);
+  CHECK(c["boundary"]["stopped_by"] == "iteration cap");
+  CHECK(c["boundary"]["iterations"].size() == 2);
 
   // A given placement that leaves the plate is refused, and nothing is written.
   const Run off = lapis_merge(common + " --placement 1,0,50,0 --out " + (d / "off.obj").string());

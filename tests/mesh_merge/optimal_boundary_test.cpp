@@ -2,6 +2,7 @@
 // against an independent search, its invariances, and the merge along it.
 #include <doctest/doctest.h>
 
+#include <omp.h>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -304,6 +305,58 @@ TEST_CASE("optimal boundary: bad regions and placements are named errors") {
   MergeOptions optimal_mode;
   optimal_mode.mode = MergeMode::OptimalBoundary;
   CHECK_THROWS_WITH_AS(Merger(src, optimal_mode), doctest::Contains("BoundaryOptimizer::merge()"), InvalidArgument);
+}
+
+// Pruning stops each Dijkstra beyond the cheapest loop found so far, and the searches from the
+// cut's vertices run in parallel: neither may change the loop (ties go to the lowest cost, then
+// the lowest start, whatever thread finds them).
+TEST_CASE("optimal boundary: pruning and the thread count change nothing") {
+  const BumpCase& c = bump_case();
+  auto optimize = [&](bool prune, int threads) {
+    OptimalBoundaryOptions o;
+    o.prune = prune;
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    const OptimalBoundary b =
+        BoundaryOptimizer(c.source, c.target, bump_regions(c.source), o).optimize(c.optimizer.suggested_placement());
+    omp_set_num_threads(before);
+    return b;
+  };
+  for (auto [prune, threads] : {std::pair{false, 2}, std::pair{true, 1}, std::pair{false, 1}}) {
+    CAPTURE(prune);
+    CAPTURE(threads);
+    const OptimalBoundary b = optimize(prune, threads);
+    CHECK(b.loop == c.boundary.loop);
+    CHECK(b.energy == doctest::Approx(c.boundary.energy).epsilon(1e-12));
+    CHECK(b.history.size() == c.boundary.history.size());
+  }
+}
+
+TEST_CASE("optimal boundary: a feature in pieces or with a hole and bad options are named errors") {
+  const geometry::TriMesh src = bump_with_ripples(20), tgt = flat_target(20);
+  const BoundaryRegions good = bump_regions(src);
+  auto fails_with = [&](BoundaryRegions r, const OptimalBoundaryOptions& o, const char* what) {
+    CHECK_THROWS_WITH_AS(BoundaryOptimizer(src, tgt, r, o), doctest::Contains(what), InvalidArgument);
+  };
+  auto centre_of = [&](int f) -> Eigen::Vector3d {
+    return (src.V.row(src.F(f, 0)) + src.V.row(src.F(f, 1)) + src.V.row(src.F(f, 2))) / 3;
+  };
+  BoundaryRegions r = good;  // two disks
+  r.feature_faces.clear();
+  for (int f : good.roi_faces)
+    if ((centre_of(f) - Eigen::Vector3d(0.35, 0, 0)).norm() < 0.15 ||
+        (centre_of(f) + Eigen::Vector3d(0.35, 0, 0)).norm() < 0.15)
+      r.feature_faces.push_back(f);
+  fails_with(r, {}, "must be connected with one boundary loop");
+  r = good;  // an annulus: two boundary loops
+  std::erase_if(r.feature_faces, [&](int f) { return centre_of(f).head<2>().norm() < 0.12; });
+  fails_with(r, {}, "must be connected with one boundary loop");
+  OptimalBoundaryOptions bad;
+  bad.max_iterations = -1;
+  fails_with(good, bad, "options out of range");
+  bad = {};
+  bad.max_exact_fill = 2;
+  fails_with(good, bad, "options out of range");
 }
 
 // A torus with a disk cut away is a genus-1 feature with one boundary loop (thesis Fig. 3.14):
