@@ -177,3 +177,24 @@ def test_isolines_fields_and_method_members(bar):
         implicit.features
     with pytest.raises(lapis.UsageError, match="only the isolines method"):
         implicit.fields
+
+
+def test_cold_start_reaches_edge_and_salient():
+    """A similarity of both ends of the bar, the ROI all of it: from the handles' rotations and
+    scales (the default start) the edge method's first solve is that similarity; from T = I one
+    iteration is far from it. The option reaches the salient method too."""
+    V, F = lapis.make_box_bar(4, 4, 12, 1.0, 1.0, 3.0)
+    ends = [np.flatnonzero(V[:, 2] < 0.3), np.flatnonzero(V[:, 2] > 2.7)]
+    T = bend(0.6, 0.3)
+    T[:3, :3] *= 1.4
+    expected = V @ T[:3, :3].T + T[:3, 3]
+    errors = {}
+    for start in ("handle_rotations", "identity"):
+        d = lapis.Deformer(V, F, "edge", iterations=1, cold_start=start)
+        assert d.settings.edge.cold_start == getattr(lapis.ColdStart, start)
+        d.set_selection("all", regions=ends)
+        errors[start] = np.abs(d.deform([T, T]) - expected).max()
+    assert errors["handle_rotations"] < 1e-9
+    assert errors["identity"] > 1e-3
+    s = lapis.Deformer(V, F, "salient", cold_start="identity", detect_features=False)
+    assert s.settings.salient.cold_start == lapis.ColdStart.identity
