@@ -214,6 +214,28 @@ TEST_CASE("apps: merge app — pairing two loops and a key with xdotool, then me
   check_equals_cli(e, dir / "live_cli.obj");
 }
 
+// Keys act on the view while the pointer is over it. With the merge panel focused (a click on it),
+// ImGui's tabbing once took Tab typed over the view to the "smoothing iterations" field, and the
+// 5 typed next went into it instead of picking the paint tool.
+TEST_CASE("apps: merge app — keys typed over the view reach the app, not a field of the focused panel") {
+  const fs::path dir = scratch_dir();
+  const DefaultScene scene;
+  const fs::path prefix = dir / "keys";
+  const std::string keys =
+      "mark; xdotool mousemove --window $w 950 150 sleep 0.1 click 1; wait_handled 0 2 || { kill $app; exit 5; }\n"
+      "xdotool mousemove --window $w 100 600; mark; xdotool key --window $w Tab; wait_handled 2 0;"
+      " mark; xdotool key --window $w 5; wait_handled 2 0; mark; xdotool key --window $w Return; wait_handled 2 0;"
+      " mark; xdotool key --window $w Tab; wait_handled 2 0; mark; xdotool key --window $w 1; wait_handled 2 0;\n";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
+                                         keys + scene.pair_and_key() +
+                                             "mark; xdotool key --window $w m; wait_handled 2 0;"
+                                             " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;")) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK_MESSAGE(e.command.find("--smooth 3") != std::string::npos, e.command);
+  REQUIRE(e.pairs.size() == 1);
+  check_watertight_seam(e);
+}
+
 TEST_CASE("apps: merge app — replaying the recorded pairing session merges watertight and equals lapis merge") {
   const fs::path dir = scratch_dir(), prefix = dir / "replayed";
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +

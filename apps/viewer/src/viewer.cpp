@@ -171,6 +171,13 @@ void Viewer::dispatch(const InputEvent& e) {
   handled_keys_ += e.type == EventType::Key;
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
+  const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
+  // Keys act where the pointer is: over a panel they go to it (its focused field, its tabbing),
+  // over the 3D view to the app, and a panel's field loses the keyboard, so a Tab or a digit
+  // typed over the view never lands in a field the last click left focused.
+  const bool keys_to_gui = keyboard && over_gui(cursor_.x(), cursor_.y());
+  if (keyboard && !keys_to_gui && GImGui && (io.WantCaptureKeyboard || GImGui->NavWindow))
+    ImGui::SetWindowFocus(nullptr);
   switch (e.type) {
     case EventType::MouseMove:
       cursor_ = {e.x, e.y};
@@ -184,17 +191,17 @@ void Viewer::dispatch(const InputEvent& e) {
       if (w) ImGui_ImplGlfw_ScrollCallback(w, e.x, e.y);
       break;
     case EventType::Key:
-      if (w) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods);
+      // A release always reaches the panels, so none of their keys stays down.
+      if (w && (keys_to_gui || e.action == GLFW_RELEASE)) ImGui_ImplGlfw_KeyCallback(w, e.key, 0, e.action, e.mods);
       break;
     case EventType::Char:
-      if (w) ImGui_ImplGlfw_CharCallback(w, e.codepoint);
+      if (w && keys_to_gui) ImGui_ImplGlfw_CharCallback(w, e.codepoint);
       break;
     case EventType::Resize:
     case EventType::Idle:
       break;
   }
-  const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;
-  if (keyboard && io.WantCaptureKeyboard) return;
+  if (keys_to_gui && io.WantCaptureKeyboard) return;
   // Mouse events go to the panels when they are over one (tested at the event's own
   // position: io.WantCaptureMouse still describes the previous frame's cursor). A drag that
   // started in the 3D view stays with the app until its release, even across a panel.
