@@ -134,22 +134,28 @@ void MergeApp::refresh_pickables() {
 
 void MergeApp::replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry::TriMesh> source,
                               std::string source_name, std::shared_ptr<const geometry::TriMesh> target,
-                              std::string target_name, std::string edit, bool keep_placement) {
+                              std::string target_name, std::string edit, Placement placement) {
   MergeSetup next = setup();
-  if (source != next.source) {
-    next.options.handles.clear();  // vertex indices of the old source
-    if (!keep_placement) next.placement.setIdentity();
-  }
-  next.pairs.clear();  // loop indices belong to the old meshes
+  const bool new_source = source != next.source, new_meshes = new_source || target != next.target;
+  if (new_source) next.options.handles.clear();  // vertex indices of the old source
+  next.pairs.clear();                            // loop indices belong to the old meshes
   next.source = std::move(source);
   next.target = std::move(target);
+  // An opened mesh arrives placed: the source sized to the target and beside it, not at its
+  // own scale on top of it (a lion's head came in at ten times a man's size).
+  if (new_meshes && placement == Placement::Suggested)
+    next.placement = mesh_merge::suggest_placement(*next.source, *next.target);
+  else if (new_source && placement == Placement::Identity)
+    next.placement.setIdentity();
+  // The old result belongs to the old meshes: off the screen until a merge of the new ones.
+  if (new_meshes) shown_.reset(), last_.reset();
   history_.push(Snapshot{std::move(next), std::move(source_name), std::move(target_name), ++last_revision_},
                 std::move(edit));
   refresh_pickables();
   clear_picks();
   painted_.clear();
   update_scene(v);
-  if (!keep_placement) frame(v);
+  if (placement != Placement::Keep) frame(v);
 }
 
 void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, bool as_source) {
@@ -157,9 +163,9 @@ void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, b
     auto mesh = std::make_shared<const geometry::TriMesh>(geometry::read_mesh(path));
     const std::string name = path.filename().string();
     if (as_source)
-      replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name);
+      replace_meshes(v, mesh, name, setup().target, target_name(), "open source " + name, Placement::Suggested);
     else
-      replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name);
+      replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name, Placement::Suggested);
   } catch (const Error& e) {
     v.flash(std::string("open failed: ") + e.what());
   }
@@ -424,6 +430,7 @@ void MergeApp::request_merge() {
   worker_.submit([slot, s, revision, optimal, opt, opt_error, placement, progress] {
     MergeOutcome out;
     out.revision = revision;
+    out.source = s.source, out.target = s.target;
     const auto t0 = std::chrono::steady_clock::now();
     try {
       if (optimal) {
@@ -448,7 +455,7 @@ void MergeApp::receive_merge(viewer::Viewer& v) {
   frame_at_merge_ms_.push_back(v.last_frame_ms());
   if (!r->error.empty())
     v.flash("merge failed: " + r->error);
-  else
+  else if (r->source == setup().source && r->target == setup().target)  // not one of meshes since replaced
     shown_ = *r, scene_dirty_ = true;
   last_ = std::move(r);
 }

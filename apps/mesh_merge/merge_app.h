@@ -64,7 +64,8 @@ struct PickableMesh {
 // What the worker hands back for one setup revision.
 struct MergeOutcome {
   std::uint64_t revision = 0;
-  std::string error;  // a lapis::Error's message; the rest is empty then
+  std::shared_ptr<const geometry::TriMesh> source, target;  // the meshes it merged
+  std::string error;                                        // a lapis::Error's message; the rest is empty then
   mesh_merge::MergeResult result;
   mesh_merge::SeamQuality quality;
   mesh_merge::DetailPreservation detail;
@@ -127,11 +128,14 @@ class MergeApp final : public viewer::ViewerApp {
   int pair_of_source_loop(int loop) const;
   int pair_of_target_loop(int loop) const;
 
-  // Meshes.
+  // Meshes. Where the source goes when the meshes change: as before (a cut), at its own
+  // coordinates (the bundled presets, authored so), or beside the target at its size (an opened
+  // mesh, mesh_merge::suggest_placement()).
+  enum class Placement { Keep, Identity, Suggested };
   void frame(viewer::Viewer& v);
   void replace_meshes(viewer::Viewer& v, std::shared_ptr<const geometry::TriMesh> source, std::string source_name,
                       std::shared_ptr<const geometry::TriMesh> target, std::string target_name, std::string edit,
-                      bool keep_placement = false);
+                      Placement placement = Placement::Identity);
   void load_mesh(viewer::Viewer& v, const std::filesystem::path& path, bool as_source);
   void load_preset(viewer::Viewer& v, int preset);
   void refresh_pickables();

@@ -78,12 +78,12 @@ void MergeApp::cut_painted(viewer::Viewer& v) {
       // The source keeps the painted part (the head taken off a bust), where it was placed.
       mesh_merge::RegionCut cut = mesh_merge::cut_by_region(*setup().source, painted_);
       auto part = std::make_shared<const geometry::TriMesh>(std::move(cut.inside));
-      replace_meshes(v, part, source_name() + " (cut)", setup().target, target_name(), "cut source", true);
+      replace_meshes(v, part, source_name() + " (cut)", setup().target, target_name(), "cut source", Placement::Keep);
     } else {
       // The target keeps the rest (the body the head is taken off).
       mesh_merge::RegionCut cut = mesh_merge::cut_by_region(*setup().target, painted_);
       auto rest = std::make_shared<const geometry::TriMesh>(std::move(cut.outside));
-      replace_meshes(v, setup().source, source_name(), rest, target_name() + " (cut)", "cut target", true);
+      replace_meshes(v, setup().source, source_name(), rest, target_name() + " (cut)", "cut target", Placement::Keep);
     }
     tool_ = Tool::PairLoops;  // the new rim is ready to pair
   } catch (const Error& e) {

@@ -236,6 +236,39 @@ TEST_CASE("apps: merge app — keys typed over the view reach the app, not a fie
   check_watertight_seam(e);
 }
 
+// Pixels of the 3D view (left of the panels, below the overlay) shaded in the source's warm
+// colour and in the target's cool one.
+std::pair<long, long> warm_and_cool_pixels(const viewer::Image& im) {
+  long warm = 0, cool = 0;
+  for (int y = 80; y < im.height; ++y)
+    for (int x = 0; x < im.width - merge_app::kPanelWidth - 10; ++x) {
+      const std::uint8_t* p = &im.rgba[4 * (static_cast<size_t>(y) * im.width + x)];
+      warm += p[0] > p[2] + 40;
+      cool += p[2] > p[0] + 15;
+    }
+  return {warm, cool};
+}
+
+// File > Open source places the opened mesh beside the target at its size: the lion's head,
+// ten times the neck's size as stored, once filled the view with the neck a speck beside it.
+TEST_CASE("apps: merge app — a source opened from the menu arrives beside the target at its size") {
+  const fs::path dir = scratch_dir(), shot = dir / "opened.png";
+  const DefaultScene scene;
+  const std::string open_lion =
+      "mark; xdotool mousemove --window $w 662 38 sleep 0.1 click 1; wait_handled 0 2 || { kill $app; exit 5; }\n"
+      "xdotool mousemove --window $w 680 80 sleep 0.3 mousemove --window $w 500 80 sleep 0.3 mousemove --window $w 500 "
+      "249 sleep 0.3; mark; xdotool click 1; wait_handled 0 2 || { kill $app; exit 6; }\n";
+  REQUIRE(run_under_xvfb(xdotool_session("--screenshot " + shot.string(),
+                                         scene.pair_and_key() + "mark; xdotool key --window $w m; wait_handled 2 0;\n" +
+                                             open_lion + "mark; xdotool key --window $w ctrl+p; wait_handled 2 0;")) ==
+          0);
+  REQUIRE(fs::exists(shot));
+  const auto [warm, cool] = warm_and_cool_pixels(viewer::read_png(shot));
+  MESSAGE("source pixels " << warm << ", target pixels " << cool);
+  CHECK(warm > 2000);
+  CHECK(cool > 0.25 * warm);
+}
+
 TEST_CASE("apps: merge app — replaying the recorded pairing session merges watertight and equals lapis merge") {
   const fs::path dir = scratch_dir(), prefix = dir / "replayed";
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + (kSource / "tests/apps/data/merge_events.json").string() +

@@ -188,3 +188,26 @@ TEST_CASE("mesh_merge: MergeSetup edits keep one pair per loop and keys in loop 
   s.placement(2, 3) = 1.5;
   CHECK((placed_source(s).V.col(2).array() - s.source->V.col(2).array() - 1.5).abs().maxCoeff() < 1e-15);
 }
+
+// A closed mesh gives no loop to size and place the source by: it goes beside the target at half
+// the target's size (the merge app opens a mesh so; it once arrived unscaled on top).
+TEST_CASE("mesh_merge: suggest_placement sets a closed source beside the target at half its size") {
+  geometry::TriMesh source = geometry::make_icosphere(2, 30.0), target = geometry::make_torus(24, 12, 1.0, 0.4);
+  source.V.rowwise() += Eigen::RowVector3d(5, -7, 2);
+  const Eigen::Matrix4d T = suggest_placement(source, target);
+  geometry::TriMesh placed = source;
+  placed.V = (source.V * T.topLeftCorner<3, 3>().transpose()).rowwise() + T.topRightCorner<3, 1>().transpose();
+  auto diagonal = [](const geometry::TriMesh& m) {
+    return (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
+  };
+  auto centre = [](const geometry::TriMesh& m) {
+    return Eigen::RowVector3d(0.5 * (m.V.colwise().maxCoeff() + m.V.colwise().minCoeff()));
+  };
+  CHECK(diagonal(placed) == doctest::Approx(0.5 * diagonal(target)));
+  CHECK(placed.V.col(0).minCoeff() == doctest::Approx(target.V.col(0).maxCoeff() + 0.05 * diagonal(target)));
+  CHECK((centre(placed).tail<2>() - centre(target).tail<2>()).norm() < 1e-12);
+  // A similarity: the source keeps its shape and orientation.
+  const Eigen::Matrix3d L = T.topLeftCorner<3, 3>();
+  CHECK((L - L(0, 0) * Eigen::Matrix3d::Identity()).norm() < 1e-15);
+  CHECK(suggest_placement(geometry::TriMesh{}, target).isIdentity());
+}

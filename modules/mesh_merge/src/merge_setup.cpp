@@ -106,9 +106,31 @@ int facing_target_loop(const TriMesh& source, const std::vector<int>& source_loo
   return best;
 }
 
+namespace {
+
+// A closed mesh has no loop to size and place the source by: scaled to half the target's
+// bounding-box diagonal (a part to paint and cut off), beside the target along x, a twentieth of
+// its diagonal apart, their boxes' centres level.
+Eigen::Matrix4d beside_by_boxes(const TriMesh& source, const TriMesh& target) {
+  const Eigen::RowVector3d smin = source.V.colwise().minCoeff(), smax = source.V.colwise().maxCoeff();
+  const Eigen::RowVector3d tmin = target.V.colwise().minCoeff(), tmax = target.V.colwise().maxCoeff();
+  const double sd = (smax - smin).norm(), td = (tmax - tmin).norm();
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  if (!(sd > 0) || !(td > 0)) return T;
+  const double k = 0.5 * td / sd;
+  Eigen::RowVector3d centre = 0.5 * (tmin + tmax);
+  centre.x() = tmax.x() + 0.05 * td + 0.5 * k * (smax.x() - smin.x());
+  T.topLeftCorner<3, 3>() *= k;
+  T.topRightCorner<3, 1>() = (centre - k * 0.5 * (smin + smax)).transpose();
+  return T;
+}
+
+}  // namespace
+
 Eigen::Matrix4d suggest_placement(const TriMesh& source, const TriMesh& target) {
+  if (source.num_vertices() == 0 || target.num_vertices() == 0) return Eigen::Matrix4d::Identity();
   const Connectivity sc(source), tc(target);
-  if (sc.boundary_loops().empty() || tc.boundary_loops().empty()) return Eigen::Matrix4d::Identity();
+  if (sc.boundary_loops().empty() || tc.boundary_loops().empty()) return beside_by_boxes(source, target);
   const auto& sl = sc.boundary_loops()[0];
   const int tl = facing_target_loop(source, sl, target, tc.boundary_loops());
   return suggest_placement(source, sl, target, tc.boundary_loops()[static_cast<size_t>(tl)]);

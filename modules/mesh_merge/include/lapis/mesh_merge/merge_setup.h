@@ -75,8 +75,10 @@ Eigen::Matrix4d suggest_placement(const TriMesh& source, const std::vector<int>&
 int facing_target_loop(const TriMesh& source, const std::vector<int>& source_loop, const TriMesh& target,
                        const std::vector<std::vector<int>>& target_loops);
 
-// suggest_placement() for the source's first loop and its facing_target_loop(); the identity
-// when either mesh is closed.
+// suggest_placement() for the source's first loop and its facing_target_loop(). When either
+// mesh is closed (no loop to go by): the source scaled to half the target's bounding-box
+// diagonal and set beside it along x, a twentieth of that diagonal apart; the identity for an
+// empty mesh.
 Eigen::Matrix4d suggest_placement(const TriMesh& source, const TriMesh& target);
 
 // Why the setup cannot be merged yet, as a sentence for the UI, or "" when every one of the
