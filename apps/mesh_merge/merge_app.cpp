@@ -282,8 +282,6 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   return true;
 }
 
-std::vector<const geometry::Bvh*> MergeApp::occluders() const { return {source_.bvh.get(), target_.bvh.get()}; }
-
 int MergeApp::pair_of_source_loop(int loop) const {
   for (size_t p = 0; p < setup().pairs.size(); ++p)
     if (setup().pairs[p].source_loop == loop) return static_cast<int>(p);
@@ -314,14 +312,17 @@ void MergeApp::click(viewer::Viewer& v, double x, double y) {
   scene_dirty_ = true;
 }
 
+// Loops are drawn on top of the surfaces (update_loops), so a loop is picked wherever its line
+// is drawn, hidden parts included; the source's only while the source is drawn. A click that
+// misses keeps the half-made pair.
 void MergeApp::click_pair_loops(viewer::Viewer& v, double x, double y) {
   const auto cam = v.camera_matrices();
-  const viewer::LoopPick s = viewer::pick_loop(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders());
-  const viewer::LoopPick t = viewer::pick_loop(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders());
-  if (!s && !t) {
-    pending_source_loop_ = pending_target_loop_ = -1;
-    return v.flash("no boundary loop there: click near a loop (drawn as a line)");
-  }
+  const bool source_drawn = v.scene().meshes["source"].visible;
+  const viewer::LoopPick s = source_drawn
+                                 ? viewer::pick_loop(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, {})
+                                 : viewer::LoopPick{};
+  const viewer::LoopPick t = viewer::pick_loop(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, {});
+  if (!s && !t) return v.flash("no boundary loop there: click near a loop (drawn as a line)");
   if (s && (!t || s.pixels <= t.pixels))
     pending_source_loop_ = s.loop;
   else
@@ -338,11 +339,14 @@ void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
   std::vector<int> source_loops, target_loops;
   for (const auto& p : setup().pairs) source_loops.push_back(p.source_loop), target_loops.push_back(p.target_loop);
   if (source_loops.empty()) return v.flash("pair a source loop with a target loop first (tool 1)");
+  // As loops: wherever the loop's line is drawn (on top), the source's while it is drawn.
   const auto cam = v.camera_matrices();
   const viewer::LoopPick s =
-      viewer::pick_loop_vertex(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, occluders(), source_loops);
+      v.scene().meshes["source"].visible
+          ? viewer::pick_loop_vertex(cam, source_.mesh.V, source_.loops(), x, y, kPickPixels, {}, source_loops)
+          : viewer::LoopPick{};
   const viewer::LoopPick t =
-      viewer::pick_loop_vertex(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, occluders(), target_loops);
+      viewer::pick_loop_vertex(cam, target_.mesh.V, target_.loops(), x, y, kPickPixels, {}, target_loops);
   if (!s && !t) return v.flash("no vertex of a paired loop there");
   if (s && (!t || s.pixels <= t.pixels))
     pending_key_source_ = s.vertex;

@@ -124,7 +124,6 @@ class MergeApp final : public viewer::ViewerApp {
   void press_paint(viewer::Viewer& v, double x, double y, bool erase);
   void drag_paint(viewer::Viewer& v, double x, double y);
   void cut_painted(viewer::Viewer& v);
-  std::vector<const geometry::Bvh*> occluders() const;
   int pair_of_source_loop(int loop) const;
   int pair_of_target_loop(int loop) const;
 

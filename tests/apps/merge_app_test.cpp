@@ -12,11 +12,13 @@
 
 #include "app_runner.h"
 #include "first_view.h"  // lapis-merge's camera angles and panel width
+#include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/pairs_file.h"
 #include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/loop_picking.h"
 #include "lapis/viewer/orbit_camera.h"
 
 using namespace lapis;
@@ -233,6 +235,41 @@ TEST_CASE("apps: merge app — keys typed over the view reach the app, not a fie
   const Exported e = read_exports(prefix);
   CHECK_MESSAGE(e.command.find("--smooth 3") != std::string::npos, e.command);
   REQUIRE(e.pairs.size() == 1);
+  check_watertight_seam(e);
+}
+
+// Loops are drawn on top of the surfaces, so a click on any drawn point of one picks it, hidden
+// or not, and a click that misses keeps the half-made pair: the target loop, a miss, then the
+// dome's rim where the dome hides it, pair the two.
+TEST_CASE("apps: merge app — a loop is picked where it is drawn, hidden or not, and a miss keeps the half-made pair") {
+  const fs::path dir = scratch_dir(), prefix = dir / "hidden";
+  const DefaultScene scene;
+  const geometry::Bvh source_bvh(scene.source), target_bvh(scene.target);
+  auto pixel_of = [&](const Eigen::Vector3d& P) { return geometry::project(scene.camera, P).head<2>().eval(); };
+  // A point of the source loop that the surfaces hide, inside the view, 30 px from every drawn
+  // point of the target's loops.
+  Eigen::Vector2i hidden(-1, -1);
+  const geometry::Connectivity tc(scene.target);
+  for (size_t i = 0; i < scene.sloop.size() && hidden.x() < 0; ++i) {
+    const Eigen::Vector3d P = scene.source.V.row(scene.sloop[i]).transpose();
+    const Eigen::Vector2d q = pixel_of(P);
+    if (viewer::visible(scene.camera, P, {&source_bvh, &target_bvh})) continue;
+    if (q.x() < 40 || q.x() > kWidth - merge_app::kPanelWidth - 40 || q.y() < 100 || q.y() > kHeight - 40) continue;
+    bool near_target = false;
+    for (const auto& loop : tc.boundary_loops())
+      for (int v : loop) near_target = near_target || (pixel_of(scene.target.V.row(v).transpose()) - q).norm() < 30;
+    if (!near_target) hidden = {static_cast<int>(std::lround(q.x())), static_cast<int>(std::lround(q.y()))};
+  }
+  REQUIRE(hidden.x() >= 0);
+  const Eigen::Vector2i s = scene.front_pixel(scene.source, scene.sloop),
+                        t = scene.front_pixel(scene.target, scene.tloop);
+  const std::string actions = click(t) + click({60, kHeight - 60}) + click(hidden) + click(s) + click(t) +
+                              "mark; xdotool key --window $w m; wait_handled 2 0;"
+                              " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  CHECK(e.pairs[0].keys.size() == 1);
   check_watertight_seam(e);
 }
 
