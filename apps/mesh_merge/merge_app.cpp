@@ -392,7 +392,7 @@ void MergeApp::click_handles(viewer::Viewer& v, double x, double y) {
 bool MergeApp::auto_merge_allowed() const {
   if (!auto_merge_) return false;
   if (!mesh_merge::missing_input(setup(), static_cast<int>(source_.loops().size())).empty()) return false;
-  return job_ms_.empty() || job_ms_.back() < kAutoMergeMs;
+  return !remerge_ms_ || *remerge_ms_ < kAutoMergeMs;
 }
 
 namespace {
@@ -456,6 +456,7 @@ void MergeApp::receive_merge(viewer::Viewer& v) {
   std::optional<MergeOutcome> r = worker_.take();
   if (!r) return;
   job_ms_.push_back(r->job_ms);
+  remerge_ms_ = remerge_ms(*r);
   frame_at_merge_ms_.push_back(v.last_frame_ms());
   if (!r->error.empty())
     v.flash("merge failed: " + r->error);

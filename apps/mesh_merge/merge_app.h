@@ -75,6 +75,11 @@ struct MergeOutcome {
   std::optional<mesh_merge::OptimalBoundary> boundary;  // OptimalBoundary mode: the boundary merged along
 };
 
+// What a merge of the same setup with one more edit would cost: the job without the Merger's
+// one-off precompute when it built one (the next edit of pairs, keys or smoothing reuses it).
+// Auto-merge judges by this, not by the first merge of a setup, which pays the precompute.
+inline double remerge_ms(const MergeOutcome& o) { return o.reused ? o.job_ms : o.job_ms - o.precompute_ms; }
+
 // The optimal-boundary search's progress, written by the worker, read by the overlay.
 struct OptimalProgress {
   std::atomic<int> iteration{0};  // iterations done in the running search (0: none yet)
@@ -236,6 +241,7 @@ class MergeApp final : public viewer::ViewerApp {
   std::optional<MergeOutcome> last_;                // newest finished job (may be an error)
   std::optional<MergeOutcome> shown_;               // newest successful one, on screen
   std::vector<double> job_ms_, frame_at_merge_ms_;  // for --benchmark
+  std::optional<double> remerge_ms_;                // of the newest finished job: auto-merge's measure
   viewer::LatestWorker<MergeOutcome> worker_;       // last: joined first, before what jobs use
 };
 

@@ -220,9 +220,11 @@ void MergeApp::draw_merge_actions(viewer::Viewer& v) {
   if (ImGui::Button("Merge (M)")) requested_revision_ = 0, request_merge();
   ImGui::SameLine();
   ImGui::Checkbox("auto-merge", &auto_merge_);
-  tooltip("Merge after every change while the last merge took under 0.5 s.");
-  if (auto_merge_ && !job_ms_.empty() && job_ms_.back() >= kAutoMergeMs)
-    ImGui::TextDisabled("auto-merge paused: the last merge took %.2f s", job_ms_.back() / 1000.0);
+  tooltip(
+      "Merge after every change while a re-merge (the last merge without its one-off precompute) takes "
+      "under 0.5 s.");
+  if (auto_merge_ && remerge_ms_ && *remerge_ms_ >= kAutoMergeMs)
+    ImGui::TextDisabled("auto-merge paused: a re-merge takes %.2f s", *remerge_ms_ / 1000.0);
   const std::string missing = mesh_merge::missing_input(setup(), static_cast<int>(source_.loops().size()));
   if (!missing.empty()) ImGui::TextWrapped("next: %s", missing.c_str());
   if (last_ && !last_->error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.35f, 1.0f), "%s", last_->error.c_str());

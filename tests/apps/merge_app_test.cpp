@@ -20,6 +20,7 @@
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/loop_picking.h"
 #include "lapis/viewer/orbit_camera.h"
+#include "merge_app.h"  // remerge_ms
 
 using namespace lapis;
 using namespace lapis::apps_test;
@@ -271,6 +272,20 @@ TEST_CASE("apps: merge app — a loop is picked where it is drawn, hidden or not
   REQUIRE(e.pairs.size() == 1);
   CHECK(e.pairs[0].keys.size() == 1);
   check_watertight_seam(e);
+}
+
+// Auto-merge pauses when a merge of the next edit would be slow. The first merge of a setup
+// pays the Merger's one-off precompute, which the next edit of pairs, keys or smoothing reuses:
+// a 0.9 s first merge with 0.75 s of precompute keeps auto-merge on; a slow re-merge pauses it.
+TEST_CASE("apps: merge app — auto-merge judges by the re-merge time, not by the first merge's precompute") {
+  merge_app::MergeOutcome first;
+  first.job_ms = 900, first.precompute_ms = 750, first.reused = false;
+  CHECK(merge_app::remerge_ms(first) == doctest::Approx(150));
+  CHECK(merge_app::remerge_ms(first) < merge_app::kAutoMergeMs);
+  merge_app::MergeOutcome slow = first;
+  slow.reused = true;  // the precompute was an earlier job's: all 0.9 s are the re-merge
+  CHECK(merge_app::remerge_ms(slow) == doctest::Approx(900));
+  CHECK(merge_app::remerge_ms(slow) >= merge_app::kAutoMergeMs);
 }
 
 // Pixels of the 3D view (left of the panels, below the overlay) shaded in the source's warm
