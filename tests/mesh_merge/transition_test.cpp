@@ -138,9 +138,19 @@ TEST_CASE("mesh_merge: transition merging is watertight, manifold and leaves the
   const auto pairs = test::dome_on_body(src, tgt);
   const double width = 0.35;
   // The body's rings are 0.1 apart and its top loop is at z = 2: the band is z > 2 − width.
-  for (TransitionKeep keep : {TransitionKeep::Source, TransitionKeep::Target}) {
+  // Configuration-dependent boundary conditions (§3.3.2) take the source as placed: on the body,
+  // as the dependent test below places it.
+  TriMesh placed = src;
+  placed.V *= 0.9;
+  placed.V.col(2).array() += 1.85;
+  for (auto [keep, dependent] : {std::pair{TransitionKeep::Source, false}, std::pair{TransitionKeep::Target, false},
+                                 std::pair{TransitionKeep::Source, true}}) {
     CAPTURE(static_cast<int>(keep));
-    const MergeResult r = merge(src, tgt, pairs, transition_options(keep));
+    CAPTURE(dependent);
+    MergeOptions o = transition_options(keep);
+    o.transition.configuration_dependent = dependent;
+    const MergeResult r =
+        dependent ? merge(placed, tgt, test::dome_on_body(placed, tgt), o) : merge(src, tgt, pairs, o);
     require_valid(tgt, r);
     int kept = 0, moved = 0;
     for (int v = 0; v < tgt.num_vertices(); ++v) {
@@ -175,9 +185,19 @@ TEST_CASE("mesh_merge: the transition band's Laplacian coordinates blend between
   src_mean /= ns, tgt_mean /= nt;
   REQUIRE(src_mean > 2 * tgt_mean);  // the premise: the dome is much bumpier than the body
 
-  for (TransitionKeep keep : {TransitionKeep::Source, TransitionKeep::Target}) {
+  // Configuration-dependent boundary conditions (§3.3.2) take the source as placed: on the body,
+  // as the dependent test below places it.
+  TriMesh placed = src;
+  placed.V *= 0.9;
+  placed.V.col(2).array() += 1.85;
+  for (auto [keep, dependent] : {std::pair{TransitionKeep::Source, false}, std::pair{TransitionKeep::Target, false},
+                                 std::pair{TransitionKeep::Source, true}}) {
     CAPTURE(static_cast<int>(keep));
-    const MergeResult r = merge(src, tgt, pairs, transition_options(keep));
+    CAPTURE(dependent);
+    MergeOptions o = transition_options(keep);
+    o.transition.configuration_dependent = dependent;
+    const MergeResult r =
+        dependent ? merge(placed, tgt, test::dome_on_body(placed, tgt), o) : merge(src, tgt, pairs, o);
     // Scale back to the inputs' units: curvature scales with 1 / length (the source was brought
     // to the target's loop perimeter, so the merged mesh is in the target's units already).
     const Eigen::VectorXd km = curvature_magnitude(r.mesh);
