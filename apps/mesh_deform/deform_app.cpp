@@ -266,7 +266,7 @@ void DeformApp::receive(viewer::Viewer& v) {
   engine_error_.clear();
   received_ = s->request;
   if (s->recolor) {
-    if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));
+    update_legend(s->frame.distortion);
     last_ = std::move(s);
     surface_dirty_ = true;
     return;
@@ -287,13 +287,20 @@ void DeformApp::receive(viewer::Viewer& v) {
   }
   shown_.V = s->frame.positions;
   features_received(s->frame);
-  if (s->frame.distortion.size() > 0) legend_hi_ = std::max(1e-6, viewer::percentile(s->frame.distortion, 0.95));
+  update_legend(s->frame.distortion);
   last_ = std::move(s);
   result_frame_ = v.frame();
   pick_stale_ = true;
   surface_dirty_ = markers_dirty_ = true;
   // ARAP goes on iterating on the pose once the user lets go, until the energy settles.
   if (last_->frame.energy >= 0 && !last_->frame.preview && last_->request == submitted_ && !dragging_) continue_arap();
+}
+
+void DeformApp::update_legend(const Eigen::VectorXd& distortion) {
+  if (legend_fixed_)
+    legend_hi_ = legend_max_;
+  else if (distortion.size() > 0)
+    legend_hi_ = std::max(1e-6, viewer::percentile(distortion, 0.95));
 }
 
 // The detected features seed the painted ones until the user edits them.

@@ -104,6 +104,13 @@ class DeformApp final : public viewer::ViewerApp {
   void open_selection_on_start() { load_on_start_ = true; }
   // Opens a deformation-transfer target beside the mesh when the app starts.
   void open_transfer_target_on_start(fs::path path) { transfer_target_on_start_ = std::move(path); }
+  // Colours by distortion on the fixed range [0, max] instead of each frame's 95th percentile.
+  void fix_distortion_range(double max) {
+    color_mode_ = ColorMode::Distortion;
+    legend_fixed_ = true;
+    legend_max_ = static_cast<float>(max);
+    legend_hi_ = max;
+  }
 
  private:
   // Loads the ROI and handles files (CLI formats); errors are shown, not thrown.
@@ -214,7 +221,12 @@ class DeformApp final : public viewer::ViewerApp {
   ColorMode color_mode_ = ColorMode::Selection;
   DistortionField field_ = DistortionField::EdgeLength;
   bool show_degenerate_ = true;
-  double legend_hi_ = 0;
+  double legend_hi_ = 0;  // the distortion colours' range [0, legend_hi_]
+  // A range the user fixed (panel, --distortion-range), so frames and methods compare; otherwise
+  // each solved frame's 95th percentile.
+  bool legend_fixed_ = false;
+  float legend_max_ = 0;
+  void update_legend(const Eigen::VectorXd& distortion);
   // The isolines method's view of its last setup: a handle field, ψ and the isolines (rest mesh).
   Eigen::VectorXd isoline_field_, rigidity_;
   std::vector<mesh_deform::IsolineSegment> isolines_;

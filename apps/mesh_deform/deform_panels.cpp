@@ -261,6 +261,24 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
     if (color_mode_ == ColorMode::Distortion) field_ = static_cast<DistortionField>(mode - 1);
     surface_dirty_ = markers_dirty_ = true;
   }
+  if (color_mode_ == ColorMode::Distortion) {
+    // A fixed range keeps the colours comparable between frames and methods; it starts at the
+    // range on screen.
+    if (ImGui::Checkbox("fixed range", &legend_fixed_)) {
+      if (legend_fixed_ && !(legend_max_ > 0)) legend_max_ = static_cast<float>(std::max(legend_hi_, 1e-6));
+      update_legend(last_ ? last_->frame.distortion : Eigen::VectorXd());
+      surface_dirty_ = true;
+    }
+    if (legend_fixed_) {
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(90);
+      if (ImGui::DragFloat("max", &legend_max_, std::max(legend_max_ * 0.01f, 1e-6f), 1e-6f, 1e6f, "%.3g",
+                           ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp)) {
+        update_legend(Eigen::VectorXd());
+        surface_dirty_ = true;
+      }
+    }
+  }
   if ((color_mode_ == ColorMode::IsolineField || color_mode_ == ColorMode::Rigidity) && isolines_.empty())
     ImGui::TextDisabled("(the isolines method's setup shows them)");
   if (ImGui::Checkbox("degenerate vertices", &show_degenerate_)) markers_dirty_ = true;
@@ -404,7 +422,7 @@ void DeformApp::draw_legend(viewer::Viewer& v) {
   const char* unit = field_ == DistortionField::Angle ? " rad" : "";
   ImGui::Text("0%s", unit);
   ImGui::SameLine(width - 70);
-  ImGui::Text("%.3g%s (p95)", legend_hi_, unit);
+  ImGui::Text("%.3g%s (%s)", legend_hi_, unit, legend_fixed_ ? "fixed" : "p95");
   if (!last_ || last_->frame.distortion.size() == 0) ImGui::TextDisabled("(after the next solve)");
   ImGui::End();
 }

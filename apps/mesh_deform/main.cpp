@@ -21,7 +21,7 @@ namespace {
 constexpr const char* kUsageRest =
     "] [--weights cotan|uniform] [--scale-features]\n"
     "                    [--iterations N] [--full-while-dragging] [--export OUT.obj|OUT.ply] [--export-on-exit]\n"
-    "                    [--transfer-target MESH] [--msaa SAMPLES]\n"
+    "                    [--transfer-target MESH] [--distortion-range MAX] [--msaa SAMPLES]\n"
     "                    [--headless] [--replay EVENTS] [--record EVENTS] [--screenshot OUT.png]\n"
     "                    [--exit-after-replay] [--benchmark OUT.json] [--ready-file F] [--size WxH]\n"
     "Opens MESH (OBJ/OFF/PLY/STL; default external/armadillo.off of the assets: $LAPIS_ASSET_DIR,\n"
@@ -35,7 +35,9 @@ constexpr const char* kUsageRest =
     "OUT.deform.json (the `lapis deform` command that reproduces it), Ctrl+P screenshot, Ctrl+Q quit.\n"
     "--transfer-target opens MESH beside it (deformation transfer, Au et al. 2007): with P (pair) click\n"
     "where each handle, the fixed region first, is on it; every solved frame is carried onto it and\n"
-    "Ctrl+E also writes OUT.target.obj with the files `lapis transfer` reproduces it from.\n";
+    "Ctrl+E also writes OUT.target.obj with the files `lapis transfer` reproduces it from.\n"
+    "--distortion-range opens coloured by distortion on the fixed range [0, MAX] (the panel sets it\n"
+    "too), so frames and methods can be compared; without it the range follows each frame's p95.\n";
 
 std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest) {
   using namespace lapis;
@@ -43,7 +45,8 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   if (!rest.empty() && rest[0].rfind("--", 0) != 0) positional = rest[0], rest.erase(rest.begin());
   const cli::Args args(rest, {"--scale-features", "--export-on-exit", "--full-while-dragging"});
   args.allow_only({"--mesh", "--subdivide", "--roi", "--handles", "--method", "--weights", "--scale-features",
-                   "--iterations", "--full-while-dragging", "--export", "--export-on-exit", "--transfer-target"});
+                   "--iterations", "--full-while-dragging", "--export", "--export-on-exit", "--transfer-target",
+                   "--distortion-range"});
   // --msaa is the viewer's (parse_viewer_flags): multisampling multiplies the fragment work of
   // software rendering, which a 150K-vertex mesh feels; --msaa 0 trades smooth edges for it.
   deform_app::DeformPaths paths;
@@ -87,6 +90,7 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   // Ctrl+S will save.
   if (args.has("--roi") && std::filesystem::exists(paths.roi)) app->open_selection_on_start();
   if (args.has("--transfer-target")) app->open_transfer_target_on_start(args.get("--transfer-target"));
+  if (args.has("--distortion-range")) app->fix_distortion_range(args.get_double("--distortion-range", 1, 1e-12, 1e12));
   return app;
 }
 

@@ -2,6 +2,7 @@
 // checked against `lapis deform` on the files the app wrote, and headless screenshots.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -341,6 +342,42 @@ TEST_CASE("apps: deform app — a replayed drag renders headless, neither blank 
   // The replay moved the handle: the exported mesh is not the rest mesh.
   const geometry::TriMesh rest = geometry::read_mesh(kMesh), moved = geometry::read_mesh(out);
   CHECK(max_difference(rest.V, moved.V) > 1e-3);
+}
+
+// Coloured by distortion on a fixed range, the same replayed drag reads hot where the range is
+// tiny and cold where it is huge; a range that followed each frame's p95 would colour both alike.
+TEST_CASE("apps: deform app — a fixed distortion range colours the same drag hot or cold by the range") {
+  const fs::path dir = scratch_dir(), events = dir / "drag_without_c.json";
+  {  // the recorded drag without its C (colour toggle): --distortion-range opens in distortion colours
+    std::ifstream in(kData / "deform_drag_events.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    auto& list = j["events"];
+    list.erase(
+        std::remove_if(list.begin(), list.end(), [](const nlohmann::json& e) { return e.value("key", 0) == 67; }),
+        list.end());
+    std::ofstream(events) << j.dump();
+  }
+  const std::string common = " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() +
+                             " --handles " + kHandles.string() + " --method implicit --replay " + events.string() +
+                             " --exit-after-replay";
+  // Pixels of the colour map's warm end (orange to red) and of its cold end (blue).
+  auto warm_and_cold = [&](const std::string& range) {
+    const fs::path shot = dir / ("range_" + range + ".png");
+    REQUIRE(run_under_xvfb(kApp + common + " --distortion-range " + range + " --screenshot " + shot.string()) == 0);
+    const viewer::Image im = viewer::read_png(shot);
+    long warm = 0, cold = 0;
+    for (size_t k = 0; k < im.rgba.size(); k += 4) {
+      warm += im.rgba[k] > im.rgba[k + 2] + 80;
+      cold += im.rgba[k + 2] > im.rgba[k] + 80;
+    }
+    return std::pair{warm, cold};
+  };
+  const auto [tiny_warm, tiny_cold] = warm_and_cold("1e-5");
+  const auto [huge_warm, huge_cold] = warm_and_cold("1000");
+  MESSAGE("warm / cold pixels: " << tiny_warm << " / " << tiny_cold << " on [0, 1e-5], " << huge_warm << " / "
+                                 << huge_cold << " on [0, 1000]");
+  CHECK(tiny_warm > huge_warm + 10000);  // every distorted vertex at the top of the map
+  CHECK(huge_cold > tiny_cold + 10000);  // every vertex at the bottom
 }
 
 TEST_CASE("apps: deform app — the salient method shows its features and deforms a replayed drag") {
