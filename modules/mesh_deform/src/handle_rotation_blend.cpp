@@ -14,8 +14,7 @@ std::vector<Eigen::Vector3d> region_rotation_vectors(const HandleTransforms& tra
   return r;
 }
 
-Eigen::Quaterniond blended_rotation(const Eigen::Ref<const Eigen::RowVectorXd>& weights,
-                                    const std::vector<Eigen::Vector3d>& r) {
+Eigen::Quaterniond blended_rotation(const RowWeights& weights, const std::vector<Eigen::Vector3d>& r) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (size_t h = 0; h < r.size(); ++h) sum += weights(static_cast<Eigen::Index>(h)) * r[h];
   const double angle = sum.norm();

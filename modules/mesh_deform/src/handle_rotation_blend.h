@@ -18,8 +18,11 @@ namespace lapis::mesh_deform::detail {
 // rotation factor of its linear part, so a scaled handle turns by its rotation alone).
 std::vector<Eigen::Vector3d> region_rotation_vectors(const HandleTransforms& transforms);
 
+// One row of a per-vertex weight matrix, taken where it lies: a row of a column-major matrix is
+// strided, and a contiguous Ref would copy it to the heap for every vertex of every cold frame.
+using RowWeights = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;
+
 // The rotation by Σ_h weights(h) r_h (point handles and the fixed region count as the identity).
-Eigen::Quaterniond blended_rotation(const Eigen::Ref<const Eigen::RowVectorXd>& weights,
-                                    const std::vector<Eigen::Vector3d>& r);
+Eigen::Quaterniond blended_rotation(const RowWeights& weights, const std::vector<Eigen::Vector3d>& r);
 
 }  // namespace lapis::mesh_deform::detail
