@@ -136,11 +136,8 @@ void EdgeLaplacianDeformer::Impl::build_node_fields(const Layout& layout, const 
 // the fixed region counts as the identity.
 void EdgeLaplacianDeformer::Impl::start_from_handles(const HandleTransforms& transforms, bool scale) {
   const std::vector<Eigen::Vector3d> r = detail::region_rotation_vectors(transforms);
-  Eigen::VectorXd log_scale = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(r.size()));
-  if (scale)
-    for (size_t h = 0; h < r.size(); ++h)
-      log_scale[static_cast<Eigen::Index>(h)] =
-          std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+  const Eigen::VectorXd log_scale =
+      scale ? detail::region_log_scales(transforms) : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(r.size()));
   detail::for_vertices(rows.size(), [&](std::ptrdiff_t k) {
     detail::CellState& st = state[static_cast<size_t>(k)];
     st.q1 = detail::blended_rotation(node_fields.row(k), r);

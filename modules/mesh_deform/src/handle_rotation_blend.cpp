@@ -1,5 +1,7 @@
 #include "handle_rotation_blend.h"
 
+#include <cmath>
+
 #include "lapis/geometry/polar.h"
 
 namespace lapis::mesh_deform::detail {
@@ -12,6 +14,14 @@ std::vector<Eigen::Vector3d> region_rotation_vectors(const HandleTransforms& tra
     r.emplace_back(aa.angle() * aa.axis());
   }
   return r;
+}
+
+Eigen::VectorXd region_log_scales(const HandleTransforms& transforms) {
+  Eigen::VectorXd s(static_cast<Eigen::Index>(transforms.regions.size()));
+  for (size_t h = 0; h < transforms.regions.size(); ++h)
+    s[static_cast<Eigen::Index>(h)] =
+        std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+  return s;
 }
 
 Eigen::Quaterniond blended_rotation(const RowWeights& weights, const std::vector<Eigen::Vector3d>& r) {

@@ -18,6 +18,10 @@ namespace lapis::mesh_deform::detail {
 // rotation factor of its linear part, so a scaled handle turns by its rotation alone).
 std::vector<Eigen::Vector3d> region_rotation_vectors(const HandleTransforms& transforms);
 
+// The log of each region handle's uniform scale, ln ∛|det L| of its linear part L: blended
+// like the rotation vectors where a method models scale.
+Eigen::VectorXd region_log_scales(const HandleTransforms& transforms);
+
 // One row of a per-vertex weight matrix, taken where it lies: a row of a column-major matrix is
 // strided, and a contiguous Ref would copy it to the heap for every vertex of every cold frame.
 using RowWeights = Eigen::Ref<const Eigen::RowVectorXd, 0, Eigen::InnerStride<>>;

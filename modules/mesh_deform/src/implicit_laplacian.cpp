@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "handle_rotation_blend.h"
 #include "implicit_first_system.h"
 #include "implicit_rest.h"
 #include "lapis/geometry/polar.h"
@@ -411,16 +412,14 @@ void ImplicitLaplacianDeformer::build_guide(const std::vector<int>& handles) {
 // contributes the identity with weight 1 − Σ φ_k).
 solver::DenseMatrix ImplicitLaplacianDeformer::Impl::guide_rhs(const HandleTransforms& transforms) const {
   solver::DenseMatrix g = -guide_rest;
-  std::vector<double> log_scale(accumulated.size());
-  for (size_t h = 0; h < accumulated.size(); ++h)
-    log_scale[h] = std::log(std::cbrt(std::abs(transforms.regions[h].topLeftCorner<3, 3>().determinant())));
+  const Eigen::VectorXd log_scale = detail::region_log_scales(transforms);
   for (size_t t = 0; t < guide_rows.size(); ++t) {
     Eigen::Vector3d r = Eigen::Vector3d::Zero();
     double ls = 0;
     for (size_t h = 0; h < accumulated.size(); ++h) {
       const double phi = guide_weights(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(h));
       r += phi * accumulated[h];
-      ls += phi * log_scale[h];
+      ls += phi * log_scale[static_cast<Eigen::Index>(h)];
     }
     g.middleRows(static_cast<Eigen::Index>(3 * t), 3) += (std::exp(ls) * detail::rotation_of(r)).transpose();
   }
