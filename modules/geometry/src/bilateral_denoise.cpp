@@ -19,11 +19,12 @@ double mean_edge_length(const TriMesh& mesh, const Connectivity& conn) {
 }
 
 // The vertices within `radius` of v reached along edges through vertices within it, v left out.
+// stamp (#V, marks the vertices seen for v) and frontier are the caller's, reused vertex to vertex.
 void neighbourhood(const Connectivity& conn, const Vertices& V, int v, double radius, std::vector<int>& out,
-                   std::vector<int>& stamp) {
+                   std::vector<int>& stamp, std::vector<int>& frontier) {
   out.clear();
   stamp[v] = v;
-  std::vector<int> frontier{v};
+  frontier.assign(1, v);
   const double r2 = radius * radius;
   while (!frontier.empty()) {
     const int u = frontier.back();
@@ -41,12 +42,12 @@ void neighbourhood(const Connectivity& conn, const Vertices& V, int v, double ra
 void denoise_pass(const Connectivity& conn, const Vertices& V, const Vertices& N, double sigma_c, Vertices& out) {
   const auto n = static_cast<std::ptrdiff_t>(V.rows());
   core::parallel_for(0, n, 4096, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
-    std::vector<int> near, stamp(static_cast<size_t>(n), -1);
+    std::vector<int> near, frontier, stamp(static_cast<size_t>(n), -1);
     std::vector<double> height;
     for (std::ptrdiff_t i = lo; i < hi; ++i) {
       const int v = static_cast<int>(i);
       out.row(v) = V.row(v);
-      neighbourhood(conn, V, v, 2 * sigma_c, near, stamp);
+      neighbourhood(conn, V, v, 2 * sigma_c, near, stamp, frontier);
       if (near.empty() || N.row(v).squaredNorm() == 0) continue;
       height.clear();
       double mean = 0;
