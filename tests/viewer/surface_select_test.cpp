@@ -89,6 +89,29 @@ TEST_CASE("viewer: the brush paints a disc under the cursor and stays on the she
   CHECK(brush_vertices(both, conn, bvh, cam, {5, 5}).empty());
 }
 
+TEST_CASE("viewer: the x-ray brush paints every vertex under its circle, the sphere's back too") {
+  const geometry::TriMesh sphere = geometry::make_icosphere(3);
+  const geometry::Bvh bvh(sphere);
+  const geometry::Connectivity conn(sphere);
+  const auto cam = front_camera();
+  const Eigen::Vector2d c(400, 300);
+  const std::vector<int> surface = brush_vertices(sphere, conn, bvh, cam, c, {.radius_px = 50});
+  const std::vector<int> xray = brush_vertices(sphere, conn, bvh, cam, c, {.radius_px = 50, .through = true});
+  REQUIRE(!surface.empty());
+  for (int v : surface) CHECK(sphere.V(v, 2) > 0);  // the plain brush: the front only
+  // X-ray: exactly the vertices whose projection is within the radius, front and back.
+  int back = 0;
+  for (int v = 0; v < sphere.num_vertices(); ++v) {
+    const Eigen::Vector3d s = geometry::project(cam, sphere.V.row(v).transpose());
+    CHECK(contains(xray, v) == ((s.head<2>() - c).norm() <= 50));
+    back += contains(xray, v) && sphere.V(v, 2) < 0;
+  }
+  CHECK(back > static_cast<int>(surface.size()) / 2);
+  CHECK(std::includes(xray.begin(), xray.end(), surface.begin(), surface.end()));
+  // Beside the sphere it paints nothing, as the plain brush does.
+  CHECK(brush_vertices(sphere, conn, bvh, cam, {5, 5}, {.radius_px = 50, .through = true}).empty());
+}
+
 TEST_CASE("viewer: grow then shrink by rings restores a set's interior; shrink of everything keeps it") {
   const geometry::TriMesh grid = geometry::make_plane_grid(20, 20);
   const geometry::Connectivity conn(grid);

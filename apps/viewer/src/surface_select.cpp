@@ -26,6 +26,14 @@ void check_range(const geometry::Connectivity& conn, const std::vector<int>& set
 std::vector<int> brush_vertices(const geometry::TriMesh& mesh, const geometry::Connectivity& conn,
                                 const geometry::Bvh& bvh, const geometry::CameraMatrices& camera,
                                 const Eigen::Vector2d& pixel, const BrushOptions& options) {
+  if (options.through) {
+    std::vector<int> out;
+    for (int v = 0; v < mesh.num_vertices(); ++v) {
+      const Eigen::Vector3d s = geometry::project(camera, mesh.V.row(v).transpose());
+      if (s.z() > 0 && s.z() < 1 && (s.head<2>() - pixel).norm() <= options.radius_px) out.push_back(v);
+    }
+    return out;
+  }
   const geometry::Ray ray = geometry::unproject_ray(camera, pixel.x(), pixel.y());
   const auto hit = bvh.intersect(ray.origin, ray.direction);
   if (!hit) return {};

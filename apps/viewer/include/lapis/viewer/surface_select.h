@@ -1,7 +1,8 @@
 // Painting vertex sets on a surface with the mouse: a brush (the vertices within a screen
 // radius of the surface point under the cursor, grown through the mesh so it does not bleed
-// through thin parts), a lasso (the visible vertices inside a screen polygon, occlusion
-// tested through the BVH), and ring-wise grow / shrink of a set. The apps keep the sets;
+// through thin parts; or, x-ray, every vertex under the circle), a lasso (the visible vertices
+// inside a screen polygon, occlusion tested through the BVH; or, x-ray, all of them), and
+// ring-wise grow / shrink of a set. The apps keep the sets;
 // these functions only compute them, so tests drive them with synthetic cameras.
 #pragma once
 
@@ -18,11 +19,16 @@ namespace lapis::viewer {
 
 struct BrushOptions {
   double radius_px = 20;  // brush radius on screen, turned into world units at the hit depth
+  // X-ray: every vertex in front of the camera whose projection lies within radius_px of the
+  // pixel, hidden or not (Blender's circle select with x-ray on), so a stroke over a hand
+  // paints its back too. The surface need not be under the pixel.
+  bool through = false;
 };
 
 // Vertices (ascending) within the brush's world radius of the surface point under `pixel`,
 // reached from the hit face through mesh edges without leaving the ball. Empty when the
-// pixel misses the surface. `bvh` and `conn` must be built on `mesh` (its current positions).
+// pixel misses the surface. With `through`, the vertices under the screen circle instead.
+// `bvh` and `conn` must be built on `mesh` (its current positions).
 std::vector<int> brush_vertices(const geometry::TriMesh& mesh, const geometry::Connectivity& conn,
                                 const geometry::Bvh& bvh, const geometry::CameraMatrices& camera,
                                 const Eigen::Vector2d& pixel, const BrushOptions& options = {});
