@@ -23,6 +23,10 @@ const char* tool_name(Tool t) {
       return "brush";
     case Tool::Lasso:
       return "lasso";
+    case Tool::Connected:
+      return "connected";
+    case Tool::Geodesic:
+      return "geodesic";
     case Tool::Pair:
       return "pair (transfer)";
   }
@@ -100,6 +104,7 @@ void DeformApp::labels_changed() {
     selection_.reset();
     selection_error_ = e.what();
   }
+  update_roi_warning();
   transfer_source_changed();
 }
 

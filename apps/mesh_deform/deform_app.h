@@ -29,7 +29,9 @@ namespace lapis::deform_app {
 using namespace lapis::mesh_deform;
 namespace fs = std::filesystem;
 
-enum class Tool { Move, Brush, Lasso, Pair };  // Pair: place the transfer target's handles
+// Connected: a click takes the clicked vertex's connected region; Geodesic: the vertices
+// within a geodesic radius of it; Pair: place the transfer target's handles.
+enum class Tool { Move, Brush, Lasso, Connected, Geodesic, Pair };
 const char* tool_name(Tool t);
 
 enum class ColorMode { Selection, Distortion, Saliency, IsolineField, Rigidity };
@@ -125,7 +127,8 @@ class DeformApp final : public viewer::ViewerApp {
   void move(viewer::Viewer& v, const Eigen::Vector2d& p);
   void release(viewer::Viewer& v);
   void paint_at(viewer::Viewer& v, const Eigen::Vector2d& p);
-  int paint_value() const;  // the label the current target paints
+  int paint_value() const;   // the label the current target paints (kNone while erasing)
+  int target_value() const;  // the label the current target stands for: kRoi, kFixed, kNone or the active handle
   void ensure_pick_structures();
 
   // Edits (deform_app.cpp).
@@ -138,6 +141,18 @@ class DeformApp final : public viewer::ViewerApp {
   void reset_pose(viewer::Viewer& v);
   void grow_or_shrink(viewer::Viewer& v, int rings);
   void clear_target(viewer::Viewer& v);
+  // Paints (or, erasing, clears) `vertices` with the current target as one undoable edit; the
+  // feature target paints the active feature.
+  void paint_set(viewer::Viewer& v, const std::vector<int>& vertices, const std::string& label);
+  void commit_features(std::vector<int> feature_of);
+
+  // Click selections and symmetry (deform_select.cpp).
+  bool select_at(viewer::Viewer& v, const Eigen::Vector2d& p, bool erase);  // Tool::Connected, Tool::Geodesic
+  void mirror_target(viewer::Viewer& v);  // adds the mirror image of what acts as the target
+  int mirror_axis();                      // the panel's plane, or the most symmetric one (auto)
+  double diagonal() const;                // of the rest mesh's bounding box
+  void update_roi_warning();              // handles the ROI's border passes close to
+  void draw_roi_warning(viewer::Viewer& v);
   void new_handle();
   Eigen::Matrix4d& active_transform();
   Eigen::Vector3d handle_rest_centroid(int label) const;
@@ -205,6 +220,16 @@ class DeformApp final : public viewer::ViewerApp {
   int target_ = VertexLabels::kRoi;  // kRoi, kFixed, kNone (erase) or 0 = the active handle
   bool erase_ = false;               // Shift held at press: this stroke erases
   float brush_px_ = 24;
+  bool xray_ = false;                    // brush and lasso select through the surface (X)
+  bool connected_within_label_ = false;  // Tool::Connected stops where the clicked vertex's label ends
+  float geodesic_radius_ = 0.04f;        // Tool::Geodesic, of the bounding box's diagonal
+  int mirror_choice_ = 0;                // 0 auto, 1 x, 2 y, 3 z: the plane through the bounding box's centre
+  int auto_mirror_axis_ = -1;            // the auto plane, once measured
+  float mirror_tolerance_ = 0.01f;       // a mirrored vertex's match, of the diagonal
+  // The ROI warning: handle vertices within kWarnRings of the fixed region, and what it says.
+  static constexpr int kWarnRings = 2;
+  std::vector<int> warned_vertices_;
+  std::string roi_warning_;
   FeatureLabels features_;        // the salient method's features as painted
   bool features_edited_ = false;  // the user changed them: they replace the detection
   std::uint64_t features_revision_ = 0;

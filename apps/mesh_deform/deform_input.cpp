@@ -1,5 +1,6 @@
 // The deform app's mouse and keys: the gizmo takes a press that hits it (in any tool), the
-// brush and the lasso paint the current target, keys switch tools and targets.
+// brush and the lasso paint the current target (through the surface with x-ray on), a click
+// of the connected or geodesic tool selects a region, keys switch tools and targets.
 #include <GLFW/glfw3.h>
 
 #include "deform_app.h"
@@ -51,6 +52,9 @@ bool DeformApp::handle_command_key(viewer::Viewer& v, int key, bool shift) {
     case GLFW_KEY_E:
       export_result(v);
       return true;
+    case GLFW_KEY_M:
+      mirror_target(v);
+      return true;
     default:
       return false;  // Ctrl+P, Ctrl+Q: the viewer's
   }
@@ -67,6 +71,16 @@ bool DeformApp::handle_tool_key(int key) {
       return true;
     case GLFW_KEY_L:
       tool_ = Tool::Lasso;
+      return true;
+    case GLFW_KEY_K:
+      tool_ = Tool::Connected;
+      return true;
+    case GLFW_KEY_G:
+      tool_ = Tool::Geodesic;
+      return true;
+    case GLFW_KEY_X:
+      xray_ = !xray_;
+      surface_dirty_ = markers_dirty_ = true;
       return true;
     case GLFW_KEY_P:
       if (!pairing_) return false;
@@ -87,11 +101,17 @@ bool DeformApp::handle_tool_key(int key) {
     case GLFW_KEY_TAB:
       select_next_painted_handle();
       return true;
-    case GLFW_KEY_LEFT_BRACKET:
-      brush_px_ = std::max(3.0f, brush_px_ / 1.25f);
+    case GLFW_KEY_LEFT_BRACKET:  // the size of what the tool selects
+      if (tool_ == Tool::Geodesic)
+        geodesic_radius_ = std::max(0.002f, geodesic_radius_ / 1.25f);
+      else
+        brush_px_ = std::max(3.0f, brush_px_ / 1.25f);
       return true;
     case GLFW_KEY_RIGHT_BRACKET:
-      brush_px_ = std::min(300.0f, brush_px_ * 1.25f);
+      if (tool_ == Tool::Geodesic)
+        geodesic_radius_ = std::min(1.0f, geodesic_radius_ * 1.25f);
+      else
+        brush_px_ = std::min(300.0f, brush_px_ * 1.25f);
       return true;
     case GLFW_KEY_C:
       color_mode_ = color_mode_ == ColorMode::Selection ? ColorMode::Distortion : ColorMode::Selection;
@@ -136,10 +156,9 @@ void DeformApp::select_next_painted_handle() {
     }
 }
 
-int DeformApp::paint_value() const {
-  if (erase_) return VertexLabels::kNone;
-  return target_ >= 0 ? state_.active_handle : target_;
-}
+int DeformApp::paint_value() const { return erase_ ? VertexLabels::kNone : target_value(); }
+
+int DeformApp::target_value() const { return target_ >= 0 ? state_.active_handle : target_; }
 
 void DeformApp::ensure_pick_structures() {
   // Picking follows what is on screen: the BVH is rebuilt on the displayed positions the
@@ -159,6 +178,7 @@ bool DeformApp::press(viewer::Viewer& v, const Eigen::Vector2d& p, int mods) {
   }
   if (tool_ == Tool::Move) return false;  // the camera's
   if (tool_ == Tool::Pair) return pair_at(v, p);
+  if (tool_ == Tool::Connected || tool_ == Tool::Geodesic) return select_at(v, p, mods & GLFW_MOD_SHIFT);
   erase_ = mods & GLFW_MOD_SHIFT;
   stroke_ = std::make_shared<VertexLabels>(*state_.labels);
   if (target_ == kFeatureTarget) feature_stroke_ = features_.feature_of;
@@ -193,7 +213,8 @@ void DeformApp::move(viewer::Viewer& v, const Eigen::Vector2d& p) {
 
 void DeformApp::paint_at(viewer::Viewer& v, const Eigen::Vector2d& p) {
   ensure_pick_structures();
-  const std::vector<int> vs = viewer::brush_vertices(shown_, *conn_, *pick_bvh_, v.camera_matrices(), p, {brush_px_});
+  const std::vector<int> vs =
+      viewer::brush_vertices(shown_, *conn_, *pick_bvh_, v.camera_matrices(), p, {brush_px_, xray_});
   if (feature_stroke_)
     for (int i : vs) (*feature_stroke_)[static_cast<size_t>(i)] = erase_ ? FeatureLabels::kNone : active_feature_;
   else
@@ -211,7 +232,7 @@ void DeformApp::release(viewer::Viewer& v) {
   std::vector<int> lassoed;
   if (tool_ == Tool::Lasso && lasso_.size() >= 3) {
     ensure_pick_structures();
-    lassoed = viewer::lasso_vertices(shown_, *pick_bvh_, v.camera_matrices(), lasso_);
+    lassoed = viewer::lasso_vertices(shown_, *pick_bvh_, v.camera_matrices(), lasso_, {.visible_only = !xray_});
     if (!feature_stroke_) stroke_->paint(lassoed, paint_value());
   }
   lasso_.clear();
@@ -221,13 +242,7 @@ void DeformApp::release(viewer::Viewer& v) {
     std::vector<int> painted = std::move(*feature_stroke_);
     feature_stroke_.reset();
     for (int i : lassoed) painted[static_cast<size_t>(i)] = erase_ ? FeatureLabels::kNone : active_feature_;
-    if (painted == features_.feature_of) return;
-    features_.feature_of = std::move(painted);
-    features_.count = std::max(features_.count, active_feature_ + 1);
-    features_edited_ = true;
-    ++features_revision_;
-    surface_dirty_ = true;
-    return;
+    return commit_features(std::move(painted));
   }
   auto labels = std::move(stroke_);
   stroke_.reset();
@@ -236,8 +251,31 @@ void DeformApp::release(viewer::Viewer& v) {
   set_labels(std::move(labels), std::string(tool_name(tool_)) + (value == VertexLabels::kNone ? " erase" : " paint"));
 }
 
+void DeformApp::commit_features(std::vector<int> feature_of) {
+  if (feature_of == features_.feature_of) return;
+  features_.feature_of = std::move(feature_of);
+  features_.count = std::max(features_.count, active_feature_ + 1);
+  features_edited_ = true;
+  ++features_revision_;
+  surface_dirty_ = true;
+}
+
+void DeformApp::paint_set(viewer::Viewer& v, const std::vector<int>& vertices, const std::string& label) {
+  if (vertices.empty()) return v.flash(label + ": nothing selected");
+  if (target_ == kFeatureTarget) {
+    std::vector<int> painted = features_.feature_of;
+    painted.resize(static_cast<size_t>(rest_.num_vertices()), FeatureLabels::kNone);
+    for (int i : vertices) painted[static_cast<size_t>(i)] = erase_ ? FeatureLabels::kNone : active_feature_;
+    return commit_features(std::move(painted));
+  }
+  auto labels = std::make_shared<VertexLabels>(*state_.labels);
+  labels->paint(vertices, paint_value());
+  if (labels->label == state_.labels->label) return v.flash(label + ": nothing new");
+  set_labels(std::move(labels), label + (erase_ ? " erase" : " paint"));
+}
+
 void DeformApp::grow_or_shrink(viewer::Viewer& v, int rings) {
-  const int value = target_ >= 0 ? state_.active_handle : target_;
+  const int value = target_value();
   if (value == VertexLabels::kNone) return v.flash("grow/shrink: pick ROI, fixed or handle as the target");
   if (state_.labels->acting_as(value).empty()) return v.flash("grow/shrink: nothing acts as the current target yet");
   auto labels = std::make_shared<VertexLabels>(*state_.labels);
@@ -248,7 +286,7 @@ void DeformApp::grow_or_shrink(viewer::Viewer& v, int rings) {
 }
 
 void DeformApp::clear_target(viewer::Viewer& v) {
-  const int value = target_ >= 0 ? state_.active_handle : target_;
+  const int value = target_value();
   auto labels = std::make_shared<VertexLabels>(*state_.labels);
   if (value == VertexLabels::kNone) {
     labels = std::make_shared<VertexLabels>(rest_.num_vertices());  // erase target: clear everything

@@ -62,6 +62,7 @@ void DeformApp::on_gui(viewer::Viewer& v) {
   draw_transfer_panel(v);
   draw_legend(v);
   draw_overlay(v);
+  draw_roi_warning(v);
   draw_cursor(v);
 }
 
@@ -69,12 +70,19 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("Selection");
-  for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso, Tool::Pair}) {
+  for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso, Tool::Connected, Tool::Geodesic, Tool::Pair}) {
     if (t == Tool::Pair && !pairing_) continue;
-    if (t != Tool::Move) ImGui::SameLine();
+    if (t != Tool::Move && t != Tool::Connected) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(t), tool_ == t)) tool_ = t;
   }
-  ImGui::TextDisabled("M move  B brush  L lasso  Shift: erase");
+  ImGui::TextDisabled("M move  B brush  L lasso  K connected  G geodesic  Shift: erase");
+  if (ImGui::Checkbox("x-ray (X): brush and lasso select through", &xray_)) surface_dirty_ = markers_dirty_ = true;
+  if (tool_ == Tool::Connected) ImGui::Checkbox("within the clicked vertex's label", &connected_within_label_);
+  if (tool_ == Tool::Geodesic) {
+    ImGui::SliderFloat("radius ([ ])", &geodesic_radius_, 0.002f, 1.0f, "%.3f of the diagonal",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::TextDisabled("= %.4g along the surface", geodesic_radius_ * diagonal());
+  }
   ImGui::Text("paint:");
   ImGui::SameLine();
   if (ImGui::RadioButton("ROI", target_ == VertexLabels::kRoi)) target_ = VertexLabels::kRoi;
@@ -107,6 +115,15 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   if (ImGui::Button("shrink (-)")) grow_or_shrink(v, -1);
   ImGui::SameLine();
   if (ImGui::Button("clear (Del)")) clear_target(v);
+  // Symmetry: the target's mirror image across a plane through the bounding box's centre.
+  if (ImGui::Button("mirror (Ctrl+M)")) mirror_target(v);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::Combo("##plane", &mirror_choice_, "auto\0x\0y\0z\0");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(90);
+  if (ImGui::SliderFloat("tol", &mirror_tolerance_, 0.001f, 0.05f, "%.3f", ImGuiSliderFlags_Logarithmic))
+    auto_mirror_axis_ = -1;  // the auto plane is measured with the tolerance
   ImGui::BeginDisabled(!history_.can_undo());
   if (ImGui::Button("undo")) undo(v);
   ImGui::EndDisabled();
@@ -429,7 +446,8 @@ void DeformApp::draw_legend(viewer::Viewer& v) {
 
 void DeformApp::draw_overlay(viewer::Viewer& v) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "%d vertices, tool: %s", rest_.num_vertices(), tool_name(tool_));
+  std::snprintf(buf, sizeof buf, "%d vertices, tool: %s%s", rest_.num_vertices(), tool_name(tool_),
+                xray_ ? ", x-ray: brush and lasso select through" : "");
   v.overlay(buf);
   if (last_) {
     const LiveFrame& f = last_->frame;

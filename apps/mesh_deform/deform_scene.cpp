@@ -1,6 +1,7 @@
 // What the deform app draws: the surface coloured by selection (ROI, fixed, handles), by a
 // distortion measure or by saliency, the salient features over it, the gizmo on the active handle, the degenerate
-// vertices the implicit method found, and the lasso being drawn.
+// vertices the implicit method found, the lasso being drawn, the painted vertices through the
+// surface in x-ray, and the handle vertices the ROI's border comes close to.
 #include "deform_app.h"
 #include "lapis/viewer/colormap.h"
 
@@ -58,6 +59,28 @@ void DeformApp::update_surface(viewer::Viewer& v) {
     for (int i = 0; i < n; ++i)
       if (const int f = painted[static_cast<size_t>(i)]; f >= 0)
         item.colors.row(i) = 0.5f * (item.colors.row(i) + feature_color(f).transpose());
+  // X-ray: the surface translucent and the painted vertices drawn over it, hidden ones too.
+  item.alpha = xray_ ? 0.45f : 1.0f;
+  auto& painted_points = v.scene().points["x-ray painted"];
+  painted_points.visible = xray_;
+  if (xray_) {
+    const VertexLabels& labels = stroke_ ? *stroke_ : *state_.labels;
+    std::vector<int> shown;
+    for (int i = 0; i < n; ++i)
+      if (labels.label[static_cast<size_t>(i)] != VertexLabels::kNone) shown.push_back(i);
+    painted_points.points.resize(static_cast<Eigen::Index>(shown.size()), 3);
+    painted_points.colors.resize(static_cast<Eigen::Index>(shown.size()), 3);
+    for (size_t k = 0; k < shown.size(); ++k) {
+      const int i = shown[k], l = labels.label[static_cast<size_t>(i)];
+      painted_points.points.row(static_cast<Eigen::Index>(k)) = shown_.V.row(i).cast<float>();
+      painted_points.colors.row(static_cast<Eigen::Index>(k)) = (l >= 0                      ? handle_color(l)
+                                                                 : l == VertexLabels::kFixed ? kFixedColor
+                                                                                             : kRoiColor)
+                                                                    .transpose();
+    }
+    painted_points.size = 3.0f;
+  }
+  ++painted_points.version;
   ++item.version;
   surface_dirty_ = false;
 }
@@ -88,6 +111,15 @@ void DeformApp::update_markers(viewer::Viewer& v) {
   points.size = 6.0f;
   points.on_top = false;
   ++points.version;
+
+  // The handle vertices the ROI's border passes close to (update_roi_warning).
+  auto& warned = v.scene().points["roi warning"];
+  warned.points.resize(static_cast<Eigen::Index>(warned_vertices_.size()), 3);
+  for (size_t k = 0; k < warned_vertices_.size(); ++k)
+    warned.points.row(static_cast<Eigen::Index>(k)) = shown_.V.row(warned_vertices_[k]).cast<float>();
+  warned.base_color = {1.0f, 0.15f, 0.1f};
+  warned.size = 7.0f;
+  ++warned.version;
 
   // The isolines of the method's first set, where the deformed surface carries them.
   auto& iso = v.scene().lines["isolines"];

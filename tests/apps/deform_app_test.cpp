@@ -9,9 +9,12 @@
 #include "app_runner.h"
 #include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/geodesic_disc.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/laplacian.h"
+#include "lapis/geometry/mirror_vertices.h"
 #include "lapis/geometry/procedural.h"
+#include "lapis/geometry/region_border.h"
 #include "lapis/mesh_deform/metrics.h"
 #include "lapis/mesh_deform/selection_io.h"
 #include "lapis/viewer/gizmo.h"
@@ -748,4 +751,201 @@ TEST_CASE("apps: deform app — ARAP iterates to convergence once posed, and tog
   // The frames it recorded replay to the same mesh.
   const geometry::TriMesh replayed = cli_arap(10, dir / "arap.handles.json");
   CHECK(max_difference(replayed.V, second.V) < 1e-9);
+}
+
+namespace {
+
+// Selection tools, replayed headless on the camel from its first view: the selection files
+// Ctrl+S writes (a fresh pair per run) and what the app logged.
+struct ToolRun {
+  std::vector<int> roi, handle;
+  std::string log;
+};
+
+ToolRun run_tools(const std::string& name, EventScript script, const fs::path& mesh = kMesh) {
+  const fs::path dir = scratch_dir() / name;
+  fs::create_directories(dir);
+  script.key(EventScript::kKeyS, EventScript::kCtrl);
+  script.frame += 5;
+  script.log.width = kWidth, script.log.height = kHeight;
+  script.log.save(dir / "events.json");
+  const fs::path roi = dir / "sel.roi.txt", handles = dir / "sel.handles.json", log = dir / "log.txt";
+  const int status = run_under_xvfb(kApp + " --headless" + kSize + " --mesh " + mesh.string() + " --roi " +
+                                    roi.string() + " --handles " + handles.string() + " --replay " +
+                                    (dir / "events.json").string() + " --exit-after-replay 2> " + log.string());
+  REQUIRE(status == 0);
+  std::ifstream in(log);
+  ToolRun r;
+  r.log.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  REQUIRE_MESSAGE(fs::exists(handles), r.log);
+  const mesh_deform::Drag saved = mesh_deform::read_handles(handles);
+  r.roi = mesh_deform::read_roi(roi);
+  if (!saved.selection.region_handles.empty()) r.handle = saved.selection.region_handles[0];
+  return r;
+}
+
+constexpr int kKeyX = 88, kKeyK = 75, kKeyG = 71, kKeyM = 77, kKey1 = 49, kKeyLeftBracket = 91, kKeyRightBracket = 93;
+
+// A horizontal stroke through the middle of the camel's body as the first view shows it.
+std::vector<Eigen::Vector2d> body_stroke(const geometry::TriMesh& mesh, const geometry::CameraMatrices& cam,
+                                         double dy = 0) {
+  const Eigen::Vector2d mid = pixel(cam, mesh.V.colwise().mean().transpose()) + Eigen::Vector2d(0, dy);
+  std::vector<Eigen::Vector2d> stroke;
+  for (int k = -6; k <= 6; ++k) stroke.push_back(rounded(mid + Eigen::Vector2d(10.0 * k, 0)));
+  return stroke;
+}
+
+// The vertices the first view shows (facing the camera, not hidden).
+std::vector<char> visible_in(const geometry::TriMesh& mesh, const geometry::CameraMatrices& cam) {
+  const geometry::Bvh bvh(mesh);
+  const std::vector<Eigen::Vector2d> screen{{0, 0}, {kWidth, 0}, {kWidth, kHeight}, {0, kHeight}};
+  std::vector<char> seen(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : viewer::lasso_vertices(mesh, bvh, cam, screen)) seen[static_cast<size_t>(v)] = 1;
+  return seen;
+}
+
+}  // namespace
+
+TEST_CASE("apps: deform app — the x-ray brush paints the back the plain brush leaves") {
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  const std::vector<char> visible = visible_in(mesh, cam);
+  auto hidden = [&](const std::vector<int>& set) {
+    return std::count_if(set.begin(), set.end(), [&](int v) { return !visible[static_cast<size_t>(v)]; });
+  };
+  EventScript plain, xray;
+  for (EventScript* s : {&plain, &xray}) {
+    if (s == &xray) s->key(kKeyX);
+    s->key(EventScript::kKeyB);
+    s->key(EventScript::kKey3);
+    s->drag(body_stroke(mesh, cam));
+  }
+  const ToolRun a = run_tools("plain", plain), b = run_tools("xray", xray);
+  MESSAGE("handle: plain brush " << a.handle.size() << " vertices (" << hidden(a.handle) << " hidden), x-ray "
+                                 << b.handle.size() << " (" << hidden(b.handle) << " hidden)");
+  REQUIRE(a.handle.size() > 20);
+  CHECK(hidden(a.handle) <= static_cast<long>(a.handle.size()) / 20);  // the sheet under the cursor
+  CHECK(std::includes(b.handle.begin(), b.handle.end(), a.handle.begin(), a.handle.end()));
+  CHECK(hidden(b.handle) > static_cast<long>(a.handle.size()) / 2);  // and the far side
+}
+
+TEST_CASE("apps: deform app — Ctrl+M adds the mirror image of the target; again, nothing changes") {
+  const fs::path dir = scratch_dir();
+  const geometry::TriMesh sphere = geometry::make_icosphere(4);  // symmetric about x = 0 (auto: x)
+  const fs::path path = dir / "sphere.obj";
+  geometry::write_mesh(path, sphere);
+  const geometry::CameraMatrices cam = initial_camera(sphere);
+  const Eigen::Vector2d centre = pixel(cam, Eigen::Vector3d(0, 0, 0));
+  const Eigen::Vector2d right = pixel(cam, Eigen::Vector3d(1, 0, 0));
+  const double r = (right - centre).norm();
+  const int sign = right.x() > centre.x() ? -1 : 1;  // the stroke on the side of x < 0
+  std::vector<Eigen::Vector2d> stroke;
+  for (int k = 0; k <= 4; ++k) stroke.push_back(rounded(centre + Eigen::Vector2d(sign * 0.5 * r, (k - 2) * 0.1 * r)));
+  EventScript once, twice;
+  for (EventScript* s : {&once, &twice}) {
+    s->key(EventScript::kKeyB);
+    s->key(EventScript::kKey3);
+    s->drag(stroke);
+    s->key(kKeyM, EventScript::kCtrl);
+    if (s == &twice) s->key(kKeyM, EventScript::kCtrl);
+  }
+  EventScript painted;
+  painted.key(EventScript::kKeyB);
+  painted.key(EventScript::kKey3);
+  painted.drag(stroke);
+  const ToolRun p = run_tools("stroke", painted, path), a = run_tools("mirror", once, path),
+                b = run_tools("mirror_twice", twice, path);
+  REQUIRE(p.handle.size() > 10);
+  for (int v : p.handle) CHECK(sphere.V(v, 0) < 0);
+  // The stroke and its image: the image of each stroke vertex (x -> -x) is in the handle.
+  CHECK(a.handle.size() == 2 * p.handle.size());
+  const geometry::MirroredVertices image =
+      geometry::mirror_vertices(sphere.V, p.handle, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 1e-6);
+  CHECK(image.unmatched.empty());
+  std::vector<int> both = p.handle;
+  both.insert(both.end(), image.vertices.begin(), image.vertices.end());
+  std::sort(both.begin(), both.end());
+  CHECK(a.handle == both);
+  CHECK(a.log.find("mirror across x (auto): " + std::to_string(p.handle.size()) + " of " +
+                   std::to_string(p.handle.size()) + " vertices matched, 0 without") != std::string::npos);
+  CHECK(b.handle == a.handle);  // a symmetric selection mirrors onto itself
+}
+
+TEST_CASE("apps: deform app — a connected click takes exactly the clicked component; a geodesic click a disc") {
+  const fs::path dir = scratch_dir();
+  // A sphere and a torus beside it, one mesh of two components.
+  const geometry::TriMesh sphere = geometry::make_icosphere(3), torus = geometry::make_torus(32, 16);
+  geometry::TriMesh both;
+  both.V.resize(sphere.V.rows() + torus.V.rows(), 3);
+  both.V << sphere.V, torus.V.rowwise() + Eigen::RowVector3d(3.5, 0, 0);
+  both.F.resize(sphere.F.rows() + torus.F.rows(), 3);
+  both.F << sphere.F, torus.F.array() + static_cast<int>(sphere.V.rows());
+  const fs::path two = dir / "two_parts.obj";
+  geometry::write_mesh(two, both);
+  const geometry::CameraMatrices cam2 = initial_camera(both);
+  EventScript connected;
+  connected.key(kKeyK);
+  connected.key(EventScript::kKey3);
+  // The torus vertex nearest the eye: in front, so the click lands on the torus.
+  const Eigen::Vector3d eye = geometry::eye_position(cam2);
+  int nearest = static_cast<int>(sphere.V.rows());
+  for (int v = nearest; v < both.num_vertices(); ++v)
+    if ((both.V.row(v).transpose() - eye).norm() < (both.V.row(nearest).transpose() - eye).norm()) nearest = v;
+  const Eigen::Vector2d on_torus = rounded(pixel(cam2, both.V.row(nearest).transpose()));
+  const geometry::Bvh bvh2(both);
+  const auto torus_hit = viewer::pick(bvh2, cam2, on_torus.x(), on_torus.y());
+  REQUIRE(torus_hit);
+  REQUIRE(both.F(torus_hit->face, 0) >= sphere.V.rows());
+  connected.drag({on_torus});
+  const ToolRun r = run_tools("connected", connected, two);
+  std::vector<int> torus_vertices;
+  for (int v = static_cast<int>(sphere.V.rows()); v < both.num_vertices(); ++v) torus_vertices.push_back(v);
+  CHECK(r.handle == torus_vertices);
+
+  // Geodesic: a click on the camel's flank takes the vertices within 0.04 of the diagonal of the
+  // clicked vertex along the surface, the same as geometry::geodesic_disc.
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  const Eigen::Vector2d click = body_stroke(mesh, cam)[6];
+  const geometry::Bvh bvh(mesh);
+  const auto hit = viewer::pick(bvh, cam, click.x(), click.y());
+  REQUIRE(hit);
+  const int seed = viewer::nearest_corner(mesh, *hit);
+  const double radius = 0.04 * (mesh.V.colwise().maxCoeff() - mesh.V.colwise().minCoeff()).norm();
+  EventScript geodesic;
+  geodesic.key(kKeyG);
+  geodesic.key(EventScript::kKey3);
+  geodesic.drag({click});
+  const ToolRun g = run_tools("geodesic", geodesic);
+  const std::vector<int> disc = geometry::geodesic_disc(mesh, geometry::Connectivity(mesh), seed, radius);
+  CHECK(g.handle == disc);
+  double farthest = 0;
+  for (int v : g.handle) farthest = std::max(farthest, (mesh.V.row(v) - mesh.V.row(seed)).norm());
+  CHECK(farthest <= radius + 1e-12);
+  CHECK(farthest > 0.7 * radius);
+  CHECK(g.handle.size() > 20);
+}
+
+TEST_CASE("apps: deform app — a handle reaching past a narrow ROI warns that the ROI's border cuts by it") {
+  const geometry::TriMesh mesh = geometry::read_mesh(kMesh);
+  const geometry::CameraMatrices cam = initial_camera(mesh);
+  EventScript s;
+  s.key(EventScript::kKeyB);
+  s.key(kKey1);
+  for (int k = 0; k < 3; ++k) s.key(kKeyLeftBracket);
+  s.drag(body_stroke(mesh, cam));  // a narrow ROI on the visible side: everything else is fixed
+  s.key(EventScript::kKey3);
+  for (int k = 0; k < 3; ++k) s.key(kKeyRightBracket);
+  s.drag(body_stroke(mesh, cam));  // a wider handle along it reaches into the fixed region: a warning
+  const ToolRun r = run_tools("warning", s);
+  // The saved selection: the handle vertices within 2 rings of the fixed region, as the warning counts them.
+  REQUIRE(r.handle.size() > 20);
+  std::vector<char> in_roi(static_cast<size_t>(mesh.num_vertices()), 0);
+  for (int v : r.roi) in_roi[static_cast<size_t>(v)] = 1;
+  const std::vector<int> near = geometry::near_region_border(geometry::Connectivity(mesh), in_roi, r.handle, 2);
+  CHECK(near.size() > 10);
+  CAPTURE(r.log);
+  CHECK(r.log.find("lapis-deform: warning: the ROI's border cuts close to a handle: handle 0: " +
+                   std::to_string(near.size()) + " of " + std::to_string(r.handle.size()) +
+                   " vertices within 2 rings of the fixed region") != std::string::npos);
 }
