@@ -243,6 +243,9 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     case GLFW_KEY_C:
       cut_painted(v);
       break;
+    case GLFW_KEY_X:
+      xray_ = !xray_;
+      break;
     case GLFW_KEY_D: {  // the mode switch of the panel, from the keyboard (and replays)
       MergeSetup next = setup();
       const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;

@@ -204,6 +204,7 @@ class MergeApp final : public viewer::ViewerApp {
   bool painted_on_source_ = true;
   bool painting_ = false, erasing_ = false, paint_mesh_chosen_ = false;
   float brush_px_ = 24;
+  bool xray_ = false;  // the brush paints through the surface (X): a cut goes all round an arm
 
   // Optimal-boundary mode: the region the brush paints (0 rough, 1 feature, 2 target), the
   // optimizer of the current regions (its set-up is the fill and both conformal maps), the

@@ -241,6 +241,7 @@ void MergeApp::draw_merge_actions(viewer::Viewer& v) {
 
 void MergeApp::draw_paint_controls(viewer::Viewer& v) {
   ImGui::SliderFloat("brush (px)", &brush_px_, 4.0f, 80.0f);
+  if (ImGui::Checkbox("x-ray (X): paint through the surface", &xray_)) scene_dirty_ = true;
   ImGui::Text("%zu vertices painted on the %s", painted_.size(), painted_on_source_ ? "source" : "target");
   const PickableMesh& m = painted_on_source_ ? source_ : target_;
   if (ImGui::SmallButton("grow")) painted_ = viewer::grow_rings(*m.conn, painted_, 1), scene_dirty_ = true;
@@ -313,7 +314,8 @@ void MergeApp::draw_overlay(viewer::Viewer& v) {
   } else if (tool_ == Tool::Paint && optimal_mode()) {
     v.overlay("left-drag paints the chosen region, Shift+drag erases it");
   } else if (tool_ == Tool::Paint) {
-    v.overlay("left-drag paints on either mesh, Shift+drag erases; C cuts along the painted border");
+    v.overlay(xray_ ? "x-ray: left-drag paints through the surface, back included; Shift+drag erases; C cuts"
+                    : "left-drag paints on either mesh, Shift+drag erases; C cuts along the painted border; X: x-ray");
   } else if (tool_ == Tool::Keys) {
     if (pending_key_source_ >= 0)
       v.overlay("source vertex picked: now click a vertex of its paired target loop");

@@ -76,7 +76,22 @@ void MergeApp::update_inputs(viewer::Scene& scene, bool result) {
   source.visible = !result || setup().options.mode == mesh_merge::MergeMode::Dependent || tool_ == Tool::Move;
   paint(source, kSourceColor, painted_on_source_);
   if (optimal_mode()) paint_regions(source, target);
+  // X-ray painting: the meshes translucent and the painted vertices drawn over them, hidden
+  // ones too.
+  const bool xray = xray_ && tool_ == Tool::Paint && !result;
+  target.alpha = xray ? 0.45f : 1.0f;
+  if (xray) source.alpha = 0.45f;
   ++source.version;
+  auto& points = scene.points["x-ray painted"];
+  const geometry::TriMesh& painted_mesh = painted_on_source_ ? source_.mesh : target_.mesh;
+  points.visible = xray;
+  points.points.resize(xray ? static_cast<Eigen::Index>(painted_.size()) : 0, 3);
+  for (Eigen::Index k = 0; k < points.points.rows(); ++k)
+    points.points.row(k) =
+        painted_mesh.V.row(std::min(painted_[static_cast<size_t>(k)], painted_mesh.num_vertices() - 1)).cast<float>();
+  points.base_color = kPaintColor;
+  points.size = 3.0f;
+  ++points.version;
 }
 
 // Optimal-boundary mode: the three regions, the one being painted as the stroke has it.

@@ -1,7 +1,8 @@
 // lapis-merge's drag tools, on the viewer's shared widgets: the gizmo moves the source (what
 // configuration-dependent merging keeps), the brush paints a region on either mesh that
 // mesh_merge::cut_by_region() cuts off (the painted part of the source, the rest of the target),
-// so a closed mesh can give a part with an open rim.
+// so a closed mesh can give a part with an open rim. With x-ray on the brush paints through the
+// surface, so a stroke across an arm takes its back too and the cut goes all round it.
 #include <algorithm>
 #include <iterator>
 
@@ -59,6 +60,7 @@ void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
   const PickableMesh& m = painted_on_source_ ? source_ : target_;
   viewer::BrushOptions brush;
   brush.radius_px = brush_px_;
+  brush.through = xray_;
   const std::vector<int> under = viewer::brush_vertices(m.mesh, *m.conn, *m.bvh, cam, {x, y}, brush);
   if (under.empty()) return;
   std::vector<int> next;
@@ -73,8 +75,9 @@ void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
 void MergeApp::cut_painted(viewer::Viewer& v) {
   if (optimal_mode()) return v.flash("the optimal-boundary mode paints regions; it cuts along the boundary it finds");
   if (painted_.empty()) return v.flash("paint a region first (tool 5: left-drag paints, Shift erases)");
+  const bool on_source = painted_on_source_;
   try {
-    if (painted_on_source_) {
+    if (on_source) {
       // The source keeps the painted part (the head taken off a bust), where it was placed.
       mesh_merge::RegionCut cut = mesh_merge::cut_by_region(*setup().source, painted_);
       auto part = std::make_shared<const geometry::TriMesh>(std::move(cut.inside));
@@ -86,6 +89,11 @@ void MergeApp::cut_painted(viewer::Viewer& v) {
       replace_meshes(v, setup().source, source_name(), rest, target_name() + " (cut)", "cut target", Placement::Keep);
     }
     tool_ = Tool::PairLoops;  // the new rim is ready to pair
+    const geometry::TriMesh& kept = on_source ? *setup().source : *setup().target;
+    const geometry::Connectivity conn(kept);
+    v.flash(std::string("cut: the ") + (on_source ? "source" : "target") + " keeps " +
+            std::to_string(kept.num_vertices()) + " vertices, " + std::to_string(conn.boundary_loops().size()) +
+            " boundary loop(s)");
   } catch (const Error& e) {
     v.flash(e.what());
   }

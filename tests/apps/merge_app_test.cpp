@@ -15,6 +15,7 @@
 #include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/io.h"
+#include "lapis/geometry/procedural.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/pairs_file.h"
 #include "lapis/viewer/gizmo.h"
@@ -443,6 +444,65 @@ TEST_CASE("apps: merge app — painting a region on a closed source and cutting 
   CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
         std::string::npos);
   CHECK(text.find("not manifold") == std::string::npos);
+}
+
+// A stroke across the whole width of the cactus's trunk, cut: the plain brush paints its front,
+// so the source keeps a half-shell patch; the x-ray brush paints it all round, so the cut runs
+// round the trunk and the source keeps everything above it (the region's one rim, the part
+// beyond it filled in as cut_by_region() does).
+TEST_CASE("apps: merge app — paint & cut with x-ray cuts all round the trunk, not a half-shell") {
+  const fs::path dir = scratch_dir();
+  const fs::path cactus = kSource / "assets/external/cactus.off", other = dir / "speck.obj";
+  REQUIRE_MESSAGE(fs::exists(cactus), "run scripts/setup");
+  const geometry::TriMesh source = geometry::read_mesh(cactus);
+  // The target: a speck inside the cactus, so the first view frames the cactus alone, large.
+  geometry::TriMesh target = geometry::make_icosphere(1, 1e-3);
+  target.V.rowwise() += 0.5 * (source.V.colwise().minCoeff() + source.V.colwise().maxCoeff());
+  geometry::write_mesh(other, target);
+  const geometry::CameraMatrices cam = first_view(source, target);
+  const Eigen::Vector3d mid = geometry::project(cam, source.V.colwise().mean().transpose());
+  double left = 1e9, right = -1e9;  // the trunk's width on screen at the stroke's height
+  for (int v = 0; v < source.num_vertices(); ++v) {
+    const Eigen::Vector3d p = geometry::project(cam, source.V.row(v).transpose());
+    if (std::abs(p.y() - mid.y()) < 3 && std::abs(p.x() - mid.x()) < 250)
+      left = std::min(left, p.x()), right = std::max(right, p.x());
+  }
+  REQUIRE(right - left > 10);
+  auto cut_log = [&](bool xray) {
+    std::string paint =
+        "mark; xdotool key --window $w m; wait_handled 2 0; mark; xdotool key --window $w 5; "
+        "wait_handled 2 0;";
+    if (xray) paint += " mark; xdotool key --window $w x; wait_handled 2 0;";
+    const long y = std::lround(mid.y());
+    paint += " mark; xdotool mousemove --window $w " + std::to_string(std::lround(left) - 8) + " " + std::to_string(y) +
+             " sleep 0.1 mousedown 1";
+    for (double x = left - 8; x <= right + 8; x += 10)
+      paint += " mousemove --window $w " + std::to_string(std::lround(x)) + " " + std::to_string(y) + " sleep 0.03";
+    paint +=
+        " mouseup 1; wait_handled 0 2; mark; xdotool key --window $w c; wait_handled 2 0; mark; "
+        "xdotool key --window $w m; wait_handled 2 0;";
+    const fs::path log = dir / (xray ? "xray_cut.log" : "plain_cut.log");
+    REQUIRE(run_under_xvfb(xdotool_session("--source " + cactus.string() + " --target " + other.string(), paint) +
+                           " 2> " + log.string()) == 0);
+    return text_of(log);
+  };
+  const std::string plain = cut_log(false), xray = cut_log(true);
+  CAPTURE(plain);
+  CAPTURE(xray);
+  auto kept = [](const std::string& log) {
+    const std::string tag = "cut: the source keeps ";
+    const size_t at = log.find(tag);
+    return at == std::string::npos ? -1 : std::stoi(log.substr(at + tag.size()));
+  };
+  const int half = kept(plain), all_round = kept(xray);
+  MESSAGE("the cut source keeps " << half << " vertices painted plainly, " << all_round << " with x-ray, of "
+                                  << source.num_vertices());
+  CHECK(half > 0);
+  CHECK(half < source.num_vertices() / 4);  // a patch of the front
+  CHECK(all_round > 2 * half);
+  CHECK(all_round > source.num_vertices() / 2);
+  CHECK(xray.find("1 boundary loop(s)") != std::string::npos);
+  CHECK(xray.find("not manifold") == std::string::npos);
 }
 
 TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and exports what lapis merge needs") {
