@@ -153,6 +153,7 @@ class DeformApp final : public viewer::ViewerApp {
   double diagonal() const;                // of the rest mesh's bounding box
   void update_roi_warning();              // handles the ROI's border passes close to
   void draw_roi_warning(viewer::Viewer& v);
+  void draw_roi_warning_details() const;  // in the Selection panel
   void new_handle();
   Eigen::Matrix4d& active_transform();
   Eigen::Vector3d handle_rest_centroid(int label) const;

@@ -134,6 +134,7 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   ImGui::SameLine();
   if (ImGui::Button("reset pose (R)")) reset_pose(v);
   if (settings_.method == Method::Salient) draw_feature_controls();
+  draw_roi_warning_details();
   if (!selection_error_.empty())
     ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
   else if (selection_)

@@ -17,6 +17,7 @@ namespace lapis::deform_app {
 namespace {
 
 const char* const kAxisNames[] = {"x", "y", "z"};
+const ImVec4 kWarningColor(1.0f, 0.35f, 0.2f, 1.0f);
 
 }  // namespace
 
@@ -123,18 +124,24 @@ void DeformApp::update_roi_warning() {
 
 void DeformApp::draw_roi_warning(viewer::Viewer& v) {
   if (roi_warning_.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) * 0.5f, 44), ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowBgAlpha(0.75f);
+  // A short banner over the 3D view, between the overlay and the panels; the details in the
+  // Selection panel.
+  ImGui::SetNextWindowPos(ImVec2((static_cast<float>(v.width()) - 340) * 0.5f, 132), ImGuiCond_Always, ImVec2(0.5f, 0));
+  ImGui::SetNextWindowBgAlpha(0.9f);
   ImGui::Begin("##roi warning", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
-  ImGui::PushTextWrapPos(560);
-  ImGui::TextColored(ImVec4(1.0f, 0.3f, 0.15f, 1.0f), "The ROI's border cuts close to a handle (red points)");
-  ImGui::TextColored(ImVec4(1.0f, 0.6f, 0.3f, 1.0f), "%s", roi_warning_.c_str());
+  ImGui::TextColored(kWarningColor, "ROI border cuts close to a handle (red points)");
+  ImGui::End();
+}
+
+void DeformApp::draw_roi_warning_details() const {
+  if (roi_warning_.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, kWarningColor);
+  ImGui::TextWrapped("%s", roi_warning_.c_str());
+  ImGui::PopStyleColor();
   ImGui::TextDisabled(
       "the fixed region there holds the handle back: paint the ROI around it (X: x-ray paints the back)");
-  ImGui::PopTextWrapPos();
-  ImGui::End();
 }
 
 }  // namespace lapis::deform_app
