@@ -182,19 +182,38 @@ bool LeastSquares::precomputed() const { return impl_->precomputed; }
 
 namespace {
 
-// Aᵀ R, a row of the result per column of A, in chunks over core::parallel_for. Eigen's product
-// of the row-major Aᵀ would open an OpenMP team every frame (over 20,000 entries), whose barrier
-// waits on a descheduled member.
-DenseMatrix transpose_times(const SparseMatrix& A, const DenseMatrix& R) {
-  DenseMatrix g(A.cols(), R.cols());
-  core::parallel_for(0, A.cols(), 2048, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+// sum = Σ_e A(e, c) R(e, :) over the entries of column c of A, R row-major with K columns
+// (K = 0: k, known at run time only).
+template <int K>
+void gather_column(const SparseMatrix& A, Eigen::Index c, const double* R, Eigen::Index k, double* sum) {
+  const Eigen::Index width = K > 0 ? K : k;
+  std::fill(sum, sum + width, 0.0);
+  for (SparseMatrix::InnerIterator e(A, c); e; ++e) {
+    const double* r = R + e.row() * width;
+    for (Eigen::Index i = 0; i < width; ++i) sum[i] += e.value() * r[i];
+  }
+}
+
+// b.row(j) += weight (Aᵀ R).row(free[j]) for every free unknown j, in chunks over
+// core::parallel_for. Eigen's product of the row-major Aᵀ would open an OpenMP team every
+// frame (over 20,000 entries), whose barrier waits on a descheduled member. R is copied to
+// row-major first: each row a column of A gathers is then one cache line, not one per
+// right-hand side, and only the free columns are formed.
+void add_transpose_times(const SparseMatrix& A, double weight, const DenseMatrix& R, const std::vector<int>& free,
+                         DenseMatrix& b) {
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = R;
+  const Eigen::Index k = R.cols();
+  core::parallel_for(0, static_cast<std::ptrdiff_t>(free.size()), 2048, [&](std::ptrdiff_t lo, std::ptrdiff_t hi) {
+    Eigen::VectorXd sum(k);
     for (std::ptrdiff_t j = lo; j < hi; ++j) {
-      g.row(j).setZero();
-      for (SparseMatrix::InnerIterator e(A, static_cast<Eigen::Index>(j)); e; ++e)
-        g.row(j) += e.value() * R.row(e.row());
+      const Eigen::Index c = free[static_cast<size_t>(j)];
+      if (k == 3)  // the usual x, y, z: a width the compiler unrolls
+        gather_column<3>(A, c, rows.data(), k, sum.data());
+      else
+        gather_column<0>(A, c, rows.data(), k, sum.data());
+      b.row(j) += weight * sum.transpose();
     }
   });
-  return g;
 }
 
 }  // namespace
@@ -225,9 +244,10 @@ DenseMatrix LeastSquares::normal_rhs(const std::vector<DenseMatrix>& rhs, const 
     // multiply-adds than a precomputed (W_b A_b(:, free))ᵀ has entries (millions at a 50K-vertex
     // E_R, whose assembly was a serial pass of the setup).
     const Impl::Block& B = m.blocks[i];
-    const DenseMatrix g =
-        B.has_metric ? transpose_times(B.A, DenseMatrix(B.metric * rhs[i])) : transpose_times(B.A, rhs[i]);
-    for (size_t j = 0; j < m.free.size(); ++j) b.row(static_cast<Eigen::Index>(j)) += B.weight * g.row(m.free[j]);
+    if (B.has_metric)
+      add_transpose_times(B.A, B.weight, DenseMatrix(B.metric * rhs[i]), m.free, b);
+    else
+      add_transpose_times(B.A, B.weight, rhs[i], m.free, b);
   }
   if (!m.fixed.empty()) {
     if (fixed_values.rows() != static_cast<Eigen::Index>(m.fixed.size()) || fixed_values.cols() != k)

@@ -64,6 +64,24 @@ template <int Q, int M>
 void subtract_columns_q(const double* Lb, int ld, int j0, int r0, int r1, double* x, int ldx, Width<M> width) {
   const double* l[Q];
   for (int t = 0; t < Q; ++t) l[t] = Lb + static_cast<size_t>(j0 + t) * ld;
+  if constexpr (M > 0) {
+    // Every right-hand side in one pass over the rows: each entry of L is loaded once for
+    // all M of them (a pass per right-hand side loads it M times).
+    double* xc[M];
+    double y[Q][M];
+    for (int c = 0; c < M; ++c) {
+      xc[c] = x + static_cast<size_t>(c) * ldx;
+      for (int t = 0; t < Q; ++t) y[t][c] = xc[c][j0 + t];
+    }
+#pragma omp simd
+    for (int r = r0; r < r1; ++r)
+      for (int c = 0; c < M; ++c) {
+        double d = 0;
+        for (int t = 0; t < Q; ++t) d += l[t][r] * y[t][c];
+        xc[c][r] -= d;
+      }
+    return;
+  }
   for (int c = 0; c < width.get(); ++c) {
     double* xc = x + static_cast<size_t>(c) * ldx;
     double y[Q];
