@@ -11,14 +11,16 @@ namespace {
 // axes of one group. An axis the cell does not span (den ≈ 0: a flat vertex cell's normal)
 // takes the fallback, the cell's isotropic scale: δ has no component there either, and a
 // similarity then stays a fixed point.
+// fallback() is called only for such an axis (rare: it costs a 3x3 product).
+template <class Fallback>
 Eigen::Vector3d axis_scales(const Eigen::Vector3d& num, const Eigen::Vector3d& den, const Eigen::Vector3i& group,
-                            double spread, double fallback) {
+                            double spread, Fallback fallback) {
   Eigen::Vector3d s;
   for (int a = 0; a < 3; ++a) {
     double n = 0, d = 0;
     for (int b = 0; b < 3; ++b)
       if (group[b] == group[a]) n += num[b], d += den[b];
-    s[a] = d > 1e-12 * spread ? n / d : fallback;
+    s[a] = d > 1e-12 * spread ? n / d : fallback();
   }
   return s;
 }
@@ -67,13 +69,17 @@ bool fit_cell(const Eigen::Matrix3d& A, const RestCell& rest, CellTransform tran
   }
   if (frame == ScaleFrame::World) {
     // §3.4 with f = R1 e: S_a = Σ ω f_a e′_a / Σ ω f_a² = (R1 Aᵀ)_aa / (R1 C0 R1ᵀ)_aa.
-    const Eigen::Vector3d num = (R1 * A.transpose()).diagonal();
-    const Eigen::Vector3d den = (R1 * rest.C0 * R1.transpose()).diagonal();
-    st.T = axis_scales(num, den, Eigen::Vector3i(0, 1, 2), spread, isotropic_scale(A, R1, spread)).asDiagonal() * R1;
+    // (Only the diagonals are formed: row a of R1 against row a of A, and of R1 C0.)
+    const Eigen::Vector3d num = R1.cwiseProduct(A).rowwise().sum();
+    const Eigen::Vector3d den = (R1 * rest.C0).cwiseProduct(R1).rowwise().sum();
+    st.T = axis_scales(num, den, Eigen::Vector3i(0, 1, 2), spread, [&] { return isotropic_scale(A, R1, spread); })
+               .asDiagonal() *
+           R1;
   } else {
     // T = R1 U S Uᵀ, g = Uᵀ e, h = Uᵀ R1ᵀ e′: S_a = Σ ω g_a h_a / Σ ω g_a² = (Uᵀ Aᵀ R1 U)_aa / λ_a.
     const Eigen::Vector3d num = (rest.U.transpose() * A.transpose() * R1 * rest.U).diagonal();
-    const Eigen::Vector3d S = axis_scales(num, rest.lambda, rest.group, spread, isotropic_scale(A, R1, spread));
+    const Eigen::Vector3d S =
+        axis_scales(num, rest.lambda, rest.group, spread, [&] { return isotropic_scale(A, R1, spread); });
     st.T = R1 * rest.U * S.asDiagonal() * rest.U.transpose();
   }
   if (transform == CellTransform::Full) {

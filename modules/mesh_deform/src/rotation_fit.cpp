@@ -16,6 +16,19 @@ namespace {
 constexpr double kRoundingAngle = 1e-15;
 constexpr int kMaxNewtonSteps = 6;
 
+// n R for the quaternion q of squared norm n (any n > 0): the rotation matrix's quadratic
+// form without the division, which every use below cancels.
+Eigen::Matrix3d scaled_rotation(const Eigen::Quaterniond& q) {
+  const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+  const double ww = w * w, xx = x * x, yy = y * y, zz = z * z;
+  const double xy = x * y, xz = x * z, yz = y * z, wx = w * x, wy = w * y, wz = w * z;
+  Eigen::Matrix3d M;
+  M << ww + xx - yy - zz, 2 * (xy - wz), 2 * (xz + wy),  //
+      2 * (xy + wz), ww - xx + yy - zz, 2 * (yz - wx),   //
+      2 * (xz - wy), 2 * (yz + wx), ww - xx - yy + zz;
+  return M;
+}
+
 // The Newton step ω (R ← R exp([ω]×)) for f(R) = tr(Rᵀ A) at R, with B = Rᵀ A: the gradient is
 // the skew part of B as a vector, g = (B32 − B23, B13 − B31, B21 − B12), and the Hessian is
 // H = tr(B) I − (B + Bᵀ)/2, so ω = H⁻¹ g (solved by the adjugate: H is symmetric 3x3).
@@ -23,8 +36,8 @@ constexpr int kMaxNewtonSteps = 6;
 // False when H is not positive definite (Sylvester's leading minors): then R is not in the
 // basin of the maximum. At a stationary point a positive definite H also certifies that the
 // maximum is the global one: tr(Rᵀ A) has no other local maximum on SO(3).
-bool newton_step(const Eigen::Matrix3d& A, const Eigen::Matrix3d& R, Eigen::Vector3d& w, double& error_gain) {
-  const Eigen::Matrix3d B = R.transpose() * A;
+// B may be given times any n > 0 (B = (n R)ᵀ A): ω and error_gain do not change.
+bool newton_step(const Eigen::Matrix3d& B, Eigen::Vector3d& w, double& error_gain) {
   const Eigen::Vector3d g(B(2, 1) - B(1, 2), B(0, 2) - B(2, 0), B(1, 0) - B(0, 1));
   const double t = B.trace();
   const double h00 = t - B(0, 0), h11 = t - B(1, 1), h22 = t - B(2, 2);
@@ -42,17 +55,21 @@ bool newton_step(const Eigen::Matrix3d& A, const Eigen::Matrix3d& R, Eigen::Vect
 }
 
 // Newton's method from q; on success q and R hold the maximizer. The rotation is kept as a
-// unit quaternion and each step applied as its Cayley rotation, quaternion (1, ω/2): a
-// retraction, so convergence stays quadratic, and R never drifts from orthogonality however
-// many iterations and frames warm-start from it.
+// quaternion and each step applied as its Cayley rotation, quaternion (1, ω/2): a retraction,
+// so convergence stays quadratic, and R never drifts from orthogonality however many
+// iterations and frames warm-start from it. Between steps q is not normalized (a Cayley
+// factor grows its norm by 1 + |ω|²/4, and the steps see only n R): the square root and the
+// division are paid once, at the end, off the chain of dependent operations that bounds a
+// step's latency.
 bool newton_refine(const Eigen::Matrix3d& A, Eigen::Quaterniond& q, Eigen::Matrix3d& R) {
+  Eigen::Quaterniond p = q;
   for (int step = 0; step < kMaxNewtonSteps; ++step) {
-    R = q.toRotationMatrix();
     Eigen::Vector3d w;
     double error_gain;
-    if (!newton_step(A, R, w, error_gain)) return false;
-    q = (q * Eigen::Quaterniond(1, 0.5 * w[0], 0.5 * w[1], 0.5 * w[2])).normalized();
+    if (!newton_step(scaled_rotation(p).transpose() * A, w, error_gain)) return false;
+    p = p * Eigen::Quaterniond(1, 0.5 * w[0], 0.5 * w[1], 0.5 * w[2]);
     if (error_gain * w.squaredNorm() < kRoundingAngle) {
+      q = p.normalized();
       R = q.toRotationMatrix();
       return true;
     }
