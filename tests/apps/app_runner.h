@@ -111,6 +111,8 @@ inline int run_under_xvfb(const std::string& command) {
 //                                   the mark were handled and the app is idle (xdotool key
 //                                   ctrl+s is 4 key events, a click 2 button events)
 //   window NAME                     sets $w to the app's window once its first frame is drawn
+//   quit_discarding                 Ctrl+Q to $w; when the app asks about unsaved work
+//                                   (asking=1), D discards it; waits for $app to exit
 inline const char* kReadyFunctions = R"SH(
 wait_ready() {
   i=0
@@ -124,6 +126,15 @@ wait_ready() {
 mark() { wait_ready true; mark_events=$events; mark_keys=$keys; mark_buttons=$buttons; }
 wait_handled() {
   wait_ready "[ \$keys -ge $((mark_keys + $1)) ] && [ \$buttons -ge $((mark_buttons + $2)) ] && [ \$busy -eq 0 ]"
+}
+quit_discarding() {
+  xdotool key --window $w ctrl+q
+  while kill -0 $app 2>/dev/null; do
+    eval "$(cat "$READY")"
+    [ "${asking:-0}" = 1 ] && xdotool key --window $w d
+    sleep 0.1
+  done
+  wait $app
 }
 window() {
   wait_ready true || return 3

@@ -144,10 +144,16 @@ void Viewer::frame_scene() {
   if (scene_.bounds(lo, hi)) camera_.frame(lo, hi);
 }
 
-void Viewer::flash(std::string message) {
-  std::fprintf(stderr, "%s: %s\n", options_.title.c_str(), message.c_str());  // logs of batch runs
-  flash_message_ = std::move(message);
+void Viewer::flash(std::string message, Tone tone) {
+  const char* kind = tone == Tone::Error ? "error: " : tone == Tone::Warning ? "warning: " : "";
+  std::fprintf(stderr, "%s: %s%s\n", options_.title.c_str(), kind, message.c_str());  // logs of batch runs
+  flash_ = {tone, std::move(message)};
   flash_until_ = time() + 4.0;
+}
+
+std::filesystem::path Viewer::screenshot_path() const {
+  if (!options_.screenshot.empty()) return options_.screenshot;
+  return default_screenshot_.empty() ? std::filesystem::path("screenshot.png") : default_screenshot_;
 }
 
 void Viewer::close() {
@@ -241,9 +247,10 @@ void Viewer::handle_camera(const InputEvent& e) {
   }
   if (e.type == EventType::Scroll) camera_.zoom(e.y);
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_F && e.mods == 0) frame_scene();
-  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_Q && e.mods == GLFW_MOD_CONTROL) close();
+  if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_Q && e.mods == GLFW_MOD_CONTROL)
+    user_asked_to_close_ = true, close();
   if (e.type == EventType::Key && e.action == GLFW_PRESS && e.key == GLFW_KEY_P && e.mods == GLFW_MOD_CONTROL)
-    request_screenshot(options_.screenshot.empty() ? std::filesystem::path("screenshot.png") : options_.screenshot);
+    request_screenshot(screenshot_path());
 }
 
 void Viewer::draw_overlay() {
@@ -254,9 +261,9 @@ void Viewer::draw_overlay() {
                                  ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoInputs;
   if (ImGui::Begin("##overlay", nullptr, flags)) {
     ImGui::Text("frame %.1f ms (%.0f fps)", last_frame_ms_, last_frame_ms_ > 0 ? 1000.0 / last_frame_ms_ : 0.0);
-    for (const auto& line : overlay_lines_) ImGui::TextUnformatted(line.c_str());
-    if (!flash_message_.empty() && time() < flash_until_)
-      ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", flash_message_.c_str());
+    const float wrap_at = 0.6f * static_cast<float>(width_);  // long lines stay off the right-hand panels
+    for (const auto& line : overlay_lines_) tone_text(line.tone, line.text, wrap_at);
+    if (!flash_.text.empty() && time() < flash_until_) tone_text(flash_.tone, flash_.text, wrap_at);
   }
   ImGui::End();
   overlay_lines_.clear();
@@ -283,7 +290,7 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
 void Viewer::report_ready(bool busy) {
   const std::string state = " events=" + std::to_string(handled_events_) +
                             " buttons=" + std::to_string(handled_buttons_) + " keys=" + std::to_string(handled_keys_) +
-                            " busy=" + (busy ? "1" : "0");
+                            " busy=" + (busy ? "1" : "0") + " asking=" + (app_->asking() ? "1" : "0");
   if (state == last_ready_) return;
   last_ready_ = state;
   core::write_file_atomically(options_.ready_file,
@@ -341,6 +348,7 @@ void Viewer::open_window() {
   glfwSetKeyCallback(w, GlfwCallbacks::key);
   glfwSetCharCallback(w, GlfwCallbacks::character);
   glfwSetFramebufferSizeCallback(w, GlfwCallbacks::resize);
+  glfwSetWindowCloseCallback(w, [](GLFWwindow* window) { GlfwCallbacks::viewer(window).user_asked_to_close_ = true; });
   window_->renderer = make_gl_renderer();
   recording_.width = width_, recording_.height = height_;
 }
@@ -437,6 +445,14 @@ bool Viewer::close_when_done() {
   return true;
 }
 
+void Viewer::keep_open_if_app_asks() {
+  GLFWwindow* w = window_->handle;
+  const bool interactive = !options_.headless && !replay_;
+  if (interactive && user_asked_to_close_ && glfwWindowShouldClose(w) && !app_->may_close(*this))
+    glfwSetWindowShouldClose(w, GLFW_FALSE);
+  user_asked_to_close_ = false;
+}
+
 // Returns the app's exit status (a failed export on exit, say).
 int Viewer::finish_run() {
   app_->on_exit(*this);
@@ -465,6 +481,7 @@ int Viewer::run(ViewerApp& app) {
     play_due_events();
     draw_frame();
     if (!close_when_done()) exit_code = 1;
+    keep_open_if_app_asks();
     glfwSwapBuffers(window_->handle);
     if (!options_.ready_file.empty()) report_ready(app.busy());
     // The frame's own work (events to swap), not the waits between on-demand frames.

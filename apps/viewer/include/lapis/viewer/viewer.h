@@ -17,6 +17,7 @@
 #include "lapis/viewer/orbit_camera.h"
 #include "lapis/viewer/png.h"
 #include "lapis/viewer/scene.h"
+#include "lapis/viewer/tone.h"
 
 namespace lapis::viewer {
 
@@ -34,8 +35,9 @@ struct ViewerOptions {
   double idle_timeout_s = 300;       // give up waiting for a busy app after a replay
   // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
   // first frame and after every frame that handled input or changed the app's busy state, as
-  // one line "frame=F events=N buttons=B keys=K busy=0|1" (input events, mouse button and key
-  // events handled so far). Waiting on it replaces sleeps that a loaded machine outlasts.
+  // one line "frame=F events=N buttons=B keys=K busy=0|1 asking=0|1" (input events, mouse
+  // button and key events handled so far; asking: the app holds a question open, e.g. about
+  // unsaved work on quit). Waiting on it replaces sleeps that a loaded machine outlasts.
   std::filesystem::path ready_file;
 };
 
@@ -61,6 +63,12 @@ class ViewerApp {
   virtual bool busy() const { return false; }
   // Extra fields for the --benchmark report.
   virtual void benchmark_fields(nlohmann::json&) const {}
+  // The user asks to quit (Ctrl+Q, the window's close button) in an interactive run (not
+  // headless, not replaying). Return false to keep the window open — the app then asks about
+  // its unsaved work and quits with Viewer::close(), which does not ask again.
+  virtual bool may_close(Viewer&) { return true; }
+  // True while such a question is open (the ready file says asking=1 then).
+  virtual bool asking() const { return false; }
   // The process exit code the app asks for after on_exit (non-zero: a batch step failed,
   // e.g. the export a headless run was started for).
   virtual int exit_status() const { return 0; }
@@ -91,10 +99,15 @@ class Viewer {
   bool button_down(int button) const;
 
   void request_screenshot(const std::filesystem::path& path) { pending_screenshot_ = path; }
-  // Lines shown in the overlay under the frame time, for this frame.
-  void overlay(std::string line) { overlay_lines_.push_back(std::move(line)); }
-  // A message shown in the overlay for a few seconds ("stroke must start on the scalp").
-  void flash(std::string message);
+  // Where Ctrl+P and an app's screenshot command write: --screenshot when given, else the
+  // app's default (next to its document), else screenshot.png in the working directory.
+  std::filesystem::path screenshot_path() const;
+  void set_default_screenshot(std::filesystem::path path) { default_screenshot_ = std::move(path); }
+  // Lines shown in the overlay under the frame time, for this frame, in their tone's colour.
+  void overlay(std::string line, Tone tone = Tone::Status) { overlay_lines_.push_back({tone, std::move(line)}); }
+  // A message shown in the overlay for a few seconds ("stroke must start on the scalp"), and
+  // logged to stderr (an error or a warning with its tone first).
+  void flash(std::string message, Tone tone = Tone::Status);
 
   long frame() const { return frame_; }
   double time() const;  // seconds since start
@@ -115,6 +128,7 @@ class Viewer {
   void handle_camera(const InputEvent& e);
   bool over_gui(double x, double y) const;  // inside an ImGui window (last frame's layout)
   void draw_overlay();
+  void keep_open_if_app_asks();  // a user's quit that the app's may_close() declines
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
   void record(const InputEvent& e);
@@ -145,10 +159,16 @@ class Viewer {
   long last_input_frame_ = 0;  // the frame in which the last input event arrived
   double last_frame_ms_ = 0;
   std::vector<double> frame_ms_;
-  std::vector<std::string> overlay_lines_;
-  std::string flash_message_;
+  struct OverlayLine {
+    Tone tone;
+    std::string text;
+  };
+  std::vector<OverlayLine> overlay_lines_;
+  OverlayLine flash_;
   double flash_until_ = 0;
   std::optional<std::filesystem::path> pending_screenshot_;
+  std::filesystem::path default_screenshot_;
+  bool user_asked_to_close_ = false;  // Ctrl+Q or the close button, this frame
   EventLog recording_;
   std::optional<EventLog> replay_;
   size_t replay_next_ = 0;
