@@ -172,7 +172,7 @@ void HairSketchApp::draw_file_panel(viewer::Viewer& v) {
   ImGui::SameLine();
   if (ImGui::Button("Open (Ctrl+O)")) load(v, paths_.session);
   if (ImGui::Button("Export .hair + .obj (Ctrl+E)")) export_strands(v);
-  if (ImGui::Button("Screenshot")) v.request_screenshot("out/hair_screenshot.png");
+  if (ImGui::Button("Screenshot")) v.request_screenshot(v.screenshot_path());
   ImGui::End();
 }
 

@@ -42,7 +42,8 @@ HairSketchApp::HairSketchApp(Head head, Hairstyle style, AppPaths paths)
 HairSketchApp::~HairSketchApp() = default;
 
 void HairSketchApp::on_start(viewer::Viewer& v) {
-  worker_.set_on_done([&v] { v.wake(); });  // new strands: redraw now, not at the next tick
+  v.set_default_screenshot("out/hair_screenshot.png");  // Ctrl+P and the panel's button alike
+  worker_.set_on_done([&v] { v.wake(); });              // new strands: redraw now, not at the next tick
   if (v.options().headless && !strand_budget_.pinned()) strand_budget_.pin(0);  // draw every strand
   update_head_item(v);
   const auto& cam = document_.style().camera;
@@ -242,7 +243,7 @@ void HairSketchApp::execute(viewer::Viewer& v, Command command) {
   try {
     document_.execute(std::move(command));
   } catch (const Error& e) {
-    v.flash(e.what());
+    v.flash(e.what(), viewer::Tone::Error);
     return;
   }
   last_edit_time_ = v.time();
@@ -282,10 +283,10 @@ void HairSketchApp::save(viewer::Viewer& v, const std::filesystem::path& path) {
     style.camera = v.camera_matrices();
     core::create_parent_directories(path);
     save_session(path, style);
-    v.flash("saved " + path.string());
+    v.flash("saved " + path.string(), viewer::Tone::Success);
     std::printf("saved session: %s\n", path.string().c_str());
   } catch (const Error& e) {
-    v.flash(std::string("save failed: ") + e.what());
+    v.flash(std::string("save failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -301,9 +302,9 @@ void HairSketchApp::load(viewer::Viewer& v, const std::filesystem::path& path) {
     hidden_.clear();
     head_dirty_ = curves_dirty_ = true;
     settings_changed();
-    v.flash("opened " + path.string());
+    v.flash("opened " + path.string(), viewer::Tone::Success);
   } catch (const Error& e) {
-    v.flash(std::string("open failed: ") + e.what());
+    v.flash(std::string("open failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -318,10 +319,10 @@ bool HairSketchApp::export_strands(viewer::Viewer& v) {
     write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
     write_strands_obj(paths_.export_obj, last_->update.strands);
     pair.commit();
-    v.flash("exported " + paths_.export_hair.string() + " and " + paths_.export_obj.string());
+    v.flash("exported " + paths_.export_hair.string() + " and " + paths_.export_obj.string(), viewer::Tone::Success);
     return true;
   } catch (const Error& e) {
-    v.flash(std::string("export failed: ") + e.what());
+    v.flash(std::string("export failed: ") + e.what(), viewer::Tone::Error);
     std::fprintf(stderr, "lapis-hair-sketch: export failed: %s\n", e.what());
     return false;
   }
@@ -333,7 +334,7 @@ void HairSketchApp::autosave_if_due(viewer::Viewer& v) {
   try {
     save_session(paths_.autosave, document_.style());
   } catch (const Error& e) {
-    v.flash(std::string("autosave failed: ") + e.what());
+    v.flash(std::string("autosave failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -398,7 +399,7 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
     r = worker_.take();
   } catch (const Error& e) {
     engine_error_ = e.what();
-    v.flash(std::string("field update failed: ") + e.what());
+    v.flash(std::string("field update failed: ") + e.what(), viewer::Tone::Error);
     return;
   }
   if (!r) return;

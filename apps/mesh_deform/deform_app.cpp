@@ -58,11 +58,15 @@ DeformApp::DeformApp(geometry::TriMesh mesh, DeformPaths paths, MethodSettings s
       state_(initial_state(rest_.num_vertices())),
       history_(state_),
       shown_(rest_),
-      engine_(std::make_shared<EngineSlot>(rest_)) {}
+      engine_(std::make_shared<EngineSlot>(rest_)) {
+  mark_saved();
+  fill_file_fields();
+}
 
 DeformApp::~DeformApp() = default;
 
 void DeformApp::on_start(viewer::Viewer& v) {
+  v.set_default_screenshot(paths_.screenshot);
   worker_.set_on_done([&v] { v.wake(); });  // a finished solve: redraw now
   transfer_worker_.set_on_done([&v] { v.wake(); });
   now_ = v.time();
@@ -264,7 +268,7 @@ void DeformApp::receive(viewer::Viewer& v) {
     engine_error_ = e.what();
     received_ = submitted_;
     setup_started_ = -1;
-    v.flash(std::string("deformation failed: ") + e.what());
+    v.flash(std::string("deformation failed: ") + e.what(), viewer::Tone::Error);
     return;
   }
   if (!s || s->epoch != epoch_) return;  // nothing new, or from a mesh no longer open
@@ -387,7 +391,9 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
     if (pairing_) close_transfer_target(v);  // its pairs were made on the old mesh
     rest_ = std::move(mesh);
     conn_ = std::move(conn);
-    paths_.mesh = path;
+    paths_ = paths_beside(path, paths_);
+    fill_file_fields();
+    v.set_default_screenshot(paths_.screenshot);
     // Jobs still running hold the old slot (and read the old mesh only through it, which
     // they copied): a new slot and epoch make their results stale.
     engine_ = std::make_shared<EngineSlot>(rest_);
@@ -400,29 +406,32 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
     received_ = submitted_;
     state_ = initial_state(rest_.num_vertices());
     history_.reset(state_);
+    mark_saved();
     shown_ = rest_;
     pick_bvh_.reset();
     pick_stale_ = true;
     labels_changed();
     update_surface(v);
     v.frame_scene();
-    v.flash("opened " + path.string() + " (" + std::to_string(rest_.num_vertices()) + " vertices)");
+    v.flash("opened " + path.string() + " (" + std::to_string(rest_.num_vertices()) + " vertices)",
+            viewer::Tone::Success);
   } catch (const Error& e) {
-    v.flash(std::string("open failed: ") + e.what());
+    v.flash(std::string("open failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
 void DeformApp::save_selection(viewer::Viewer& v) {
-  if (!selection_) return v.flash("save selection: " + selection_error_);
+  if (!selection_) return v.flash("save selection: " + selection_error_, viewer::Tone::Error);
   try {
     for (const auto* p : {&paths_.roi, &paths_.handles}) core::create_parent_directories(*p);
     HandleTransforms now;
     for (int label : selection_->handle_label) now.regions.push_back(state_.transforms[static_cast<size_t>(label)]);
     write_roi(paths_.roi, selection_->selection.roi);
     write_handles(paths_.handles, selection_->selection, {now});
-    v.flash("saved " + paths_.roi.string() + " and " + paths_.handles.string());
+    mark_saved();
+    v.flash("saved " + paths_.roi.string() + " and " + paths_.handles.string(), viewer::Tone::Success);
   } catch (const Error& e) {
-    v.flash(std::string("save failed: ") + e.what());
+    v.flash(std::string("save failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -445,9 +454,10 @@ void DeformApp::load_selection(viewer::Viewer& v) {
     state_.transforms = std::move(transforms);
     state_.active_handle = 0;
     set_labels(std::move(labels), "open selection");
-    v.flash("opened " + paths_.roi.string() + " and " + paths_.handles.string());
+    mark_saved();
+    v.flash("opened " + paths_.roi.string() + " and " + paths_.handles.string(), viewer::Tone::Success);
   } catch (const Error& e) {
-    v.flash(std::string("open selection failed: ") + e.what());
+    v.flash(std::string("open selection failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -460,8 +470,8 @@ bool DeformApp::export_ready() const {
 bool DeformApp::export_result(viewer::Viewer& v) {
   pending_export_ = false;
   if (!export_ready()) {
-    if (!selection_) return v.flash("export: " + selection_error_), false;
-    if (!engine_error_.empty()) return v.flash("export: " + engine_error_), false;
+    if (!selection_) return v.flash("export: " + selection_error_, viewer::Tone::Error), false;
+    if (!engine_error_.empty()) return v.flash("export: " + engine_error_, viewer::Tone::Error), false;
     pending_export_ = true;  // written once the newest solve arrives
     return v.flash("export: waiting for the solve to finish"), false;
   }
@@ -508,12 +518,14 @@ bool DeformApp::export_result(viewer::Viewer& v) {
     const bool transferred = export_transfer(stem, out, j);
     core::write_file_atomically(stem.string() + ".deform.json", [&](std::ostream& o) { o << j.dump(2) << "\n"; });
     files.commit();
+    mark_saved();  // the export holds the selection and the pose too
     v.flash("exported " + out.string() + " (+ .roi.txt, .handles.json, .deform.json" +
-            (transferred ? ", the transfer target" : "") + ")");
+                (transferred ? ", the transfer target" : "") + ")",
+            viewer::Tone::Success);
     std::printf("exported %s\n", out.string().c_str());
     return true;
   } catch (const Error& e) {
-    v.flash(std::string("export failed: ") + e.what());
+    v.flash(std::string("export failed: ") + e.what(), viewer::Tone::Error);
     std::fprintf(stderr, "lapis-deform: export failed: %s\n", e.what());
     return false;
   }

@@ -5,6 +5,7 @@
 // and solves each frame, and the newest finished frame is drawn when it is ready.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -20,11 +21,15 @@
 #include "lapis/mesh_deform/vertex_labels.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/latest_worker.h"
+#include "lapis/viewer/panel_column.h"
 #include "lapis/viewer/undo_history.h"
 #include "lapis/viewer/viewer.h"
 #include "transfer_pairing.h"
 
 namespace lapis::deform_app {
+
+// The width of the panels down the window's right edge.
+constexpr float kPanelWidth = 340;
 
 using namespace lapis::mesh_deform;
 namespace fs = std::filesystem;
@@ -51,9 +56,16 @@ struct DeformPaths {
   fs::path mesh;                // the mesh opened (the CLI's --mesh for the export)
   fs::path roi, handles;        // selection files: Ctrl+S saves, Ctrl+O opens
   fs::path export_mesh;         // Ctrl+E; beside it <stem>.roi.txt, .handles.json, .deform.json
+  fs::path screenshot;          // Ctrl+P and the File panel's button
   bool export_on_exit = false;  // batch runs: export when the app closes
   fs::path bundled_dir;         // meshes the file panel offers (assets/external)
 };
+
+// The files of `mesh` (the selection, the export, the screenshot), named after it: next to
+// it, or in out/ of the working directory for a bundled mesh and where its directory is not
+// writable (an installed share/lapis). Each mesh has its own, so opening a second one never
+// overwrites the first one's selection. Keeps `defaults`' other fields.
+DeformPaths paths_beside(const fs::path& mesh, DeformPaths defaults);
 
 // The undoable state: painted labels (shared between snapshots that did not repaint) and
 // one transform per handle label.
@@ -99,6 +111,8 @@ class DeformApp final : public viewer::ViewerApp {
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
   int exit_status() const override { return exit_status_; }
+  bool may_close(viewer::Viewer& v) override;  // asks first when there are unsaved edits
+  bool asking() const override { return leave_prompt_.has_value(); }
   bool busy() const override;
   void benchmark_fields(nlohmann::json& j) const override;
 
@@ -191,19 +205,33 @@ class DeformApp final : public viewer::ViewerApp {
   bool gizmo_shown() const;  // a valid selection and a painted active handle
   void update_markers(viewer::Viewer& v);
   void update_target_surface(viewer::Viewer& v);
-  void draw_tools_panel(viewer::Viewer& v);
-  void draw_method_panel(viewer::Viewer& v);
-  void draw_handle_panel(viewer::Viewer& v);
+  void draw_tools_panel(viewer::Viewer& v, viewer::PanelColumn& column);
+  void draw_method_panel(viewer::PanelColumn& column);
+  void draw_handle_panel(viewer::PanelColumn& column);
   void draw_file_panel(viewer::Viewer& v);
   void draw_legend(viewer::Viewer& v);
   void draw_feature_controls();
   void features_received(const LiveFrame& f);
   void draw_overlay(viewer::Viewer& v);
   void draw_cursor(viewer::Viewer& v);
+  // Files (deform_files.cpp): the File panel's fields follow paths_; the edits since the
+  // selection was last saved, opened or exported; the prompt before they would be lost (quit,
+  // another mesh).
+  void fill_file_fields();
+  void mark_saved() { saved_state_ = state_; }
+  bool unsaved() const;
+  void open_mesh_or_ask(viewer::Viewer& v, const fs::path& path);
+  void draw_leave_prompt(viewer::Viewer& v);
+  enum class LeaveChoice { Stay, Save, Discard };
+  void leave(viewer::Viewer& v, LeaveChoice choice);  // answers the prompt
 
   geometry::TriMesh rest_;
   std::unique_ptr<geometry::Connectivity> conn_;
   DeformPaths paths_;
+  std::array<char, 1024> roi_field_{}, handles_field_{}, export_field_{};
+  EditState saved_state_;
+  std::optional<fs::path> leave_prompt_;  // asking about unsaved edits before quitting (an
+                                          // empty path) or opening this mesh
   MethodSettings settings_;
   bool preview_while_dragging_ = true;  // implicit: first system while dragging (§2.5)
   bool load_on_start_ = false;

@@ -10,6 +10,14 @@ namespace lapis::deform_app {
 
 bool DeformApp::on_event(viewer::Viewer& v, const viewer::InputEvent& e) {
   using viewer::EventType;
+  if (leave_prompt_) {  // the unsaved-edits prompt is modal: its keys, nothing else
+    if (e.type == EventType::Key && e.action == GLFW_PRESS && e.mods == 0) {
+      if (e.key == GLFW_KEY_S) leave(v, LeaveChoice::Save);
+      if (e.key == GLFW_KEY_D) leave(v, LeaveChoice::Discard);
+      if (e.key == GLFW_KEY_ESCAPE) leave(v, LeaveChoice::Stay);
+    }
+    return true;
+  }
   if (e.type == EventType::Key) return handle_key(v, e);
   if (e.type == EventType::MouseButton && e.button == GLFW_MOUSE_BUTTON_LEFT) {
     if (e.action == GLFW_PRESS) return press(v, {e.x, e.y}, e.mods);

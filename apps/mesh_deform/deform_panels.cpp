@@ -12,11 +12,20 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/viewer/colormap.h"
 #include "lapis/viewer/gizmo.h"
+#include "lapis/viewer/panel_column.h"
+#include "lapis/viewer/tone.h"
 
 namespace lapis::deform_app {
 namespace {
 
 ImVec4 to_imvec(const Eigen::Vector3f& c) { return ImVec4(c.x(), c.y(), c.z(), 1.0f); }
+
+// A greyed hint (key bindings, what a control does), wrapped at the panel's edge.
+void hint(const char* text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", text);
+  ImGui::PopStyleColor();
+}
 
 // The active handle's transform as the panel edits it: a uniform scale and a rotation about
 // the handle's rest centroid c, then a translation of c (x' = t + c + s R (x − c)).
@@ -35,7 +44,7 @@ HandlePose decompose(const Eigen::Matrix4d& T, const Eigen::Vector3d& c) {
   // eulerAngles() would give 180, -180, 141 for a 39° turn about z).
   const double ry = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
   const double rx = std::atan2(R(2, 1), R(2, 2)), rz = std::atan2(R(1, 0), R(0, 0));
-  p.euler_deg = Eigen::Vector3d(rx, ry, rz) * 180 / std::numbers::pi;
+  p.euler_deg = (Eigen::Vector3d(rx, ry, rz) * 180 / std::numbers::pi).array() + 0.0;  // + 0: no "-0.0" shown
   p.translation = L * c + T.topRightCorner<3, 1>() - c;
   return p;
 }
@@ -55,27 +64,34 @@ Eigen::Matrix4d compose(const HandlePose& p, const Eigen::Vector3d& c) {
 }  // namespace
 
 void DeformApp::on_gui(viewer::Viewer& v) {
-  draw_tools_panel(v);
-  draw_method_panel(v);
-  draw_handle_panel(v);
+  // The Selection, Method and Handle panels down the right edge, each sized to its content.
+  viewer::PanelColumn column(static_cast<float>(v.width()), static_cast<float>(v.height()), kPanelWidth);
+  draw_tools_panel(v, column);
+  draw_method_panel(column);
+  draw_handle_panel(column);
   draw_file_panel(v);
   draw_transfer_panel(v);
   draw_legend(v);
   draw_overlay(v);
   draw_roi_warning(v);
   draw_cursor(v);
+  draw_leave_prompt(v);
 }
 
-void DeformApp::draw_tools_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Selection");
+void DeformApp::draw_tools_panel(viewer::Viewer& v, viewer::PanelColumn& column) {
+  column.begin("Selection");
+  // The status first: new handles and warnings below it must not push it out of view.
+  if (!selection_error_.empty())
+    viewer::tone_text(viewer::Tone::Error, selection_error_);
+  else if (selection_)
+    ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(),
+                selection_->selection.region_handles.size());
   for (Tool t : {Tool::Move, Tool::Brush, Tool::Lasso, Tool::Connected, Tool::Geodesic, Tool::Pair}) {
     if (t == Tool::Pair && !pairing_) continue;
     if (t != Tool::Move && t != Tool::Connected) ImGui::SameLine();
     if (ImGui::RadioButton(tool_name(t), tool_ == t)) tool_ = t;
   }
-  ImGui::TextDisabled("M move  B brush  L lasso  K connected  G geodesic  Shift: erase");
+  hint("M move  B brush  L lasso  K connected  G geodesic  Shift: erase");
   if (ImGui::Checkbox("x-ray (X): brush and lasso select through", &xray_)) surface_dirty_ = markers_dirty_ = true;
   if (tool_ == Tool::Connected) ImGui::Checkbox("within the clicked vertex's label", &connected_within_label_);
   if (tool_ == Tool::Geodesic) {
@@ -96,7 +112,7 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
     ImGui::SameLine();
     if (ImGui::RadioButton("feature", target_ == kFeatureTarget)) target_ = kFeatureTarget;
   }
-  ImGui::TextDisabled("1 ROI  2 fixed  3 handle  4 erase  N new handle");
+  hint("1 ROI  2 fixed  3 handle  4 erase  N new handle");
   // Handles: pick the active one (the gizmo's and the target's).
   const int handles = state_.labels->handle_count();
   for (int h = 0; h <= std::max(handles - 1, state_.active_handle); ++h) {
@@ -135,12 +151,7 @@ void DeformApp::draw_tools_panel(viewer::Viewer& v) {
   if (ImGui::Button("reset pose (R)")) reset_pose(v);
   if (settings_.method == Method::Salient) draw_feature_controls();
   draw_roi_warning_details();
-  if (!selection_error_.empty())
-    ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.35f, 1.0f), "%s", selection_error_.c_str());
-  else if (selection_)
-    ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(),
-                selection_->selection.region_handles.size());
-  ImGui::End();
+  column.end();
 }
 
 namespace {
@@ -156,7 +167,7 @@ void draw_edge_controls(EdgeLaplacianOptions& o) {
     o.transform = static_cast<CellTransform>(transform);
   if (o.transform == CellTransform::AnisotropicScale || o.transform == CellTransform::Full) {
     int frame = o.frame == ScaleFrame::World ? 0 : 1;
-    if (ImGui::Combo("scale axes", &frame, "world x, y, z (the paper)\0principal rest axes\0"))
+    if (ImGui::Combo("scale axes", &frame, "world axes (the paper)\0principal rest axes\0"))
       o.frame = frame == 0 ? ScaleFrame::World : ScaleFrame::RestPrincipal;
   }
   ImGui::SliderInt("iterations / frame", &o.iterations, 1, 20);
@@ -224,10 +235,8 @@ void DeformApp::draw_feature_controls() {
   }
 }
 
-void DeformApp::draw_method_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 330), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Method");
+void DeformApp::draw_method_panel(viewer::PanelColumn& column) {
+  column.begin("Method");
   MethodSettings s = settings_;
   const auto& list = methods();
   if (ImGui::BeginCombo("method", method_info(s.method).label)) {
@@ -300,33 +309,33 @@ void DeformApp::draw_method_panel(viewer::Viewer& v) {
   if ((color_mode_ == ColorMode::IsolineField || color_mode_ == ColorMode::Rigidity) && isolines_.empty())
     ImGui::TextDisabled("(the isolines method's setup shows them)");
   if (ImGui::Checkbox("degenerate vertices", &show_degenerate_)) markers_dirty_ = true;
-  ImGui::End();
+  column.end();
 }
 
-void DeformApp::draw_handle_panel(viewer::Viewer& v) {
+void DeformApp::draw_handle_panel(viewer::PanelColumn& column) {
   if (!selection_ || !state_.labels->any(state_.active_handle)) return;
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 520), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Handle transform");
+  column.begin("Handle transform");
   const Eigen::Vector3d c = handle_rest_centroid(state_.active_handle);
   HandlePose p = decompose(active_transform(), c);
   bool changed = false, released = false;
-  changed |= ImGui::DragScalarN("move", ImGuiDataType_Double, p.translation.data(), 3, 0.002f);
+  changed |=
+      ImGui::DragScalarN("move", ImGuiDataType_Double, p.translation.data(), 3, 0.002f, nullptr, nullptr, "%.4g");
   released |= ImGui::IsItemDeactivatedAfterEdit();
-  changed |= ImGui::DragScalarN("rotate (deg)", ImGuiDataType_Double, p.euler_deg.data(), 3, 0.5f);
+  changed |=
+      ImGui::DragScalarN("rotate (deg)", ImGuiDataType_Double, p.euler_deg.data(), 3, 0.5f, nullptr, nullptr, "%.1f");
   released |= ImGui::IsItemDeactivatedAfterEdit();
   const double lo = 0.05, hi = 20;
-  changed |= ImGui::DragScalar("scale", ImGuiDataType_Double, &p.scale, 0.005f, &lo, &hi);
+  changed |= ImGui::DragScalar("scale", ImGuiDataType_Double, &p.scale, 0.005f, &lo, &hi, "%.3f");
   released |= ImGui::IsItemDeactivatedAfterEdit();
   if (changed) active_transform() = compose(p, c);
   if (released) commit("edit handle " + std::to_string(state_.active_handle));
-  ImGui::TextDisabled("gizmo: arrows move, rings rotate, square scales");
-  ImGui::End();
+  hint("gizmo: arrows move, rings rotate, square scales");
+  column.end();
 }
 
 void DeformApp::draw_file_panel(viewer::Viewer& v) {
   ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 230), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("File");
   if (!paths_.bundled_dir.empty() && ImGui::BeginCombo("bundled mesh", paths_.mesh.filename().string().c_str())) {
     std::vector<fs::path> meshes;
@@ -337,23 +346,23 @@ void DeformApp::draw_file_panel(viewer::Viewer& v) {
     }
     std::sort(meshes.begin(), meshes.end());
     for (const auto& m : meshes)
-      if (ImGui::Selectable(m.filename().string().c_str(), m == paths_.mesh)) open_mesh(v, m);
+      if (ImGui::Selectable(m.filename().string().c_str(), m == paths_.mesh)) open_mesh_or_ask(v, m);
     ImGui::EndCombo();
   }
-  static char roi[512] = "", handles[512] = "", out[512] = "";
-  if (!roi[0]) std::snprintf(roi, sizeof roi, "%s", paths_.roi.string().c_str());
-  if (!handles[0]) std::snprintf(handles, sizeof handles, "%s", paths_.handles.string().c_str());
-  if (!out[0]) std::snprintf(out, sizeof out, "%s", paths_.export_mesh.string().c_str());
-  ImGui::InputText("ROI file", roi, sizeof roi);
-  ImGui::InputText("handles file", handles, sizeof handles);
-  ImGui::InputText("export (.obj/.ply)", out, sizeof out);
-  paths_.roi = roi, paths_.handles = handles, paths_.export_mesh = out;
+  // The fields start as the mesh's own files (paths_beside) and follow it when another opens.
+  ImGui::PushItemWidth(220);
+  ImGui::InputText("ROI file", roi_field_.data(), roi_field_.size());
+  ImGui::InputText("handles file", handles_field_.data(), handles_field_.size());
+  ImGui::InputText("export .obj/.ply", export_field_.data(), export_field_.size());
+  ImGui::PopItemWidth();
+  paths_.roi = roi_field_.data(), paths_.handles = handles_field_.data(), paths_.export_mesh = export_field_.data();
   if (ImGui::Button("save selection (Ctrl+S)")) save_selection(v);
   ImGui::SameLine();
   if (ImGui::Button("open selection (Ctrl+O)")) load_selection(v);
   if (ImGui::Button("export (Ctrl+E)")) export_result(v);
   ImGui::SameLine();
-  if (ImGui::Button("screenshot (Ctrl+P)")) v.request_screenshot("out/deform_screenshot.png");
+  if (ImGui::Button("screenshot (Ctrl+P)")) v.request_screenshot(v.screenshot_path());
+  ImGui::TextDisabled("screenshot: %s", v.screenshot_path().string().c_str());
   ImGui::End();
 }
 
@@ -405,9 +414,7 @@ void DeformApp::draw_transfer_panel(viewer::Viewer& v) {
   }
   if (pairing_->slots().empty()) ImGui::TextDisabled("paint a handle on the mesh first");
   if (!transfer_error_.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.55f, 0.35f, 1.0f));
-    ImGui::TextWrapped("%s", transfer_error_.c_str());
-    ImGui::PopStyleColor();
+    viewer::tone_text(viewer::Tone::Error, transfer_error_);
   } else if (transferred_) {
     ImGui::Text("transfer %.0f ms, Eq. 11 residual %.2g, Eq. 12 %.2g", transferred_->ms,
                 transferred_->report.eq11_residual, transferred_->report.eq12_residual);
@@ -482,13 +489,14 @@ void DeformApp::draw_overlay(viewer::Viewer& v) {
                   100 * preview_gap_);
     v.overlay(buf);
   }
-  if (!engine_error_.empty()) v.overlay("error: " + engine_error_);
-  if (!selection_error_.empty()) v.overlay("selection: " + selection_error_);
-  if (pending_export_) v.overlay("export waits for the solve");
+  if (!engine_error_.empty()) v.overlay("error: " + engine_error_, viewer::Tone::Error);
+  if (!selection_error_.empty()) v.overlay("selection: " + selection_error_, viewer::Tone::Error);
+  if (pending_export_) v.overlay("export waits for the solve", viewer::Tone::Warning);
 }
 
 void DeformApp::draw_cursor(viewer::Viewer& v) {
-  if (tool_ != Tool::Brush || dragging_) return;
+  // Not over a panel, where a click goes to the panel, not the brush.
+  if (tool_ != Tool::Brush || dragging_ || ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) return;
   const Eigen::Vector2d p = v.cursor();
   ImGui::GetForegroundDrawList()->AddCircle(ImVec2(static_cast<float>(p.x()), static_cast<float>(p.y())), brush_px_,
                                             IM_COL32(255, 255, 255, 160), 48, 1.5f);

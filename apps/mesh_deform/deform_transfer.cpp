@@ -32,9 +32,10 @@ void DeformApp::open_transfer_target(viewer::Viewer& v, const fs::path& path) {
     tool_ = Tool::Pair;
     update_target_surface(v);
     v.frame_scene();
-    v.flash("opened target " + path.string() + ": click where each handle is on it (pair tool, P)");
+    v.flash("opened target " + path.string() + ": click where each handle is on it (pair tool, P)",
+            viewer::Tone::Success);
   } catch (const Error& e) {
-    v.flash(std::string("open target failed: ") + e.what());
+    v.flash(std::string("open target failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -122,7 +123,7 @@ void DeformApp::receive_transfer(viewer::Viewer& v) {
   } catch (const Error& e) {
     transfer_error_ = e.what();
     transfer_received_ = transfer_submitted_;
-    v.flash(std::string("transfer failed: ") + e.what());
+    v.flash(std::string("transfer failed: ") + e.what(), viewer::Tone::Error);
     return;
   }
   if (!t || t->epoch != target_epoch_) return;

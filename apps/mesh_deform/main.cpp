@@ -66,9 +66,11 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
   if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0)
     mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
-  paths.roi = args.get("--roi", "out/deform_selection.roi.txt");
-  paths.handles = args.get("--handles", "out/deform_selection.handles.json");
-  paths.export_mesh = args.get("--export", "out/deformed.obj");
+  // The mesh's own files unless given (paths_beside: next to it, or in out/ for a bundled one).
+  paths = deform_app::paths_beside(paths.mesh, paths);
+  paths.roi = args.get("--roi", paths.roi.string());
+  paths.handles = args.get("--handles", paths.handles.string());
+  paths.export_mesh = args.get("--export", paths.export_mesh.string());
   paths.export_on_exit = args.has("--export-on-exit");
 
   mesh_deform::MethodSettings settings;

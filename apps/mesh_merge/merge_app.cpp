@@ -67,7 +67,8 @@ MergeApp::MergeApp(MergeSetup setup, std::string source_name, std::string target
 MergeApp::~MergeApp() = default;
 
 void MergeApp::on_start(viewer::Viewer& v) {
-  worker_.set_on_done([&v] { v.wake(); });  // a finished merge: redraw now
+  v.set_default_screenshot(paths_.export_prefix.string() + "_screenshot.png");  // beside the exports
+  worker_.set_on_done([&v] { v.wake(); });                                      // a finished merge: redraw now
   v.camera().yaw = kViewYaw;
   v.camera().pitch = kViewPitch;
   update_scene(v);
@@ -167,7 +168,7 @@ void MergeApp::load_mesh(viewer::Viewer& v, const std::filesystem::path& path, b
     else
       replace_meshes(v, setup().source, source_name(), mesh, name, "open target " + name, Placement::Suggested);
   } catch (const Error& e) {
-    v.flash(std::string("open failed: ") + e.what());
+    v.flash(std::string("open failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -183,7 +184,7 @@ void MergeApp::load_preset(viewer::Viewer& v, int preset) {
       frame(v);
     }
   } catch (const Error& e) {
-    v.flash(std::string("open failed: ") + e.what());
+    v.flash(std::string("open failed: ") + e.what(), viewer::Tone::Error);
   }
 }
 
@@ -373,7 +374,7 @@ void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
     mesh_merge::add_key(next, pair, {ks, kt},
                         source_.loops()[static_cast<size_t>(next.pairs[static_cast<size_t>(pair)].source_loop)]);
   } catch (const Error& e) {
-    return v.flash(e.what());
+    return v.flash(e.what(), viewer::Tone::Error);
   }
   commit(v, std::move(next), "key correspondence");
 }
@@ -462,7 +463,7 @@ void MergeApp::receive_merge(viewer::Viewer& v) {
   remerge_ms_ = remerge_ms(*r);
   frame_at_merge_ms_.push_back(v.last_frame_ms());
   if (!r->error.empty())
-    v.flash("merge failed: " + r->error);
+    v.flash("merge failed: " + r->error, viewer::Tone::Error);
   else if (r->source == setup().source && r->target == setup().target)  // not one of meshes since replaced
     shown_ = *r, scene_dirty_ = true;
   last_ = std::move(r);

@@ -26,7 +26,7 @@ std::string shortest(double x) {  // round-trips, so the command reproduces the 
 bool MergeApp::export_all(viewer::Viewer& v) {
   export_pending_ = false;
   auto refuse = [&](const std::string& why) {
-    v.flash(why);
+    v.flash(why, viewer::Tone::Error);
     std::fprintf(stderr, "lapis-merge: %s\n", why.c_str());
     return false;
   };
@@ -78,7 +78,7 @@ bool MergeApp::export_all(viewer::Viewer& v) {
     core::write_file_atomically(command, [&](std::ostream& out) { out << cmd << "\n"; });
     files.commit();
     const std::string inputs = s.options.mode == mesh_merge::MergeMode::OptimalBoundary ? p + "_regions.json" : pairs;
-    v.flash("exported " + merged + " and " + inputs);
+    v.flash("exported " + merged + " and " + inputs, viewer::Tone::Success);
     std::printf("exported %s, %s, %s, %s\n", merged.c_str(), source.c_str(), target.c_str(), inputs.c_str());
     return true;
   } catch (const Error& e) {

@@ -92,7 +92,7 @@ std::string MergeApp::edit_optimal(MergeSetup& next) {
   if (ImGui::SmallButton("clear region")) region_of(next, optimal_region_).clear(), edit = "clear region";
   ImGui::SameLine();
   if (ImGui::SmallButton("suggest placement")) next.optimal.placement.reset(), edit = "suggest placement";
-  if (!optimizer()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.35f, 1.0f), "%s", optimizer_.error.c_str());
+  if (!optimizer()) viewer::tone_text(viewer::Tone::Error, optimizer_.error);
   return edit;
 }
 

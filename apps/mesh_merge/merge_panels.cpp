@@ -3,7 +3,10 @@
 // goes through an undoable commit; sliders commit when released (one undo step per drag).
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "bundled_meshes.h"
+#include "lapis/viewer/tone.h"
 #include "merge_app.h"
 
 namespace lapis::merge_app {
@@ -49,8 +52,7 @@ void MergeApp::draw_menu(viewer::Viewer& v) {
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Export merged mesh + pairs", "Ctrl+E")) export_pending_ = true;
-    if (ImGui::MenuItem("Screenshot", "Ctrl+P"))
-      v.request_screenshot(paths_.export_prefix.string() + "_screenshot.png");
+    if (ImGui::MenuItem("Screenshot", "Ctrl+P")) v.request_screenshot(v.screenshot_path());
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) v.close();
     ImGui::EndMenu();
   }
@@ -227,7 +229,7 @@ void MergeApp::draw_merge_actions(viewer::Viewer& v) {
     ImGui::TextDisabled("auto-merge paused: a re-merge takes %.2f s", *remerge_ms_ / 1000.0);
   const std::string missing = mesh_merge::missing_input(setup(), static_cast<int>(source_.loops().size()));
   if (!missing.empty()) ImGui::TextWrapped("next: %s", missing.c_str());
-  if (last_ && !last_->error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.5f, 0.35f, 1.0f), "%s", last_->error.c_str());
+  if (last_ && !last_->error.empty()) viewer::tone_text(viewer::Tone::Error, last_->error);
   ImGui::BeginDisabled(!history_.can_undo());
   if (ImGui::Button("Undo")) undo(v);
   ImGui::EndDisabled();
@@ -255,10 +257,12 @@ void MergeApp::draw_paint_controls(viewer::Viewer& v) {
 }
 
 void MergeApp::draw_result_panel(viewer::Viewer& v) {
-  // Under the merge panel, whose height changes with the tool and the mode.
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, merge_panel_bottom_ + 6),
-                          ImGuiCond_Always);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth - 8, 0), ImVec2(kPanelWidth - 8, 1e6f));
+  // Under the merge panel, whose height changes with the tool and the mode, and never past the
+  // window's bottom (it scrolls there).
+  const float top = std::min(merge_panel_bottom_ + 6, static_cast<float>(v.height()) - 40);
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - kPanelWidth, top), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(
+      ImVec2(kPanelWidth - 8, 0), ImVec2(kPanelWidth - 8, std::max(40.0f, static_cast<float>(v.height()) - top - 10)));
   ImGui::Begin("Result", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   if (!shown_) {
     ImGui::TextDisabled("no merge yet");
@@ -268,11 +272,11 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
   const auto& r = shown_->result;
   const auto& q = shown_->quality;
   const auto& t = r.timings;
-  if (shown_->revision != revision()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "setup changed since this merge");
+  if (shown_->revision != revision()) viewer::tone_text(viewer::Tone::Warning, "setup changed since this merge");
   ImGui::TextWrapped("%d vertices, %d faces (%zu seam strip faces)", r.mesh.num_vertices(), r.mesh.num_faces(),
                      r.strip_faces.size());
-  ImGui::TextColored(q.valid() ? ImVec4(0.5f, 1, 0.5f, 1) : ImVec4(1, 0.4f, 0.3f, 1), "seam %s",
-                     q.valid() ? "watertight and manifold" : "NOT valid");
+  viewer::tone_text(q.valid() ? viewer::Tone::Success : viewer::Tone::Error,
+                    q.valid() ? "seam watertight and manifold" : "seam NOT valid");
   if (shown_->boundary) {
     const mesh_merge::OptimalBoundary& b = *shown_->boundary;
     ImGui::Text("boundary energy %.3g (rough border %.3g)", b.energy, b.user_energy);

@@ -95,7 +95,7 @@ void MergeApp::cut_painted(viewer::Viewer& v) {
             std::to_string(kept.num_vertices()) + " vertices, " + std::to_string(conn.boundary_loops().size()) +
             " boundary loop(s)");
   } catch (const Error& e) {
-    v.flash(e.what());
+    v.flash(e.what(), viewer::Tone::Error);
   }
 }
 

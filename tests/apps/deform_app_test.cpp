@@ -114,7 +114,7 @@ int run_window(const std::string& app_args, const std::string& actions, const fs
                            "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n" +
                            actions + "\nfor i in $(seq 1 2400); do [ -e " + wait_for.string() +
                            " ] && break; sleep 0.1; done\n"
-                           "xdotool key --window $w ctrl+q; wait $app\n";
+                           "quit_discarding\n";
   return run_under_xvfb(ready_script(dir / "deform.sh", dir / "deform.ready", body));
 }
 
@@ -157,6 +157,11 @@ struct EventScript {
     button(path.back(), 0);
   }
 };
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 std::vector<int> complement(const std::vector<int>& set, int n) {
   std::vector<char> in(static_cast<size_t>(n), 0);
@@ -948,4 +953,49 @@ TEST_CASE("apps: deform app — a handle reaching past a narrow ROI warns that t
   CHECK(r.log.find("lapis-deform: warning: the ROI's border cuts close to a handle: handle 0: " +
                    std::to_string(near.size()) + " of " + std::to_string(r.handle.size()) +
                    " vertices within 2 rings of the fixed region") != std::string::npos);
+}
+
+TEST_CASE("apps: deform app — quitting with unsaved edits asks: Esc stays, S saves and quits; no edits, no question") {
+  const fs::path dir = scratch_dir() / "unsaved";
+  fs::create_directories(dir);
+  const fs::path roi = dir / "sel.roi.txt", handles = dir / "sel.handles.json", log = dir / "unsaved.log";
+  fs::copy_file(kRoi, roi, fs::copy_options::overwrite_existing);
+  fs::copy_file(kHandles, handles, fs::copy_options::overwrite_existing);
+  const std::string app = kApp + kSize + " --mesh " + kMesh.string() + " --roi " + roi.string() + " --handles " +
+                          handles.string() + " --ready-file " + (dir / "ready").string() + " 2>" + log.string() +
+                          " &\n";
+  // The pointer over the 3D view (keys act where it is); 2 then = grows the fixed region: an
+  // edit. Ctrl+Q asks; Esc keeps the window; Ctrl+Q asks again; S saves and quits.
+  const std::string body = app +
+                           "app=$!\n"
+                           "window lapis-deform || { kill $app; exit 3; }\n"
+                           "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"
+                           "xdotool mousemove --window $w 450 120\n"
+                           "mark; xdotool key --window $w 2 key --window $w equal; wait_handled 4 0 || exit 5\n"
+                           "xdotool key --window $w ctrl+q; wait_ready '[ $asking -eq 1 ]' 60 || exit 6\n"
+                           "kill -0 $app || exit 7\n"
+                           "xdotool key --window $w Escape; wait_ready '[ $asking -eq 0 ]' 60 || exit 8\n"
+                           "kill -0 $app || exit 9\n"
+                           "xdotool key --window $w ctrl+q; wait_ready '[ $asking -eq 1 ]' 60 || exit 10\n"
+                           "xdotool key --window $w s; wait $app\n";
+  const std::string before = text_of(roi);
+  REQUIRE(run_under_xvfb(ready_script(dir / "unsaved.sh", dir / "ready", body)) == 0);
+  const std::string said = text_of(log);
+  CAPTURE(said);
+  CHECK(said.find("lapis-deform: unsaved edits: asking before quitting") != std::string::npos);
+  CHECK(said.find("lapis-deform: unsaved edits: stayed") != std::string::npos);
+  CHECK(said.find("lapis-deform: unsaved edits: saved") != std::string::npos);
+  // The saved ROI: the grown fixed region took a ring of it.
+  const std::vector<int> saved = mesh_deform::read_roi(roi);
+  CHECK(text_of(roi) != before);
+  CHECK(saved.size() < mesh_deform::read_roi(kRoi).size());
+
+  // Opened and quit at once: nothing to save, no question.
+  const std::string quiet = app +
+                            "app=$!\n"
+                            "window lapis-deform || { kill $app; exit 3; }\n"
+                            "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"
+                            "xdotool key --window $w ctrl+q; wait $app\n";
+  REQUIRE(run_under_xvfb(ready_script(dir / "quiet.sh", dir / "ready", quiet)) == 0);
+  CHECK(text_of(log).find("unsaved edits") == std::string::npos);
 }
