@@ -27,7 +27,8 @@ inline nlohmann::json seam_json(const mesh_merge::SeamQuality& q) {
 inline nlohmann::json detail_json(const mesh_merge::DetailPreservation& d) {
   return {{"laplacian_residual", d.laplacian_residual},
           {"max_distance", d.max_distance},
-          {"mean_distance", d.mean_distance}};
+          {"mean_distance", d.mean_distance},
+          {"turn_deg", d.turn_deg}};
 }
 
 // Prints why a merged seam is not valid; returns the command's exit code (0 when it is).

@@ -64,7 +64,7 @@ py::dict report(const TriMesh& source, const TriMesh& target, MergeResult& r) {
                    "max_target_displacement"_a = q.max_target_displacement,
                    "dihedral_mean_deg"_a = q.seam_dihedral_mean_deg, "dihedral_max_deg"_a = q.seam_dihedral_max_deg),
       "detail"_a = py::dict("laplacian_residual"_a = d.laplacian_residual, "max_distance"_a = d.max_distance,
-                            "mean_distance"_a = d.mean_distance));
+                            "mean_distance"_a = d.mean_distance, "turn_deg"_a = d.turn_deg));
 }
 
 py::tuple result(const TriMesh& source, const TriMesh& target, MergeResult&& r) {

@@ -38,11 +38,36 @@ void add_key(MergeSetup& setup, int pair, KeyCorrespondence key, const std::vect
   if (position(key.source) == static_cast<long>(source_loop.size()))
     throw InvalidArgument(std::string(fn) + ": source vertex " + std::to_string(key.source) +
                           " is not on the pair's source loop");
-  auto& keys = setup.pairs[static_cast<size_t>(pair)].keys;
+  PickedPair& picked = setup.pairs[static_cast<size_t>(pair)];
+  if (picked.keys_suggested) picked.keys.clear(), picked.keys_suggested = false;
+  auto& keys = picked.keys;
   std::erase_if(keys, [&](const KeyCorrespondence& k) { return k.source == key.source || k.target == key.target; });
   keys.push_back(key);
   std::sort(keys.begin(), keys.end(),
             [&](const auto& a, const auto& b) { return position(a.source) < position(b.source); });
+}
+
+std::vector<KeySuggestion> suggest_keys(MergeSetup& setup, const std::vector<std::vector<int>>& source_loops,
+                                        const std::vector<std::vector<int>>& target_loops, int pair) {
+  constexpr const char* fn = "mesh_merge::suggest_keys()";
+  const int n = static_cast<int>(setup.pairs.size());
+  if (pair < -1 || pair >= n)
+    throw InvalidArgument(std::string(fn) + ": pair " + std::to_string(pair) + " out of range");
+  std::vector<KeySuggestion> out;
+  for (int p = pair < 0 ? 0 : pair; p < (pair < 0 ? n : pair + 1); ++p) {
+    PickedPair& picked = setup.pairs[static_cast<size_t>(p)];
+    if (picked.source_loop >= static_cast<int>(source_loops.size()) ||
+        picked.target_loop >= static_cast<int>(target_loops.size()))
+      throw InvalidArgument(std::string(fn) + ": pair " + std::to_string(p) + " names loops " +
+                            std::to_string(picked.source_loop) + " and " + std::to_string(picked.target_loop) +
+                            ", but the meshes have " + std::to_string(source_loops.size()) + " and " +
+                            std::to_string(target_loops.size()));
+    out.push_back(suggest_key(*setup.source, setup.placement, source_loops[static_cast<size_t>(picked.source_loop)],
+                              *setup.target, target_loops[static_cast<size_t>(picked.target_loop)]));
+    picked.keys = {out.back().key};
+    picked.keys_suggested = true;
+  }
+  return out;
 }
 
 void toggle_handle(MergeSetup& setup, int vertex) {

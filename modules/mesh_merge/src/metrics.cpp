@@ -143,6 +143,7 @@ DetailPreservation detail_preservation(const TriMesh& source, const MergeResult&
     to.row(static_cast<Eigen::Index>(k)) = merged.row(interior[k]);
   }
   const geometry::Similarity3 s = geometry::fit_similarity(from, to);
+  d.turn_deg = std::acos(std::clamp((s.R.trace() - 1) / 2, -1.0, 1.0)) * 180 / std::numbers::pi;
   const double diag = std::max(bbox_diagonal(merged), 1e-300);
   double sum = 0;
   for (Eigen::Index k = 0; k < from.rows(); ++k) {

@@ -13,6 +13,7 @@
 
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/optimal_boundary.h"
+#include "lapis/mesh_merge/suggest_key.h"
 
 namespace lapis::mesh_merge {
 
@@ -20,6 +21,7 @@ struct PickedPair {
   int source_loop = -1;                 // index into Connectivity(source).boundary_loops()
   int target_loop = -1;                 // index into Connectivity(target).boundary_loops()
   std::vector<KeyCorrespondence> keys;  // in the source loop's order
+  bool keys_suggested = false;          // keys is suggest_keys()'s: the user's first key replaces it
 };
 
 // The optimal-boundary picks (thesis §3.4) as vertex sets, sorted: a face belongs to a region
@@ -55,9 +57,17 @@ int pair_loops(MergeSetup& setup, int source_loop, int target_loop);
 
 // Adds a key to pair `pair`; source_loop is that pair's source loop (its vertex cycle), by which
 // the keys are kept in order. A key on the same source or the same target vertex as an existing
-// one replaces it. Throws InvalidArgument "mesh_merge::add_key(): ..." for a pair out of range
-// or a source vertex not on source_loop.
+// one replaces it; the first key a user adds replaces a suggested one. Throws InvalidArgument "mesh_merge::add_key():
+// ..." for a pair out of range or a source vertex not on source_loop.
 void add_key(MergeSetup& setup, int pair, KeyCorrespondence key, const std::vector<int>& source_loop);
+
+// Replaces the keys of pair `pair` (every pair when -1) with suggest_key()'s one key for its loops
+// as the source is placed, marked suggested; returns the suggestions in the pairs' order.
+// source_loops / target_loops are the meshes' boundary loops (Connectivity::boundary_loops()),
+// which the pairs index. Throws InvalidArgument "mesh_merge::suggest_keys(): ..." for a pair out
+// of range or a loop index past the loops, and suggest_key()'s errors.
+std::vector<KeySuggestion> suggest_keys(MergeSetup& setup, const std::vector<std::vector<int>>& source_loops,
+                                        const std::vector<std::vector<int>>& target_loops, int pair = -1);
 
 // Adds `vertex` to options.handles, or removes it when it is there already.
 void toggle_handle(MergeSetup& setup, int vertex);

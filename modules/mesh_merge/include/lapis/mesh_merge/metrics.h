@@ -40,6 +40,10 @@ struct DetailPreservation {
   // mean vertex distance (an upper bound of the Hausdorff distance), / merged source bbox diagonal.
   double max_distance = 0;
   double mean_distance = 0;
+  // The angle of that similarity's rotation, in degrees: how far the merge turned the source
+  // from where it was given (placed). Over 90° it landed the other way round (face-down: a key
+  // correspondence on the wrong side of the loop, suggest_key.h).
+  double turn_deg = 0;
 };
 
 // target  the target as given to merge(); r its result.
