@@ -8,6 +8,7 @@
 
 #include "bundled_meshes.h"
 #include "lapis/geometry/io.h"
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/viewer/picking.h"
 
 namespace lapis::merge_app {
@@ -244,6 +245,9 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     case GLFW_KEY_C:
       cut_painted(v);
       break;
+    case GLFW_KEY_K:
+      suggest_all_keys(v);
+      break;
     case GLFW_KEY_X:
       xray_ = !xray_;
       break;
@@ -320,6 +324,7 @@ void MergeApp::click(viewer::Viewer& v, double x, double y) {
 // is drawn, hidden parts included; the source's only while the source is drawn. A click that
 // misses keeps the half-made pair.
 void MergeApp::click_pair_loops(viewer::Viewer& v, double x, double y) {
+  show_inputs_to_pick(v);
   const auto cam = v.camera_matrices();
   const bool source_drawn = v.scene().meshes["source"].visible;
   const viewer::LoopPick s = source_drawn
@@ -333,13 +338,77 @@ void MergeApp::click_pair_loops(viewer::Viewer& v, double x, double y) {
     pending_target_loop_ = t.loop;
   if (pending_source_loop_ < 0 || pending_target_loop_ < 0) return;
   MergeSetup next = setup();
-  mesh_merge::pair_loops(next, pending_source_loop_, pending_target_loop_);
+  const int pair = mesh_merge::pair_loops(next, pending_source_loop_, pending_target_loop_);
   pending_source_loop_ = pending_target_loop_ = -1;
+  // The new pair gets a suggested key right away; a key the user clicks replaces it.
+  try {
+    const mesh_merge::KeySuggestion s = mesh_merge::suggest_keys(next, source_.loops(), target_.loops(), pair).front();
+    flash_suggestion(v, pair, s);
+  } catch (const Error& e) {
+    v.flash(std::string("no key suggested: ") + e.what(), viewer::Tone::Warning);
+  }
   commit(v, std::move(next), "pair loops");
-  tool_ = Tool::Keys;  // a pair needs a key next
+  tool_ = Tool::Keys;  // where the user moves the key
+}
+
+void MergeApp::suggest_all_keys(viewer::Viewer& v) {
+  if (setup().pairs.empty()) return v.flash("pair a source loop with a target loop first (tool 1)");
+  MergeSetup next = setup();
+  try {
+    const std::vector<mesh_merge::KeySuggestion> s = mesh_merge::suggest_keys(next, source_.loops(), target_.loops());
+    for (size_t p = 0; p < s.size(); ++p) flash_suggestion(v, static_cast<int>(p), s[p]);
+  } catch (const Error& e) {
+    return v.flash(e.what(), viewer::Tone::Error);
+  }
+  commit(v, std::move(next), "suggest keys");
+}
+
+std::string MergeApp::result_flag() const {
+  if (!shown_) return {};
+  char buf[256];
+  if (shown_->detail.turn_deg > 90) {
+    std::snprintf(buf, sizeof buf,
+                  "FLIPPED: the merge turned the source %.0f deg from its placement (a key on the wrong side of the "
+                  "loop?): K suggests keys as it is placed",
+                  shown_->detail.turn_deg);
+    return buf;
+  }
+  if (shown_->quality.folded_seam_edges > 0) {
+    std::snprintf(buf, sizeof buf, "FOLDED: %d seam edges fold over %.0f deg (max %.0f deg)",
+                  shown_->quality.folded_seam_edges, geometry::kFoldedDihedralDeg,
+                  shown_->quality.seam_dihedral_max_deg);
+    return buf;
+  }
+  return {};
+}
+
+void MergeApp::flash_suggestion(viewer::Viewer& v, int pair, const mesh_merge::KeySuggestion& s) {
+  char buf[256];
+  if (s.decisive()) {
+    std::snprintf(buf, sizeof buf,
+                  "pair %d: key suggested as the source is placed (K again after moving it, tool 2 sets your own)",
+                  pair + 1);
+    v.flash(buf);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "pair %d: key suggested, but the loops are nearly round (misfit %.2f, next best turn %.2f): check "
+                  "which way round the result is",
+                  pair + 1, s.residual, s.runner_up);
+    v.flash(buf, viewer::Tone::Warning);
+  }
+}
+
+// A merge shown in place of the inputs (after auto-merge, say) hides the source's loops: a click
+// that picks on the inputs brings them back first, and picks on them at once.
+void MergeApp::show_inputs_to_pick(viewer::Viewer& v) {
+  if (!show_result_ || !shown_) return;
+  show_result_ = false;
+  update_scene(v);
+  v.flash("the inputs are shown to pick on (Tab: the result)");
 }
 
 void MergeApp::click_keys(viewer::Viewer& v, double x, double y) {
+  show_inputs_to_pick(v);
   std::vector<int> source_loops, target_loops;
   for (const auto& p : setup().pairs) source_loops.push_back(p.source_loop), target_loops.push_back(p.target_loop);
   if (source_loops.empty()) return v.flash("pair a source loop with a target loop first (tool 1)");
@@ -464,8 +533,11 @@ void MergeApp::receive_merge(viewer::Viewer& v) {
   frame_at_merge_ms_.push_back(v.last_frame_ms());
   if (!r->error.empty())
     v.flash("merge failed: " + r->error, viewer::Tone::Error);
-  else if (r->source == setup().source && r->target == setup().target)  // not one of meshes since replaced
+  else if (r->source == setup().source && r->target == setup().target) {  // not one of meshes since replaced
     shown_ = *r, scene_dirty_ = true;
+    if (const std::string flag = result_flag(); !flag.empty())
+      std::fprintf(stderr, "lapis-merge: %s\n", flag.c_str());  // logs of batch runs
+  }
   last_ = std::move(r);
 }
 

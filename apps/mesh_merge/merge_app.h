@@ -121,6 +121,13 @@ class MergeApp final : public viewer::ViewerApp {
   bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
   void click(viewer::Viewer& v, double x, double y);
   void click_pair_loops(viewer::Viewer& v, double x, double y);
+  void show_inputs_to_pick(viewer::Viewer& v);
+  // K: every pair's key suggested as the source is placed (mesh_merge::suggest_keys).
+  void suggest_all_keys(viewer::Viewer& v);
+  // What is wrong with the shown result that its numbers alone hide: the source turned over
+  // (more than 90° from its placement: face-down) or folded seam edges; "" when neither.
+  std::string result_flag() const;
+  void flash_suggestion(viewer::Viewer& v, int pair, const mesh_merge::KeySuggestion& s);
   void click_keys(viewer::Viewer& v, double x, double y);
   void click_handles(viewer::Viewer& v, double x, double y);
   void press_move(viewer::Viewer& v, double x, double y);

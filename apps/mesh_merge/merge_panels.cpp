@@ -107,8 +107,8 @@ std::string MergeApp::edit_pairs(MergeSetup& next) {
   for (size_t p = 0; p < next.pairs.size(); ++p) {
     ImGui::PushID(static_cast<int>(p));
     const auto& pair = next.pairs[p];
-    ImGui::Text("pair %zu: loops %d <-> %d, %zu key%s", p + 1, pair.source_loop, pair.target_loop, pair.keys.size(),
-                pair.keys.size() == 1 ? "" : "s");
+    ImGui::Text("pair %zu: loops %d <-> %d, %zu key%s%s", p + 1, pair.source_loop, pair.target_loop, pair.keys.size(),
+                pair.keys.size() == 1 ? "" : "s", pair.keys_suggested ? " (suggested)" : "");
     ImGui::SameLine();
     std::string edit;
     if (ImGui::SmallButton("x")) {
@@ -219,6 +219,11 @@ std::string MergeApp::edit_transition_bands(mesh_merge::TransitionOptions& t) {
 // Merge, auto-merge, what input is missing, the last error, undo / redo and export.
 void MergeApp::draw_merge_actions(viewer::Viewer& v) {
   ImGui::Separator();
+  if (!setup().pairs.empty() && ImGui::Button("suggest keys (K)")) suggest_all_keys(v);
+  tooltip(
+      "A key for every pair from the loops as the source is placed: the turn that brings the two rims closest. "
+      "Where the key sits decides which way round the source is merged; move the source (tool 4) and press K "
+      "again to turn it.");
   if (ImGui::Button("Merge (M)")) requested_revision_ = 0, request_merge();
   ImGui::SameLine();
   ImGui::Checkbox("auto-merge", &auto_merge_);
@@ -277,6 +282,7 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
                      r.strip_faces.size());
   viewer::tone_text(q.valid() ? viewer::Tone::Success : viewer::Tone::Error,
                     q.valid() ? "seam watertight and manifold" : "seam NOT valid");
+  if (const std::string flag = result_flag(); !flag.empty()) viewer::tone_text(viewer::Tone::Error, flag);
   if (shown_->boundary) {
     const mesh_merge::OptimalBoundary& b = *shown_->boundary;
     ImGui::Text("boundary energy %.3g (rough border %.3g)", b.energy, b.user_energy);
@@ -342,6 +348,7 @@ void MergeApp::draw_overlay(viewer::Viewer& v) {
     char buf[128];
     std::snprintf(buf, sizeof buf, "last merge %.0f ms (job %.0f ms)", shown_->result.timings.total_ms, shown_->job_ms);
     v.overlay(buf);
+    if (const std::string flag = result_flag(); !flag.empty()) v.overlay(flag, viewer::Tone::Error);
   }
 }
 

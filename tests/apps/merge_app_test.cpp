@@ -18,6 +18,7 @@
 #include "lapis/geometry/procedural.h"
 #include "lapis/mesh_merge/merge_setup.h"
 #include "lapis/mesh_merge/pairs_file.h"
+#include "lapis/mesh_merge/suggest_key.h"
 #include "lapis/viewer/gizmo.h"
 #include "lapis/viewer/loop_picking.h"
 #include "lapis/viewer/orbit_camera.h"
@@ -540,7 +541,7 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
   check_equals_cli(e, dir / "dependent_cli.obj");
 }
 
-TEST_CASE("apps: merge app — undo takes the key back (the module's error names it), redo restores the merge") {
+TEST_CASE("apps: merge app — undo takes the pair back (the module's error names it), redo restores the merge") {
   const fs::path dir = scratch_dir(), events = dir / "undo_redo.json", log = dir / "undo_redo.log",
                  prefix = dir / "redone";
   // The recorded session, then Ctrl+Z, M, Ctrl+Shift+Z, M.
@@ -549,11 +550,13 @@ TEST_CASE("apps: merge app — undo takes the key back (the module's error names
   REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " +
                          prefix.string() + " 2> " + log.string()) == 0);
   const std::string text = text_of(log);
-  CHECK(text.find("undo: key correspondence") != std::string::npos);
-  CHECK(text.find(
-            "merge failed: mesh_merge::check_merge_input(): pair 0 has no key correspondence, expected at least one") !=
+  // The recording's clicked key is the one suggested when the loops were paired, so the click
+  // changed nothing and the last edit is the pair.
+  CHECK(text.find("pair 1: key suggested") != std::string::npos);
+  CHECK(text.find("undo: pair loops") != std::string::npos);
+  CHECK(text.find("merge failed: mesh_merge::check_merge_input(): 0 loop pairs for a source with 1 boundary loops") !=
         std::string::npos);
-  CHECK(text.find("redo: key correspondence") != std::string::npos);
+  CHECK(text.find("redo: pair loops") != std::string::npos);
   const Exported e = read_exports(prefix);
   REQUIRE(e.pairs.size() == 1);
   CHECK(e.pairs[0].keys.size() == 1);
@@ -663,4 +666,77 @@ TEST_CASE(
   const nlohmann::json suggested = nlohmann::json::parse(text_of(dir / "suggested.json"));
   const double u = std::stod(placement.substr(placement.find(',', placement.find(',') + 1) + 1));
   CHECK(u > suggested["placement"]["u"].get<double>() + 0.01);
+}
+
+// A key on the far side of the loop merges the dome turned over; the result is flagged. K then
+// suggests the key as the dome is placed, and the merge with it is not flagged.
+TEST_CASE("apps: merge app — a key half the loop away is flagged FLIPPED; K suggests the key that merges upright") {
+  const fs::path dir = scratch_dir(), prefix = dir / "suggested", log = dir / "suggested.log";
+  const DefaultScene scene;
+  // The key K suggests, and a flipped one: a source loop vertex whose pixel is clear of every
+  // other loop vertex (the click picks the nearest; loops are drawn on top), onto the target
+  // vertex half the loop away from where the suggestion takes it (by loop index, both loops
+  // evenly sampled).
+  const mesh_merge::KeySuggestion s =
+      mesh_merge::suggest_key(scene.source, Eigen::Matrix4d::Identity(), scene.sloop, scene.target, scene.tloop);
+  auto index_in = [](const std::vector<int>& loop, int v) {
+    return static_cast<long>(std::find(loop.begin(), loop.end(), v) - loop.begin());
+  };
+  auto pixel_of = [&](const geometry::TriMesh& m, int v) {
+    return geometry::project(scene.camera, m.V.row(v).transpose()).head<2>().eval();
+  };
+  auto clearance = [&](const geometry::TriMesh& m, int vertex) {
+    double d = 1e9;
+    for (int v : scene.sloop)
+      if (&m != &scene.source || v != vertex) d = std::min(d, (pixel_of(scene.source, v) - pixel_of(m, vertex)).norm());
+    for (int v : scene.tloop)
+      if (&m != &scene.target || v != vertex) d = std::min(d, (pixel_of(scene.target, v) - pixel_of(m, vertex)).norm());
+    return d;
+  };
+  const long ns = static_cast<long>(scene.sloop.size()), nt = static_cast<long>(scene.tloop.size());
+  int key_s = -1, key_t = -1;
+  for (int v : scene.sloop) {
+    const long ds = (index_in(scene.sloop, v) - index_in(scene.sloop, s.key.source) + ns) % ns;
+    const int t =
+        scene.tloop[static_cast<size_t>((index_in(scene.tloop, s.key.target) - ds * nt / ns + nt / 2 + 2 * nt) % nt)];
+    if (clearance(scene.source, v) > 3 && clearance(scene.target, t) > 3) {
+      key_s = v, key_t = t;
+      break;
+    }
+  }
+  REQUIRE(key_s >= 0);
+  auto rounded = [&](const geometry::TriMesh& m, int v) {
+    const Eigen::Vector2d p = pixel_of(m, v);
+    return Eigen::Vector2i(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
+  };
+  const Eigen::Vector2i key_source = rounded(scene.source, key_s), key_target = rounded(scene.target, key_t);
+  // Pair the loops, then click the flipped key.
+  const std::string clicks = click(scene.front_pixel(scene.source, scene.sloop)) +
+                             click(scene.front_pixel(scene.target, scene.tloop)) + click(key_source) +
+                             click(key_target);
+  const std::string keys =
+      "mark; xdotool key --window $w m; wait_handled 2 0\n"
+      "mark; xdotool key --window $w k; wait_handled 2 0\n"
+      "mark; xdotool key --window $w m; wait_handled 2 0\n"
+      "mark; xdotool key --window $w ctrl+e; wait_handled 4 0\n";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(),
+                                         clicks + "xdotool mousemove --window $w 300 600\n" + keys) +
+                         " 2> " + log.string()) == 0);
+  const std::string text = text_of(log);
+  CAPTURE(text);
+  // The clicked key turned the dome over: flagged.
+  const size_t flipped = text.find("lapis-merge: FLIPPED: the merge turned the source ");
+  CHECK(flipped != std::string::npos);
+  // K's suggestion (the second: the first came with the pair) ends it; no merge after is flagged.
+  const size_t suggested = text.find("pair 1: key suggested", text.find("pair 1: key suggested") + 1);
+  REQUIRE(suggested != std::string::npos);
+  CHECK(flipped < suggested);
+  CHECK(text.find("FLIPPED", suggested) == std::string::npos);
+  // The export holds K's key: suggest_key's for the dome as placed.
+  const Exported e = read_exports(prefix);
+  REQUIRE(e.pairs.size() == 1);
+  REQUIRE(e.pairs[0].keys.size() == 1);
+  CHECK(e.pairs[0].keys[0].source == s.key.source);
+  CHECK(e.pairs[0].keys[0].target == s.key.target);
+  check_watertight_seam(e);
 }
