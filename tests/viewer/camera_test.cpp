@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <random>
 
 #include "lapis/viewer/orbit_camera.h"
@@ -82,4 +83,40 @@ TEST_CASE("viewer: the counting renderer sees what a scene holds") {
   Eigen::Vector3d lo, hi;
   REQUIRE(scene.bounds(lo, hi));
   CHECK(hi.x() == 1.0);
+}
+
+TEST_CASE("viewer: the scene signature changes with whatever the picture shows, and only then") {
+  Scene scene;
+  scene.meshes["a"].mesh.V.resize(3, 3);
+  scene.meshes["a"].mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  scene.meshes["a"].mesh.F.resize(1, 3);
+  scene.meshes["a"].mesh.F << 0, 1, 2;
+  scene.lines["s"].add_strip({Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0, 1, 0)});
+  scene.points["p"].points.resize(1, 3);
+  OrbitCamera cam;
+  cam.frame(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
+  const geometry::CameraMatrices m = cam.matrices(640, 480);
+  const std::uint64_t base = scene_signature(scene, m, 640, 480);
+  CHECK(scene_signature(scene, m, 640, 480) == base);  // nothing changed: the same picture
+
+  // Each change a renderer would draw differently.
+  const std::vector<std::function<void(Scene&)>> edits{
+      [](Scene& s) { ++s.meshes["a"].version; },       [](Scene& s) { s.meshes["a"].visible = false; },
+      [](Scene& s) { s.meshes["a"].alpha = 0.5f; },    [](Scene& s) { s.meshes["a"].base_color.x() = 0; },
+      [](Scene& s) { ++s.lines["s"].version; },        [](Scene& s) { s.lines["s"].width = 3; },
+      [](Scene& s) { s.lines["s"].on_top = true; },    [](Scene& s) { s.lines["s"].shading = LineShading::KajiyaKay; },
+      [](Scene& s) { s.points["p"].size = 2; },        [](Scene& s) { ++s.points["p"].version; },
+      [](Scene& s) { s.meshes["b"] = s.meshes["a"]; }, [](Scene& s) { s.lines.erase("s"); },
+      [](Scene& s) { s.background.y() = 1; },
+  };
+  for (size_t k = 0; k < edits.size(); ++k) {
+    CAPTURE(k);
+    Scene changed = scene;
+    edits[k](changed);
+    CHECK(scene_signature(changed, m, 640, 480) != base);
+  }
+  OrbitCamera turned = cam;
+  turned.orbit(3, 0);
+  CHECK(scene_signature(scene, turned.matrices(640, 480), 640, 480) != base);
+  CHECK(scene_signature(scene, cam.matrices(641, 480), 641, 480) != base);
 }

@@ -1,6 +1,7 @@
 // OpenGL 3.3 core renderer of a Scene. Buffers are cached per item name and re-uploaded
 // only when the item's version changes; all strips of a LineItem go out in one draw call
-// (primitive restart), so 20K strands cost one call, not 20K.
+// (primitive restart), so 20K strands cost one call, not 20K; and an unchanged scene is not
+// drawn again but copied from the last picture (frame_cache.h).
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -10,6 +11,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "frame_cache.h"
 #include "gl_shaders.h"
 #include "lapis/core/error.h"
 #include "lapis/geometry/normals.h"
@@ -88,8 +90,9 @@ struct GpuItem {
 
 class GlRenderer final : public Renderer {
  public:
-  GlRenderer()
-      : mesh_program_(link(shaders::kMeshVertex, shaders::kMeshFragment)),
+  explicit GlRenderer(bool frame_cache)
+      : use_cache_(frame_cache),
+        mesh_program_(link(shaders::kMeshVertex, shaders::kMeshFragment)),
         line_program_(link(shaders::kLineVertex, shaders::kLineFragment)),
         point_program_(link(shaders::kPointVertex, shaders::kPointFragment)) {}
 
@@ -101,7 +104,24 @@ class GlRenderer final : public Renderer {
     glDeleteProgram(point_program_);
   }
 
+  RenderStats stats() const override { return stats_; }
+
   void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) override {
+    const std::uint64_t signature = scene_signature(scene, camera, width, height);
+    if (use_cache_ && cache_.draw(signature, width, height)) {
+      stats_ = {true, 0, 0, 0};
+      return;
+    }
+    stats_ = {};
+    draw_scene(scene, camera, width, height);
+    // Stored once the scene holds still for a second frame: storing resolves the MSAA buffer,
+    // which a frame of an orbit (a new picture every frame) would pay for nothing.
+    if (use_cache_ && signature == last_signature_) cache_.store(signature, width, height);
+    last_signature_ = signature;
+  }
+
+ private:
+  void draw_scene(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) {
     glViewport(0, 0, width, height);
     glClearColor(scene.background.x(), scene.background.y(), scene.background.z(), 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -135,7 +155,6 @@ class GlRenderer final : public Renderer {
     forget_removed(scene);
   }
 
- private:
   static void set_camera(GLuint program, const Eigen::Matrix4f& view, const Eigen::Matrix4f& proj) {
     glUseProgram(program);
     glUniformMatrix4fv(glGetUniformLocation(program, "view"), 1, GL_FALSE, view.data());
@@ -146,6 +165,7 @@ class GlRenderer final : public Renderer {
     GpuItem& g = meshes_[name];
     if (g.version != m.version) upload_mesh(g, m);
     if (!g.count) return;
+    stats_.triangles += g.count / 3;
     set_camera(mesh_program_, view, proj);
     glUniform1f(glGetUniformLocation(mesh_program_, "alpha"), m.alpha);
     glBindVertexArray(g.vao);
@@ -175,6 +195,7 @@ class GlRenderer final : public Renderer {
     GpuItem& g = lines_[name];
     if (g.version != l.version) upload_lines(g, l);
     if (!g.count) return;
+    stats_.strips += l.num_strips();
     set_camera(line_program_, view, proj);
     glUniform1i(glGetUniformLocation(line_program_, "kajiya_kay"), l.shading == LineShading::KajiyaKay);
     glUniform1f(glGetUniformLocation(line_program_, "alpha"), l.alpha);
@@ -231,6 +252,7 @@ class GlRenderer final : public Renderer {
       g.version = p.version;
     }
     if (!g.count) return;
+    stats_.points += g.count;
     set_camera(point_program_, view, proj);
     glUniform1f(glGetUniformLocation(point_program_, "size"), p.size);
     glBindVertexArray(g.vao);
@@ -255,12 +277,16 @@ class GlRenderer final : public Renderer {
     forget(scene.points, points_);
   }
 
+  bool use_cache_;
   GLuint mesh_program_, line_program_, point_program_;
   std::unordered_map<std::string, GpuItem> meshes_, lines_, points_;
+  FrameCache cache_;
+  std::uint64_t last_signature_ = 0;
+  RenderStats stats_;
 };
 
 }  // namespace
 
-std::unique_ptr<Renderer> make_gl_renderer() { return std::make_unique<GlRenderer>(); }
+std::unique_ptr<Renderer> make_gl_renderer(bool frame_cache) { return std::make_unique<GlRenderer>(frame_cache); }
 
 }  // namespace lapis::viewer

@@ -253,6 +253,18 @@ void Viewer::handle_camera(const InputEvent& e) {
     request_screenshot(screenshot_path());
 }
 
+// What the last frame's time went to: the scene drawn again (its size, the MSAA samples: what
+// software GL pays for) or the picture of an unchanged scene reused (then the panels).
+std::string Viewer::frame_limit() const {
+  const RenderStats s = window_ && window_->renderer ? window_->renderer->stats() : RenderStats{};
+  if (s.reused) return "scene unchanged: panels only";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "scene drawn: %.0fK triangles", s.triangles / 1000.0);
+  std::string out = buf;
+  if (s.strips) out += ", " + std::to_string(s.strips) + " strips";
+  return out + ", " + std::to_string(options_.msaa_samples) + "x MSAA";
+}
+
 void Viewer::draw_overlay() {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.45f);
@@ -260,7 +272,8 @@ void Viewer::draw_overlay() {
                                  ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                  ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoInputs;
   if (ImGui::Begin("##overlay", nullptr, flags)) {
-    ImGui::Text("frame %.1f ms (%.0f fps)", last_frame_ms_, last_frame_ms_ > 0 ? 1000.0 / last_frame_ms_ : 0.0);
+    ImGui::Text("frame %.1f ms (%.0f fps), %s", last_frame_ms_, last_frame_ms_ > 0 ? 1000.0 / last_frame_ms_ : 0.0,
+                frame_limit().c_str());
     const float wrap_at = 0.6f * static_cast<float>(width_);  // long lines stay off the right-hand panels
     for (const auto& line : overlay_lines_) tone_text(line.tone, line.text, wrap_at);
     if (!flash_.text.empty() && time() < flash_until_) tone_text(flash_.tone, flash_.text, wrap_at);
@@ -349,7 +362,7 @@ void Viewer::open_window() {
   glfwSetCharCallback(w, GlfwCallbacks::character);
   glfwSetFramebufferSizeCallback(w, GlfwCallbacks::resize);
   glfwSetWindowCloseCallback(w, [](GLFWwindow* window) { GlfwCallbacks::viewer(window).user_asked_to_close_ = true; });
-  window_->renderer = make_gl_renderer();
+  window_->renderer = make_gl_renderer(options_.frame_cache);
   recording_.width = width_, recording_.height = height_;
 }
 

@@ -26,6 +26,8 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
       o.screenshot = value(i, "--screenshot");
     else if (a == "--exit-after-replay")
       o.exit_after_replay = true;
+    else if (a == "--no-frame-cache")
+      o.frame_cache = false;
     else if (a == "--benchmark")
       o.benchmark = value(i, "--benchmark");
     else if (a == "--ready-file")

@@ -9,8 +9,15 @@ namespace lapis::viewer {
 
 class PanelColumn {
  public:
-  PanelColumn(float window_width, float window_height, float panel_width, float top = 10, float gap = 6)
-      : window_width_(window_width), window_height_(window_height), width_(panel_width), next_y_(top), gap_(gap) {}
+  // `panels`: how many begin()s follow, so a panel cut short leaves the ones under it room for
+  // their title bars.
+  PanelColumn(float window_width, float window_height, float panel_width, int panels, float top = 10, float gap = 6)
+      : window_width_(window_width),
+        window_height_(window_height),
+        width_(panel_width),
+        next_y_(top),
+        gap_(gap),
+        remaining_(panels) {}
 
   // ImGui::Begin(title) at the column's next slot, with half the panel's width for widgets and
   // half for their labels; `flags` are ImGuiWindowFlags added to the column's own. Returns what
@@ -20,6 +27,7 @@ class PanelColumn {
 
  private:
   float window_width_, window_height_, width_, next_y_, gap_;
+  int remaining_;
 };
 
 }  // namespace lapis::viewer

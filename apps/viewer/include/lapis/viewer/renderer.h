@@ -9,15 +9,24 @@
 
 namespace lapis::viewer {
 
+// What the last render() cost: the picture of an unchanged scene is drawn again from a cache
+// (reused), else `triangles` triangles, `strips` line strips and `points` points were drawn.
+struct RenderStats {
+  bool reused = false;
+  long triangles = 0, strips = 0, points = 0;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
   // Draws the scene into the current framebuffer of the given pixel size.
   virtual void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) = 0;
+  virtual RenderStats stats() const { return {}; }
 };
 
-// Needs a current OpenGL 3.3 core context (the Viewer makes one).
-std::unique_ptr<Renderer> make_gl_renderer();
+// Needs a current OpenGL 3.3 core context (the Viewer makes one). With `frame_cache`, the
+// picture of an unchanged scene (scene_signature()) is copied, not drawn again.
+std::unique_ptr<Renderer> make_gl_renderer(bool frame_cache = true);
 
 // No GL: records how much of each kind it was asked to draw.
 class CountingRenderer : public Renderer {

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "lapis/geometry/camera.h"
 #include "lapis/geometry/tri_mesh.h"
 
 namespace lapis::viewer {
@@ -71,5 +72,11 @@ struct Scene {
   // Bounding box of the visible meshes (or of everything when there is no mesh).
   bool bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const;
 };
+
+// A hash of everything a renderer draws from: the items' names, versions (bumped by their
+// owners when the data changes), visibility and the per-frame uniforms (colour, alpha, width,
+// size, shading, drawing on top), the background, the camera and the framebuffer's size. Equal
+// signatures mean the same picture, so a renderer may reuse the last one (frame_cache.h).
+std::uint64_t scene_signature(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height);
 
 }  // namespace lapis::viewer

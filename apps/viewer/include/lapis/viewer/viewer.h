@@ -32,6 +32,8 @@ struct ViewerOptions {
   std::filesystem::path screenshot;  // written when the app is idle (after a replay)
   bool exit_after_replay = false;    // quit once the replay is over and the app idle
   std::filesystem::path benchmark;   // write frame statistics here on exit
+  bool frame_cache = true;           // reuse the picture of an unchanged scene (--no-frame-cache:
+                                     // draw it every frame, the baseline of bench/apps)
   double idle_timeout_s = 300;       // give up waiting for a busy app after a replay
   // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
   // first frame and after every frame that handled input or changed the app's busy state, as
@@ -42,8 +44,8 @@ struct ViewerOptions {
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N) and returns the arguments it did not
-// consume. Throws UsageError on a flag missing its value or with a malformed one.
+// --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N, --no-frame-cache) and returns the arguments
+// it did not consume. Throws UsageError on a flag missing its value or with a malformed one.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
 class Viewer;
@@ -128,7 +130,8 @@ class Viewer {
   void handle_camera(const InputEvent& e);
   bool over_gui(double x, double y) const;  // inside an ImGui window (last frame's layout)
   void draw_overlay();
-  void keep_open_if_app_asks();  // a user's quit that the app's may_close() declines
+  std::string frame_limit() const;  // the overlay's note on what the last frame cost
+  void keep_open_if_app_asks();     // a user's quit that the app's may_close() declines
   void take_screenshot(const std::filesystem::path& path);
   void write_benchmark(const ViewerApp& app) const;
   void record(const InputEvent& e);
