@@ -65,7 +65,7 @@ Eigen::Matrix4d compose(const HandlePose& p, const Eigen::Vector3d& c) {
 
 void DeformApp::on_gui(viewer::Viewer& v) {
   // The Selection, Method and Handle panels down the right edge, each sized to its content.
-  viewer::PanelColumn column(static_cast<float>(v.width()), static_cast<float>(v.height()), kPanelWidth);
+  viewer::PanelColumn column(static_cast<float>(v.width()), static_cast<float>(v.height()), kPanelWidth, 3);
   draw_tools_panel(v, column);
   draw_method_panel(column);
   draw_handle_panel(column);
@@ -81,8 +81,8 @@ void DeformApp::on_gui(viewer::Viewer& v) {
 void DeformApp::draw_tools_panel(viewer::Viewer& v, viewer::PanelColumn& column) {
   column.begin("Selection");
   // The status first: new handles and warnings below it must not push it out of view.
-  if (!selection_error_.empty())
-    viewer::tone_text(viewer::Tone::Error, selection_error_);
+  if (!selection_error_.empty())  // incomplete, not failed: what to paint next
+    viewer::tone_text(viewer::Tone::Warning, selection_error_);
   else if (selection_)
     ImGui::Text("ROI %zu vertices, %zu handle(s)", selection_->selection.roi.size(),
                 selection_->selection.region_handles.size());
@@ -490,7 +490,7 @@ void DeformApp::draw_overlay(viewer::Viewer& v) {
     v.overlay(buf);
   }
   if (!engine_error_.empty()) v.overlay("error: " + engine_error_, viewer::Tone::Error);
-  if (!selection_error_.empty()) v.overlay("selection: " + selection_error_, viewer::Tone::Error);
+  if (!selection_error_.empty()) v.overlay("selection: " + selection_error_, viewer::Tone::Warning);
   if (pending_export_) v.overlay("export waits for the solve", viewer::Tone::Warning);
 }
 
