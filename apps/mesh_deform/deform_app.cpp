@@ -415,6 +415,7 @@ void DeformApp::open_mesh(viewer::Viewer& v, const fs::path& path) {
     v.frame_scene();
     v.flash("opened " + path.string() + " (" + std::to_string(rest_.num_vertices()) + " vertices)",
             viewer::Tone::Success);
+    if (fs::exists(paths_.roi)) load_selection(v);  // its own selection, saved last time
   } catch (const Error& e) {
     v.flash(std::string("open failed: ") + e.what(), viewer::Tone::Error);
   }

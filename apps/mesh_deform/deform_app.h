@@ -64,8 +64,9 @@ struct DeformPaths {
 // The files of `mesh` (the selection, the export, the screenshot), named after it: next to
 // it, or in out/ of the working directory for a bundled mesh and where its directory is not
 // writable (an installed share/lapis). Each mesh has its own, so opening a second one never
-// overwrites the first one's selection. Keeps `defaults`' other fields.
-DeformPaths paths_beside(const fs::path& mesh, DeformPaths defaults);
+// overwrites the first one's selection. `variant` tells apart versions of one file with other
+// vertices (".sub2": Loop-subdivided twice). Keeps `defaults`' other fields.
+DeformPaths paths_beside(const fs::path& mesh, DeformPaths defaults, const std::string& variant = "");
 
 // The undoable state: painted labels (shared between snapshots that did not repaint) and
 // one transform per handle label.

@@ -24,12 +24,12 @@ void copy_to(std::array<char, 1024>& field, const fs::path& path) {
 
 }  // namespace
 
-DeformPaths paths_beside(const fs::path& mesh, DeformPaths defaults) {
+DeformPaths paths_beside(const fs::path& mesh, DeformPaths defaults, const std::string& variant) {
   fs::path dir = mesh.parent_path();
   if (dir.empty()) dir = ".";
   // Bundled meshes are the toolkit's, not the user's: their files go to out/.
   if (inside(mesh, defaults.bundled_dir) || ::access(dir.c_str(), W_OK) != 0) dir = "out";
-  const std::string stem = mesh.stem().string();
+  const std::string stem = mesh.stem().string() + variant;
   defaults.mesh = mesh;
   defaults.roi = dir / (stem + ".roi.txt");
   defaults.handles = dir / (stem + ".handles.json");

@@ -64,10 +64,10 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
   }
   paths.mesh = args.get("--mesh", mesh_given ? positional : (paths.bundled_dir / "armadillo.off").string());
   geometry::TriMesh mesh = geometry::read_mesh(paths.mesh);
-  if (const long levels = args.get_int("--subdivide", 0, 0, 4); levels > 0)
-    mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
+  const long levels = args.get_int("--subdivide", 0, 0, 4);
+  if (levels > 0) mesh = geometry::loop_subdivide(mesh, static_cast<int>(levels));
   // The mesh's own files unless given (paths_beside: next to it, or in out/ for a bundled one).
-  paths = deform_app::paths_beside(paths.mesh, paths);
+  paths = deform_app::paths_beside(paths.mesh, paths, levels > 0 ? ".sub" + std::to_string(levels) : "");
   paths.roi = args.get("--roi", paths.roi.string());
   paths.handles = args.get("--handles", paths.handles.string());
   paths.export_mesh = args.get("--export", paths.export_mesh.string());
@@ -91,10 +91,10 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(std::vector<std::string> rest
 
   auto app =
       std::make_unique<deform_app::DeformApp>(std::move(mesh), paths, settings, !args.has("--full-while-dragging"));
-  // A selection given on the command line is opened before the first frame (its errors are
-  // shown in the window, like every other); a ROI file that does not exist yet is where
-  // Ctrl+S will save.
-  if (args.has("--roi") && std::filesystem::exists(paths.roi)) app->open_selection_on_start();
+  // The mesh's selection files (given, or its own saved last time) are opened before the first
+  // frame (their errors are shown in the window, like every other); a ROI file that does not
+  // exist yet is where Ctrl+S will save.
+  if (std::filesystem::exists(paths.roi)) app->open_selection_on_start();
   if (args.has("--transfer-target")) app->open_transfer_target_on_start(args.get("--transfer-target"));
   if (args.has("--distortion-range")) app->fix_distortion_range(args.get_double("--distortion-range", 1, 1e-12, 1e12));
   return app;

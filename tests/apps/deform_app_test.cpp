@@ -999,3 +999,35 @@ TEST_CASE("apps: deform app — quitting with unsaved edits asks: Esc stays, S s
   REQUIRE(run_under_xvfb(ready_script(dir / "quiet.sh", dir / "ready", quiet)) == 0);
   CHECK(text_of(log).find("unsaved edits") == std::string::npos);
 }
+
+TEST_CASE(
+    "apps: deform app — a mesh's files are its own, next to it: its selection opens with it, Ctrl+P and Ctrl+S "
+    "write beside it") {
+  const fs::path dir = scratch_dir() / "beside";
+  fs::create_directories(dir);
+  const fs::path mesh = dir / "camel.off";
+  fs::copy_file(kMesh, mesh, fs::copy_options::overwrite_existing);
+  fs::copy_file(kRoi, dir / "camel.roi.txt", fs::copy_options::overwrite_existing);
+  fs::copy_file(kHandles, dir / "camel.handles.json", fs::copy_options::overwrite_existing);
+  fs::remove(dir / "camel.screenshot.png");
+  EventScript s;
+  s.key(EventScript::kKey2);
+  s.key(EventScript::kKeyEqual);  // an edit: the fixed region grows a ring
+  s.key(EventScript::kKeyS, EventScript::kCtrl);
+  s.key(80, EventScript::kCtrl);  // Ctrl+P
+  s.frame += 5;
+  s.log.width = kWidth, s.log.height = kHeight;
+  s.log.save(dir / "events.json");
+  const fs::path log = dir / "log.txt";
+  // No file flags: the app finds the mesh's own.
+  REQUIRE(run_under_xvfb(kApp + " --headless" + kSize + " " + mesh.string() + " --replay " +
+                         (dir / "events.json").string() + " --exit-after-replay 2> " + log.string()) == 0);
+  const std::string said = text_of(log);
+  CAPTURE(said);
+  CHECK(said.find("opened " + (dir / "camel.roi.txt").string() + " and " + (dir / "camel.handles.json").string()) !=
+        std::string::npos);
+  CHECK(said.find("saved " + (dir / "camel.roi.txt").string()) != std::string::npos);
+  CHECK(fs::exists(dir / "camel.screenshot.png"));
+  // The saved selection is the opened one with the fixed region grown: the ROI lost a ring.
+  CHECK(mesh_deform::read_roi(dir / "camel.roi.txt").size() < mesh_deform::read_roi(kRoi).size());
+}

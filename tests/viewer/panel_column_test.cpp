@@ -51,6 +51,7 @@ std::vector<Rect> settled(const std::vector<int>& lines, float width, float heig
 
 TEST_CASE("viewer: the panel column stacks its panels, sizes them to their content and keeps them on screen") {
   ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory
   unsigned char* pixels = nullptr;
   int w = 0, h = 0;
   ImGui::GetIO().Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);  // builds the font atlas
