@@ -1031,3 +1031,48 @@ TEST_CASE(
   // The saved selection is the opened one with the fixed region grown: the ROI lost a ring.
   CHECK(mesh_deform::read_roi(dir / "camel.roi.txt").size() < mesh_deform::read_roi(kRoi).size());
 }
+
+namespace {
+
+// Pixels that differ between two screenshots inside the square of half-size `r` around `c`.
+int differing_pixels(const viewer::Image& a, const viewer::Image& b, const Eigen::Vector2i& c, int r) {
+  REQUIRE(a.width == b.width);
+  REQUIRE(a.height == b.height);
+  int n = 0;
+  for (int y = std::max(0, c.y() - r); y < std::min(a.height, c.y() + r); ++y)
+    for (int x = std::max(0, c.x() - r); x < std::min(a.width, c.x() + r); ++x) {
+      const size_t i = 4 * (static_cast<size_t>(y) * static_cast<size_t>(a.width) + static_cast<size_t>(x));
+      n += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+    }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("apps: deform app — the brush circle is drawn over the mesh, not over the panels") {
+  const fs::path dir = scratch_dir() / "brush_circle";
+  fs::create_directories(dir);
+  // The pointer over the Selection panel (right column) and over the camel (the middle), with
+  // the move tool and with the brush (B).
+  const Eigen::Vector2i panel(kWidth - 180, 250), body(kWidth / 2, kHeight / 2 + 40);
+  auto shot = [&](const std::string& name, bool brush, const Eigen::Vector2i& at) {
+    EventScript s;
+    if (brush) s.key(EventScript::kKeyB);
+    s.move(at.cast<double>());
+    s.move(at.cast<double>() + Eigen::Vector2d(1, 0));
+    s.move(at.cast<double>());
+    s.log.width = kWidth, s.log.height = kHeight;
+    s.log.save(dir / (name + ".json"));
+    const fs::path png = dir / (name + ".png");
+    REQUIRE(run_under_xvfb(kApp + " --headless" + kSize + " --mesh " + kMesh.string() + " --roi " + kRoi.string() +
+                           " --handles " + kHandles.string() + " --replay " + (dir / (name + ".json")).string() +
+                           " --exit-after-replay --screenshot " + png.string()) == 0);
+    return viewer::read_png(png);
+  };
+  const int r = 40;  // the default brush is 24 px
+  // Over the mesh the circle shows; over the panel nothing differs from the move tool.
+  CHECK(differing_pixels(shot("body_move", false, body), shot("body_brush", true, body), body, r) > 50);
+  const viewer::Image panel_move = shot("panel_move", false, panel), panel_brush = shot("panel_brush", true, panel);
+  // (The panel's tool buttons, above the square, show the other tool.)
+  CHECK(differing_pixels(panel_move, panel_brush, panel, r) == 0);
+}
