@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -99,6 +102,23 @@ inline double peak_rss_mib() {
     }
   }
   return 0.0;
+}
+
+// For a benchmark's main(): --help or -h prints `usage` and exits 0; an option (an argument
+// starting with "--") not among `options` prints which and the usage and exits 2. Asking what a
+// benchmark does then never starts it, and a typo does not start a long run on the defaults.
+inline void check_options(int argc, char** argv, std::initializer_list<std::string_view> options, const char* usage) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::printf("%s", usage);
+      std::exit(0);
+    }
+    if (a.starts_with("--") && std::find(options.begin(), options.end(), a) == options.end()) {
+      std::fprintf(stderr, "unknown option %s\n%s", argv[i], usage);
+      std::exit(2);
+    }
+  }
 }
 
 // Runs `cmd` (a child benchmark process printing one line of JSON) and returns its output;

@@ -73,7 +73,11 @@ Rays make_rays(const TriMesh& m, int n) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  lapis::bench::check_options(
+      argc, argv, {},
+      "usage: bench_geometry\n  save/load, validation, connectivity, cotangent Laplacian, BVH rays and 3x3 SVDs on "
+      "the\n  armadillo Loop-subdivided to 1.66M vertices, 1 and 2 threads; writes bench/results/geometry.json\n");
   const auto armadillo = std::filesystem::path(LAPIS_SOURCE_DIR) / "assets/external/armadillo.off";
   if (!std::filesystem::exists(armadillo)) {
     std::fprintf(stderr, "bench_geometry: %s missing: run scripts/setup\n", armadillo.c_str());

@@ -66,6 +66,10 @@ std::vector<int> parse_list(const char* s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(
+      argc, argv, {"--sizes", "--thesis-max", "--repetitions"},
+      "usage: bench_hair_sketch [--sizes 50000,250000,1000000] [--thesis-max N] [--repetitions R]\n"
+      "  a stroke and its edit on the bundled head per field method; writes bench/results/hair_sketch.json\n");
   std::vector<int> sizes{50000, 250000, 1000000};
   int thesis_max = 60000;  // the thesis path at 250K costs minutes per run (30 s factorization)
   int repetitions = 3;     // of each edit per method, interleaved; the median is reported

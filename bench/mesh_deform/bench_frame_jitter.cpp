@@ -97,6 +97,9 @@ std::unique_ptr<Deformer> make(const std::string& method, const TriMesh& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(argc, argv, {"--frames", "--busy", "--mesh"},
+                              "usage: bench_frame_jitter [--frames N] [--busy K] [--mesh NAME]\n"
+                              "  frame-time spread of a drag, alone and beside K busy processes\n");
   int frames = 60;
   std::vector<int> busy_counts = {0, 1};
   std::vector<std::string> meshes = {"elephant", "dino", "camel", "armadillo"};

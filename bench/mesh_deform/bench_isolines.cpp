@@ -254,6 +254,11 @@ json median_run(std::vector<json> runs) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(
+      argc, argv, {"--one", "--sizes", "--configs", "--peers", "--repeat", "--results"},
+      "usage: bench_isolines [--sizes bar,26k,151k,416k,1m,1.66m] [--configs h2n20,...] [--peers]\n"
+      "                      [--repeat N] [--results NAME]\n"
+      "  handle-aware isolines (Au et al. 2007, Table 1); writes bench/results/NAME.json\n");
   if (argc == 5 && std::strcmp(argv[1], "--one") == 0) {
     std::printf("%s\n", run_one(size_named(argv[2]), config_named(argv[3]), argv[4]).dump().c_str());
     return 0;

@@ -214,6 +214,10 @@ std::string comma_delimited(const char* name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(
+      argc, argv, {"--one", "--sizes", "--methods", "--implicit-large"},
+      "usage: bench_mesh_deform [--sizes 26k,52k,151k,416k,1m] [--methods naive,arap,...] [--implicit-large]\n"
+      "  setup, frame and peak memory per deformation method; writes bench/results/mesh_deform.json\n");
   if (argc == 4 && std::strcmp(argv[1], "--one") == 0) {
     for (const Size& s : kSizes)
       if (s.name == argv[2]) std::printf("%s\n", run_one(s, argv[3]).dump().c_str());

@@ -109,6 +109,9 @@ double cold_merge_ms(const Case& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(argc, argv, {"--quick", "--cold"},
+                              "usage: bench_mesh_merge [--quick]\n"
+                              "  Poisson merging timings (thesis Table 3.1); --quick: the 10K and 16K cases only\n");
   const std::vector<Case> cases = {{"10K", 6, 0.5, nullptr, true},
                                    {"16K", 7, 0.8, nullptr, true},
                                    {"50K", 7, 0.39},

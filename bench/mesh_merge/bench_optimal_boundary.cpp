@@ -103,6 +103,9 @@ Run run(const BoundaryOptimizer& opt, const Placement2D& p, int threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(argc, argv, {"--large"},
+                              "usage: bench_optimal_boundary [--large]\n"
+                              "  the optimal merging boundary (thesis 3.4) per band size; --large adds 160K\n");
   const bool large = argc > 1 && std::strcmp(argv[1], "--large") == 0;
   struct Case {
     const char* name;

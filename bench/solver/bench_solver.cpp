@@ -130,6 +130,10 @@ nlohmann::json mesh_solve_table() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lapis::bench::check_options(
+      argc, argv, {"--sizes", "--with-64", "--quick"},
+      "usage: bench_solver [--sizes 24,32,37,48] [--with-64] [--quick]\n"
+      "  the hair system's Cholesky factor, solves and update/downdate; writes bench/results/solver.json\n");
   std::vector<int> sizes = {24, 32, 37, 48};
   std::vector<int> ks = {10, 100, 1000};
   for (int a = 1; a < argc; ++a) {
