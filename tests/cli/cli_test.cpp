@@ -112,6 +112,16 @@ TEST_CASE("cli: lapis hair replays a bundled session into .hair, OBJ and a repor
   CHECK(points == report["segments"].get<std::uint32_t>() + strands);
   CHECK(fs::file_size(d / "p.hair") == 128 + 2ull * strands + 12ull * points);
   CHECK(fs::file_size(d / "p.obj") > 0);
+
+  // --field-method overrides the session's solver (the bundled ones ask for the thesis').
+  CHECK(settings["field_method"] == "thesis");
+  const Result multigrid =
+      lapis_cli("hair --session " + (sessions / "parting.json").string() + " --field-method multigrid --out-hair " +
+                (d / "m.hair").string() + " --report " + (d / "m.json").string());
+  REQUIRE_MESSAGE(multigrid.status == 0, multigrid.output);
+  const auto m = read_cli_json(d / "m.json");
+  for (const auto& s : m["solves"]) CHECK(s["method"] == "multigrid");
+  for (const auto& s : report["solves"]) CHECK(s["method"] == "thesis-updown");
 }
 
 TEST_CASE("cli: lapis hair fails with one line naming the cause") {
@@ -122,6 +132,10 @@ TEST_CASE("cli: lapis hair fails with one line naming the cause") {
   const Result missing = lapis_cli("hair --out-hair /tmp/x.hair");
   CHECK(missing.status == 2);
   CHECK(missing.output.find("--session") != std::string::npos);
+  const Result method = lapis_cli("hair --session x.json --field-method fastest --out-hair /tmp/x.hair");
+  CHECK(method.status == 2);
+  CHECK(method.output.find("--field-method must be auto, thesis, refactorize or multigrid, not 'fastest'") !=
+        std::string::npos);
   const Result help = lapis_cli("hair --help");
   CHECK(help.status == 0);
   CHECK(help.output.find("usage: lapis hair --session FILE.json") == 0);
