@@ -2,6 +2,7 @@
 //                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
 //                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
 //                   [--roots N] [--draw-segments N]
+#include <filesystem>
 #include <memory>
 
 #include "args.h"
@@ -39,10 +40,15 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
     paths.session = args.get("--session");
     style = hair_sketch::load_session(paths.session);
     head = hair_sketch::load_session_head(style, paths.session, args.get("--head", ""));
+    // Absolute while the app runs: a session saved elsewhere (--save-session) then still finds
+    // the head, save_session() writing the paths relative to where it goes.
+    for (std::string* p : {&style.settings.head_mesh, &style.settings.scalp_mask})
+      if (!p->empty() && std::filesystem::path(*p).is_relative())
+        *p = std::filesystem::absolute(paths.session.parent_path() / *p).lexically_normal().string();
   } else if (args.has("--head")) {
     paths.session = "hairstyle.json";
     head = hair_sketch::load_head(args.get("--head"));
-    style.settings.head_mesh = args.get("--head");
+    style.settings.head_mesh = std::filesystem::absolute(args.get("--head")).lexically_normal().string();
   } else {
     paths.session = "hairstyle.json";
     style.settings.head_mesh = asset_path("head.obj").string();

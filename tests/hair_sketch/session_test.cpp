@@ -187,3 +187,22 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
   }
   CHECK(found == 3);
 }
+
+TEST_CASE("hair_sketch: a saved session names its head relative to itself, and finds it again") {
+  const fs::path assets = fs::weakly_canonical(fs::path(LAPIS_SOURCE_DIR) / "assets");
+  Hairstyle style;
+  style.settings.head_mesh = (assets / "head.obj").string();
+  style.settings.scalp_mask = (assets / "head_scalp.txt").string();
+  const fs::path p = temp_path("sub/relative.json");
+  fs::create_directories(p.parent_path());
+  save_session(p, style);
+  const Hairstyle loaded = load_session(p);
+  CHECK(fs::path(loaded.settings.head_mesh).is_relative());
+  CHECK(fs::path(loaded.settings.scalp_mask).is_relative());
+  const Head head = load_session_head(loaded, p);
+  CHECK(head.scalp_face_count() > 0);
+  // Relative paths are stored as they are: relative to the session already.
+  style.settings.head_mesh = "../head.obj";
+  save_session(p, style);
+  CHECK(load_session(p).settings.head_mesh == "../head.obj");
+}

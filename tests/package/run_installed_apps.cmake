@@ -23,11 +23,19 @@ lapis_step("installed lapis-merge, run from /" WORKING_DIRECTORY /
 lapis_expect_files(${out}/hair.png ${out}/merge.png ${out}/hairstyle.json.autosave.json)
 
 # The session the hair app saved on exit names the head it opened: the installed one, though
-# the source tree's assets/ exists too.
+# the source tree's assets/ exists too, by a path relative to the session (no absolute path of
+# this machine in a file a user shares).
 file(READ ${out}/hairstyle.json.autosave.json session)
 string(JSON head_mesh GET "${session}" settings head_mesh)
 string(JSON scalp_mask GET "${session}" settings scalp_mask)
-if(NOT head_mesh STREQUAL "${STAGE}/share/lapis/head.obj" OR NOT scalp_mask STREQUAL "${STAGE}/share/lapis/head_scalp.txt")
+if(IS_ABSOLUTE "${head_mesh}" OR IS_ABSOLUTE "${scalp_mask}")
+  message(FATAL_ERROR "package: the saved session names its head by absolute paths: ${head_mesh}, ${scalp_mask}")
+endif()
+get_filename_component(head_mesh "${head_mesh}" ABSOLUTE BASE_DIR ${out})
+get_filename_component(scalp_mask "${scalp_mask}" ABSOLUTE BASE_DIR ${out})
+get_filename_component(installed_head "${STAGE}/share/lapis/head.obj" ABSOLUTE)
+get_filename_component(installed_mask "${STAGE}/share/lapis/head_scalp.txt" ABSOLUTE)
+if(NOT head_mesh STREQUAL installed_head OR NOT scalp_mask STREQUAL installed_mask)
   message(FATAL_ERROR "package: the installed lapis-hair-sketch opened ${head_mesh} and ${scalp_mask}, "
-                      "not the installed ${STAGE}/share/lapis/head.obj and head_scalp.txt")
+                      "not the installed ${installed_head} and ${installed_mask}")
 endif()

@@ -307,8 +307,24 @@ Hairstyle session_from_json(std::string_view text, const std::string& source, co
   return h;
 }
 
+namespace {
+
+// An absolute path as a session at `path` stores it: relative to the session's directory, so a
+// session and its head move together and no machine's absolute paths are written.
+std::string stored_path(const std::filesystem::path& path, const std::string& p) {
+  if (p.empty() || !std::filesystem::path(p).is_absolute()) return p;
+  const auto dir = std::filesystem::absolute(path).parent_path().lexically_normal();
+  const auto rel = std::filesystem::path(p).lexically_normal().lexically_relative(dir);
+  return rel.empty() ? p : rel.generic_string();
+}
+
+}  // namespace
+
 void save_session(const std::filesystem::path& path, const Hairstyle& style) {
-  const std::string text = session_to_json(style);
+  Hairstyle stored = style;
+  stored.settings.head_mesh = stored_path(path, style.settings.head_mesh);
+  stored.settings.scalp_mask = stored_path(path, style.settings.scalp_mask);
+  const std::string text = session_to_json(stored);
   core::write_file_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
 }
 

@@ -43,7 +43,9 @@ std::string session_to_json(const Hairstyle& style);
 Hairstyle session_from_json(std::string_view text, const std::string& source = "<string>",
                             const SessionLimits& limits = {});
 
-// Atomic. Throws IoError when writing fails.
+// Atomic; absolute head_mesh and scalp_mask paths are written relative to the session's
+// directory (which is what load_session_head() resolves them against). Throws IoError when
+// writing fails.
 void save_session(const std::filesystem::path& path, const Hairstyle& style);
 // Throws IoError for an unreadable, oversized or malformed file.
 Hairstyle load_session(const std::filesystem::path& path, const SessionLimits& limits = {});
