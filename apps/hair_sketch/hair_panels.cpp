@@ -7,6 +7,7 @@
 
 #include "hair_sketch_app.h"
 #include "lapis/geometry/camera.h"
+#include "lapis/viewer/panel_column.h"
 #include "primitive_geometry.h"
 
 namespace lapis::hair_app {
@@ -25,27 +26,29 @@ const char* kToolKeys = "1 stream  2 dividing  3 ponytail  4 hint  5 tilt  6 sel
 }  // namespace
 
 void HairSketchApp::on_gui(viewer::Viewer& v) {
-  draw_toolbar(v);
-  draw_primitive_panel(v);
+  // Tools, Primitives and Files down the right edge, each sized to its content.
+  viewer::PanelColumn column(static_cast<float>(v.width()), static_cast<float>(v.height()), 320, 3);
+  draw_toolbar(v, column);
+  draw_primitive_panel(v, column);
+  draw_file_panel(v, column);
   draw_settings_panel(v);
-  draw_file_panel(v);
   draw_overlay(v);
 }
 
-void HairSketchApp::draw_toolbar(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Tools");
+void HairSketchApp::draw_toolbar(viewer::Viewer& v, viewer::PanelColumn& column) {
+  column.begin("Tools");
   const Tool tools[] = {Tool::StreamCurve, Tool::DividingCurve, Tool::Ponytail, Tool::Hint, Tool::Tilt, Tool::Select};
   for (int i = 0; i < 6; ++i) {
-    if (i % 3) ImGui::SameLine();
+    if (i % 2) ImGui::SameLine(160);  // two a row: three cut "ponytail" at this width
     if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) {
       tool_ = tools[i];
       ponytail_strokes_.clear();
       curves_dirty_ = true;
     }
   }
-  ImGui::TextDisabled("%s", kToolKeys);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", kToolKeys);
+  ImGui::PopStyleColor();
   ImGui::BeginDisabled(!document_.can_undo());
   if (ImGui::Button("Undo")) undo(v);
   ImGui::EndDisabled();
@@ -57,14 +60,13 @@ void HairSketchApp::draw_toolbar(viewer::Viewer& v) {
   ImGui::BeginDisabled(selected_ < 0);
   if (ImGui::Button("Delete")) delete_selected(v);
   ImGui::EndDisabled();
-  ImGui::End();
+  column.end();
 }
 
-void HairSketchApp::draw_primitive_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 150), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 300), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Primitives");
+void HairSketchApp::draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn& column) {
+  column.begin("Primitives");
   const auto& prims = document_.style().primitives;
+  if (prims.empty()) ImGui::TextDisabled("none yet: draw a curve (tools 1-3)");
   for (size_t i = 0; i < prims.size(); ++i) {
     ImGui::PushID(static_cast<int>(i));
     bool visible = !hidden_.count(static_cast<int>(i));
@@ -119,7 +121,7 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v) {
     if (commit)
       execute(v, Command{"edit " + std::string(primitive_type(copy)), ReplacePrimitive{selected_, copy}, std::nullopt});
   }
-  ImGui::End();
+  column.end();
 }
 
 void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
@@ -160,10 +162,8 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   ImGui::End();
 }
 
-void HairSketchApp::draw_file_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.width()) - 330, 460), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Files");
+void HairSketchApp::draw_file_panel(viewer::Viewer& v, viewer::PanelColumn& column) {
+  column.begin("Files");
   static char path[512] = "";
   if (!path[0]) std::snprintf(path, sizeof path, "%s", paths_.session.string().c_str());
   ImGui::InputText("session", path, sizeof path);
@@ -173,7 +173,7 @@ void HairSketchApp::draw_file_panel(viewer::Viewer& v) {
   if (ImGui::Button("Open (Ctrl+O)")) load(v, paths_.session);
   if (ImGui::Button("Export .hair + .obj (Ctrl+E)")) export_strands(v);
   if (ImGui::Button("Screenshot")) v.request_screenshot(v.screenshot_path());
-  ImGui::End();
+  column.end();
 }
 
 void HairSketchApp::draw_overlay(viewer::Viewer& v) {

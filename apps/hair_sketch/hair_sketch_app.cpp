@@ -125,7 +125,8 @@ bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
 
 void HairSketchApp::begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
   if ((tool_ == Tool::Hint || tool_ == Tool::Tilt) && selected_ < 0) {
-    v.flash(std::string(tool_name(tool_)) + ": select a curve first (tool 6, or click it in the list)");
+    v.flash(std::string(tool_name(tool_)) + ": select a curve first (tool 6, or click it in the list)",
+            viewer::Tone::Warning);
     return;
   }
   drawing_ = true;
@@ -200,7 +201,7 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     // "hair_sketch::stream_curve_from_stroke(): stroke must start on the scalp" → the reason.
     std::string why = e.what();
     const auto colon = why.find("(): ");
-    v.flash("stroke rejected: " + (colon == std::string::npos ? why : why.substr(colon + 4)));
+    v.flash("stroke rejected: " + (colon == std::string::npos ? why : why.substr(colon + 4)), viewer::Tone::Warning);
   }
   update_preview_item(v);
 }
@@ -218,7 +219,7 @@ void HairSketchApp::warn_if_tail_too_thin(viewer::Viewer& v, const StylePrimitiv
                 "ponytail cross-section radius %.3f is below the grid spacing %.3f: few strands will "
                 "reach it; draw it wider or raise the grid unknowns",
                 r, grid_.spacing);
-  v.flash(text);
+  v.flash(text, viewer::Tone::Warning);
 }
 
 void HairSketchApp::select_at(viewer::Viewer& v, const Eigen::Vector2d& p) {

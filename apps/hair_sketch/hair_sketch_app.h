@@ -16,6 +16,7 @@
 #include "lapis/hair_sketch/live_hairstyle.h"
 #include "lapis/viewer/adaptive_budget.h"
 #include "lapis/viewer/latest_worker.h"
+#include "lapis/viewer/panel_column.h"
 #include "lapis/viewer/viewer.h"
 
 namespace lapis::hair_app {
@@ -91,10 +92,10 @@ class HairSketchApp final : public viewer::ViewerApp {
   void update_curve_items(viewer::Viewer& v);
   void update_preview_item(viewer::Viewer& v);
   void update_glyph_item(viewer::Viewer& v);
-  void draw_toolbar(viewer::Viewer& v);
-  void draw_primitive_panel(viewer::Viewer& v);
+  void draw_toolbar(viewer::Viewer& v, viewer::PanelColumn& column);
+  void draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn& column);
   void draw_settings_panel(viewer::Viewer& v);
-  void draw_file_panel(viewer::Viewer& v);
+  void draw_file_panel(viewer::Viewer& v, viewer::PanelColumn& column);
   void draw_overlay(viewer::Viewer& v);
 
   Head head_;

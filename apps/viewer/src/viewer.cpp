@@ -12,8 +12,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -148,7 +150,8 @@ void Viewer::flash(std::string message, Tone tone) {
   const char* kind = tone == Tone::Error ? "error: " : tone == Tone::Warning ? "warning: " : "";
   std::fprintf(stderr, "%s: %s%s\n", options_.title.c_str(), kind, message.c_str());  // logs of batch runs
   flash_ = {tone, std::move(message)};
-  flash_until_ = time() + 4.0;
+  flash_shown_at_ = time();
+  flash_until_ = tone == Tone::Error || tone == Tone::Warning ? std::numeric_limits<double>::infinity() : time() + 4.0;
 }
 
 std::filesystem::path Viewer::screenshot_path() const {
@@ -175,6 +178,9 @@ void Viewer::dispatch(const InputEvent& e) {
   ++handled_events_;
   handled_buttons_ += e.type == EventType::MouseButton;
   handled_keys_ += e.type == EventType::Key;
+  // A click or a key press after an error or a warning was read dismisses it.
+  const bool press = (e.type == EventType::MouseButton || e.type == EventType::Key) && e.action == GLFW_PRESS;
+  if (press && std::isinf(flash_until_) && time() - flash_shown_at_ >= 2.0) flash_until_ = time();
   ImGuiIO& io = ImGui::GetIO();
   GLFWwindow* w = window_ ? window_->handle : nullptr;
   const bool keyboard = e.type == EventType::Key || e.type == EventType::Char;

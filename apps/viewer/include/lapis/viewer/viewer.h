@@ -107,8 +107,10 @@ class Viewer {
   void set_default_screenshot(std::filesystem::path path) { default_screenshot_ = std::move(path); }
   // Lines shown in the overlay under the frame time, for this frame, in their tone's colour.
   void overlay(std::string line, Tone tone = Tone::Status) { overlay_lines_.push_back({tone, std::move(line)}); }
-  // A message shown in the overlay for a few seconds ("stroke must start on the scalp"), and
-  // logged to stderr (an error or a warning with its tone first).
+  // A message shown in the overlay ("stroke must start on the scalp") and logged to stderr (an
+  // error or a warning with its tone first): for 4 s, or, for an error or a warning, until the
+  // user clicks or types after reading it (at least 2 s), so a reason is not gone before it is
+  // read.
   void flash(std::string message, Tone tone = Tone::Status);
 
   long frame() const { return frame_; }
@@ -168,7 +170,7 @@ class Viewer {
   };
   std::vector<OverlayLine> overlay_lines_;
   OverlayLine flash_;
-  double flash_until_ = 0;
+  double flash_until_ = 0, flash_shown_at_ = 0;
   std::optional<std::filesystem::path> pending_screenshot_;
   std::filesystem::path default_screenshot_;
   bool user_asked_to_close_ = false;  // Ctrl+Q or the close button, this frame
