@@ -71,9 +71,10 @@ int run(const std::vector<std::string>& argv) {
   const HairstyleResult r = build_hairstyle(style, head);
 
   t = std::chrono::steady_clock::now();
-  core::AtomicFileGroup outputs;  // .hair, .obj, .vtk and the report: all new or all old
-  write_hair_file(out_hair, to_hair_file(r.strands));
-  if (args.has("--out-obj")) write_strands_obj(args.get("--out-obj"), r.strands);
+  core::AtomicFileGroup outputs;                   // .hair, .obj, .vtk and the report: all new or all old
+  const Strands grown = grown_strands(r.strands);  // not the roots that grew nothing
+  write_hair_file(out_hair, to_hair_file(grown));
+  if (args.has("--out-obj")) write_strands_obj(args.get("--out-obj"), grown);
   if (args.has("--out-field")) write_field_vtk(args.get("--out-field"), r.grid, r.field);
   const double write_ms = ms_since(t);
 
@@ -81,8 +82,9 @@ int run(const std::vector<std::string>& argv) {
   j["session"] = session_path.string();
   j["replayed_strokes"] = replay ? static_cast<int>(session.strokes.size()) : 0;
   j["primitives"] = style.primitives.size();
-  j["strands"] = r.strands.count();
-  j["segments"] = r.strands.segments();
+  j["strands"] = grown.count();
+  j["roots_without_hair"] = r.strands.count() - grown.count();
+  j["segments"] = grown.segments();
   j["penetrating_segments"] = r.penetrating_segments;
   j["constraints"] = r.constraints;
   j["grid"] = {{"dims", r.grid.dims}, {"spacing", r.grid.spacing}, {"unknowns", r.grid.num_nodes()}};

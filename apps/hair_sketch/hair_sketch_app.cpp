@@ -317,8 +317,9 @@ bool HairSketchApp::export_strands(viewer::Viewer& v) {
   try {
     for (const auto* p : {&paths_.export_hair, &paths_.export_obj}) core::create_parent_directories(*p);
     core::AtomicFileGroup pair;  // both new or both old, never a new .hair beside an old .obj
-    write_hair_file(paths_.export_hair, to_hair_file(last_->update.strands));
-    write_strands_obj(paths_.export_obj, last_->update.strands);
+    const Strands grown = grown_strands(last_->update.strands);  // not the roots that grew nothing
+    write_hair_file(paths_.export_hair, to_hair_file(grown));
+    write_strands_obj(paths_.export_obj, grown);
     pair.commit();
     v.flash("exported " + paths_.export_hair.string() + " and " + paths_.export_obj.string(), viewer::Tone::Success);
     return true;

@@ -170,3 +170,15 @@ TEST_CASE("hair_sketch: the field exports as a VTK image and as raw float32") {
   CHECK_THROWS_WITH_AS(write_field_raw(raw, g, Field(5, 3)), doctest::Contains("write_field_raw()"),
                        lapis::InvalidArgument);
 }
+
+TEST_CASE("hair_sketch: an export keeps the strands that grew: no lone roots, no strands of zero length") {
+  Strands s = sample_strands();                                         // 4, 1 and 3 points
+  for (int i = 0; i < 3; ++i) s.points.emplace_back(7.0f, 7.0f, 7.0f);  // 3 points in one place
+  s.offsets.push_back(static_cast<int>(s.points.size()));
+  const Strands g = grown_strands(s);
+  REQUIRE(g.count() == 2);
+  CHECK(g.offsets == std::vector<int>{0, 4, 7});
+  for (int i = 0; i < 4; ++i) CHECK(g.points[i] == s.points[i]);
+  for (int i = 0; i < 3; ++i) CHECK(g.points[4 + i] == s.points[5 + i]);
+  CHECK(grown_strands(g).points == g.points);  // nothing more to drop
+}

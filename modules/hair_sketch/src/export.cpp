@@ -24,6 +24,21 @@ void check_field(const Grid& grid, const Field& field, const char* fn) {
 
 }  // namespace
 
+Strands grown_strands(const Strands& strands) {
+  Strands out;
+  out.points.reserve(strands.points.size());
+  out.offsets.reserve(strands.offsets.size());
+  for (int s = 0; s < strands.count(); ++s) {
+    const int a = strands.offsets[s], b = strands.offsets[s + 1];
+    bool long_enough = false;
+    for (int i = a + 1; i < b && !long_enough; ++i) long_enough = strands.points[i] != strands.points[a];
+    if (!long_enough) continue;
+    out.points.insert(out.points.end(), strands.points.begin() + a, strands.points.begin() + b);
+    out.offsets.push_back(static_cast<int>(out.points.size()));
+  }
+  return out;
+}
+
 void write_strands_obj(const std::filesystem::path& path, const Strands& strands) {
   std::vector<std::vector<Eigen::Vector3d>> lines;
   lines.reserve(strands.count());

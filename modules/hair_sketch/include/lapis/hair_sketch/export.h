@@ -11,6 +11,11 @@
 
 namespace lapis::hair_sketch {
 
+// The strands that grew hair: without the roots whose field was too weak there (one point, no
+// segment) and without strands whose points all coincide (no length). Growth keeps one strand
+// per root, so that an edit regrows strand i from root i; an export writes only these.
+Strands grown_strands(const Strands& strands);
+
 // One 'l' polyline per strand; strands with fewer than two points (roots whose field was
 // too weak to grow) are skipped. Throws IoError when writing fails.
 void write_strands_obj(const std::filesystem::path& path, const Strands& strands);
