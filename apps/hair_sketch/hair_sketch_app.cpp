@@ -416,8 +416,10 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
 
 void HairSketchApp::on_frame(viewer::Viewer& v) {
   // The previous frame's time adapts how much of the hair is drawn; not while the worker
-  // regrows, whose share of the cores slows every frame whatever is drawn.
-  if (last_ && v.frame() > 0 && !busy() && strand_budget_.observe(v.last_frame_ms(), last_->update.strands.segments()))
+  // regrows, whose share of the cores slows every frame whatever is drawn, and not after a frame
+  // that reused the unchanged scene's picture, whose time says nothing about the strands.
+  if (last_ && v.frame() > 0 && !busy() && v.last_frame_drew_scene() &&
+      strand_budget_.observe(v.last_frame_ms(), last_->update.strands.segments()))
     update_strand_item(v, last_->update.strands);
   receive_regrowth(v);
   request_regrowth();  // no-op unless the document or settings moved on

@@ -154,6 +154,10 @@ void Viewer::flash(std::string message, Tone tone) {
   flash_until_ = tone == Tone::Error || tone == Tone::Warning ? std::numeric_limits<double>::infinity() : time() + 4.0;
 }
 
+bool Viewer::last_frame_drew_scene() const {
+  return !(window_ && window_->renderer && window_->renderer->stats().reused);
+}
+
 std::filesystem::path Viewer::screenshot_path() const {
   if (!options_.screenshot.empty()) return options_.screenshot;
   return default_screenshot_.empty() ? std::filesystem::path("screenshot.png") : default_screenshot_;

@@ -117,6 +117,9 @@ class Viewer {
   double time() const;  // seconds since start
   bool replaying() const { return replay_.has_value() && replay_next_ < replay_->events.size(); }
   double last_frame_ms() const { return last_frame_ms_; }
+  // Whether the last frame drew the scene, not the picture of an unchanged one (frame_cache.h):
+  // only such frames tell what drawing costs (an adaptive draw budget goes by them).
+  bool last_frame_drew_scene() const;
 
   // Routes an event as if it came from GLFW (replay and tests use it).
   void dispatch(const InputEvent& event);
