@@ -65,13 +65,23 @@ TEST_CASE("viewer: orbit, pan and zoom move the camera as a user expects") {
   CHECK(cam.view().allFinite());
 }
 
-TEST_CASE("viewer: the counting renderer sees what a scene holds") {
+namespace {
+
+// A triangle "a" and a line strip "s".
+Scene triangle_and_strip() {
   Scene scene;
   scene.meshes["a"].mesh.V.resize(3, 3);
   scene.meshes["a"].mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
   scene.meshes["a"].mesh.F.resize(1, 3);
   scene.meshes["a"].mesh.F << 0, 1, 2;
   scene.lines["s"].add_strip({Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0, 1, 0)});
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("viewer: the counting renderer sees what a scene holds") {
+  Scene scene = triangle_and_strip();
   scene.lines["s"].add_strip({Eigen::Vector3f(1, 0, 0), Eigen::Vector3f(1, 1, 0), Eigen::Vector3f(1, 2, 0)});
   CountingRenderer r;
   r.render(scene, {}, 10, 10);
@@ -86,12 +96,7 @@ TEST_CASE("viewer: the counting renderer sees what a scene holds") {
 }
 
 TEST_CASE("viewer: the scene signature changes with whatever the picture shows, and only then") {
-  Scene scene;
-  scene.meshes["a"].mesh.V.resize(3, 3);
-  scene.meshes["a"].mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0;
-  scene.meshes["a"].mesh.F.resize(1, 3);
-  scene.meshes["a"].mesh.F << 0, 1, 2;
-  scene.lines["s"].add_strip({Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(0, 1, 0)});
+  Scene scene = triangle_and_strip();
   scene.points["p"].points.resize(1, 3);
   OrbitCamera cam;
   cam.frame(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());

@@ -1,10 +1,6 @@
 #include "frame_cache.h"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-
-#include "lapis/core/error.h"
+#include "gl_program.h"
 
 namespace lapis::viewer {
 namespace {
@@ -25,26 +21,10 @@ out vec4 color;
 void main() { color = texture(picture, uv); }
 )";
 
-GLuint compile(GLenum type, const char* source) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) throw Error("viewer: the frame cache's shader does not compile");
-  return s;
-}
-
 }  // namespace
 
 FrameCache::FrameCache() {
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, kFragment);
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
+  program_ = link_program(kVertex, kFragment);
   glGenVertexArrays(1, &vao_);
   glGenTextures(1, &texture_);
   glGenFramebuffers(1, &framebuffer_);

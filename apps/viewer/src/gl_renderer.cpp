@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "frame_cache.h"
+#include "gl_program.h"
 #include "gl_shaders.h"
 #include "lapis/core/error.h"
 #include "lapis/geometry/normals.h"
@@ -21,38 +22,6 @@ namespace lapis::viewer {
 namespace {
 
 constexpr GLuint kRestart = 0xFFFFFFFFu;
-
-GLuint compile(GLenum type, const char* source) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw Error(std::string("viewer::GlRenderer: shader compilation failed: ") + log);
-  }
-  return s;
-}
-
-GLuint link(const char* vs, const char* fs) {
-  const GLuint p = glCreateProgram();
-  const GLuint v = compile(GL_VERTEX_SHADER, vs), f = compile(GL_FRAGMENT_SHADER, fs);
-  glAttachShader(p, v);
-  glAttachShader(p, f);
-  glLinkProgram(p);
-  glDeleteShader(v);
-  glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(p, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetProgramInfoLog(p, sizeof log, nullptr, log);
-    throw Error(std::string("viewer::GlRenderer: program link failed: ") + log);
-  }
-  return p;
-}
 
 // One vertex array with its buffers.
 struct GpuItem {
@@ -92,9 +61,9 @@ class GlRenderer final : public Renderer {
  public:
   explicit GlRenderer(bool frame_cache)
       : use_cache_(frame_cache),
-        mesh_program_(link(shaders::kMeshVertex, shaders::kMeshFragment)),
-        line_program_(link(shaders::kLineVertex, shaders::kLineFragment)),
-        point_program_(link(shaders::kPointVertex, shaders::kPointFragment)) {}
+        mesh_program_(link_program(shaders::kMeshVertex, shaders::kMeshFragment)),
+        line_program_(link_program(shaders::kLineVertex, shaders::kLineFragment)),
+        point_program_(link_program(shaders::kPointVertex, shaders::kPointFragment)) {}
 
   ~GlRenderer() override {
     for (auto* cache : {&meshes_, &lines_, &points_})
