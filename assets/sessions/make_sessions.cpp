@@ -83,7 +83,7 @@ Drawer start(const Head& head, double unknowns) {
   h.settings.head_mesh = "../head.obj";
   h.settings.scalp_mask = "../head_scalp.txt";
   h.settings.grid.target_unknowns = unknowns;
-  h.settings.field_method = FieldMethod::Thesis;
+  h.settings.field_method = FieldMethod::Auto;  // the thesis path to ~10K unknowns, multigrid beyond
   h.settings.roots.count = 2000;
   h.camera = look_at({0, 2.5, 5}, {0, 0.2, 0});
   return {head, Document(h), hairstyle_grid(head, h.settings)};
