@@ -113,8 +113,8 @@ TEST_CASE("cli: lapis hair replays a bundled session into .hair, OBJ and a repor
   CHECK(fs::file_size(d / "p.hair") == 128 + 2ull * strands + 12ull * points);
   CHECK(fs::file_size(d / "p.obj") > 0);
 
-  // --field-method overrides the session's solver (the bundled ones leave it to auto, which
-  // takes the thesis' update/downdate path at this session's 8K unknowns).
+  // --field-method overrides the style file's solver. parting.json leaves it to auto, which
+  // takes the update/downdate path (thesis 4.4.2) at its grid of 8K unknowns.
   CHECK(settings["field_method"] == "auto");
   const Result multigrid =
       lapis_cli("hair --session " + (sessions / "parting.json").string() + " --field-method multigrid --out-hair " +
