@@ -1,0 +1,197 @@
+#include "lapis/hair_sketch/strand_detail.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "lapis/core/error.h"
+#include "strand_detail_ops.h"
+
+namespace lapis::hair_sketch {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
+
+void require(bool ok, const std::string& fn, const std::string& what) {
+  if (!ok) throw InvalidArgument(fn + ": " + what);
+}
+bool finite_in(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
+constexpr double kHuge = 1e6;  // lengths and rates beyond this are not hair
+
+void check_shape(const CurlDetail& d, const std::string& fn) {
+  require(finite_in(d.frequency, 1e-9, kHuge), fn, "curl frequency must be in (0, 1e6] turns per unit length");
+  require(finite_in(d.radius, 0, kHuge), fn, "curl radius must be in [0, 1e6]");
+  require(finite_in(d.frequency_growth, -0.99, kHuge), fn, "curl frequency_growth must be in [-0.99, 1e6]");
+  require(finite_in(d.radius_growth, -1, kHuge), fn, "curl radius_growth must be in [-1, 1e6]");
+  require(finite_in(d.phase_jitter, 0, 1), fn, "curl phase_jitter must be in [0, 1]");
+  require(finite_in(d.radius_jitter, 0, 1), fn, "curl radius_jitter must be in [0, 1]");
+  require(finite_in(d.root_fade, 0, kHuge), fn, "curl root_fade must be in [0, 1e6]");
+}
+void check_shape(const ClumpDetail& d, const std::string& fn) {
+  require(d.clumps >= 1, fn, "clump count must be at least 1");
+  require(finite_in(d.strength, 0, 1), fn, "clump strength must be in [0, 1]");
+  require(finite_in(d.profile, 1e-3, 1e3), fn, "clump profile must be in [0.001, 1000]");
+}
+void check_shape(const FrizzDetail& d, const std::string& fn) {
+  require(finite_in(d.amplitude, 0, kHuge), fn, "frizz amplitude must be in [0, 1e6]");
+  require(finite_in(d.wavelength, 1e-9, kHuge), fn, "frizz wavelength must be in (0, 1e6]");
+  require(finite_in(d.root_fade, 0, kHuge), fn, "frizz root_fade must be in [0, 1e6]");
+}
+void check_shape(const LengthDetail& d, const std::string& fn) {
+  require(finite_in(d.variation, 0, 1), fn, "length variation must be in [0, 1]");
+}
+void check_shape(const CutDetail& d, const std::string& fn) {
+  require(d.line.size() >= 2, fn, "a cut line needs at least two points");
+  for (const auto& q : d.line) require(q.allFinite(), fn, "cut line points must be finite");
+  require(d.camera.view.allFinite() && d.camera.projection.allFinite() && d.camera.viewport.allFinite() &&
+              d.camera.viewport[2] > 0 && d.camera.viewport[3] > 0,
+          fn, "the cut line's camera must be finite with a non-empty viewport");
+}
+
+}  // namespace
+
+const char* detail_type(const StrandDetail& d) {
+  return std::visit(Overloaded{[](const CurlDetail& c) { return c.helical ? "curl" : "wave"; },
+                               [](const ClumpDetail&) { return "clump"; }, [](const FrizzDetail&) { return "frizz"; },
+                               [](const LengthDetail&) { return "length"; }, [](const CutDetail&) { return "cut"; }},
+                    d.shape);
+}
+
+namespace {
+
+bool same(const CurlDetail& a, const CurlDetail& b) {
+  return a.helical == b.helical && a.frequency == b.frequency && a.radius == b.radius &&
+         a.frequency_growth == b.frequency_growth && a.radius_growth == b.radius_growth &&
+         a.phase_jitter == b.phase_jitter && a.radius_jitter == b.radius_jitter && a.root_fade == b.root_fade;
+}
+bool same(const ClumpDetail& a, const ClumpDetail& b) {
+  return a.clumps == b.clumps && a.strength == b.strength && a.profile == b.profile;
+}
+bool same(const FrizzDetail& a, const FrizzDetail& b) {
+  return a.amplitude == b.amplitude && a.wavelength == b.wavelength && a.root_fade == b.root_fade;
+}
+bool same(const LengthDetail& a, const LengthDetail& b) { return a.variation == b.variation; }
+bool same(const CutDetail& a, const CutDetail& b) {
+  return a.camera.view == b.camera.view && a.camera.projection == b.camera.projection &&
+         a.camera.viewport == b.camera.viewport && a.line == b.line;
+}
+
+}  // namespace
+
+bool same_detail(const StrandDetail& a, const StrandDetail& b) {
+  if (a.shape.index() != b.shape.index() || a.seed != b.seed || a.region != b.region) return false;
+  return std::visit([&](const auto& x) { return same(x, std::get<std::decay_t<decltype(x)>>(b.shape)); }, a.shape);
+}
+
+void check_detail(const StrandDetail& d, int head_vertices, const std::string& fn) {
+  std::visit([&](const auto& shape) { check_shape(shape, fn); }, d.shape);
+  for (const int v : d.region)
+    require(v >= 0 && v < head_vertices, fn,
+            "detail region vertex " + std::to_string(v) + " is outside the head's " + std::to_string(head_vertices) +
+                " vertices");
+}
+
+std::vector<int> nearest_head_vertices(const Head& head, const std::vector<Eigen::Vector3d>& roots) {
+  std::vector<int> out(roots.size());
+  const auto n = static_cast<std::ptrdiff_t>(roots.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const geometry::ClosestPoint c = head.bvh->closest_point(roots[i]);
+    int corner = 0;
+    c.barycentric.maxCoeff(&corner);
+    out[i] = head.mesh.F(c.face, corner);
+  }
+  return out;
+}
+
+DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d>& roots,
+                             const HeadClearance* clearance) {
+  DetailContext c;
+  c.root_vertex = nearest_head_vertices(head, roots);
+  c.center = head.center.cast<float>();
+  c.clearance = clearance;
+  // As far out as growth lifts the roots (RootOptions::lift), so a faded-in offset never
+  // counts as sinking.
+  c.min_clearance = static_cast<float>(0.5e-3 * head.box.diagonal().norm());
+  return c;
+}
+
+namespace {
+
+std::vector<detail::Polyline> unpack(const Strands& s) {
+  std::vector<detail::Polyline> out(s.count());
+  for (int i = 0; i < s.count(); ++i)
+    out[i].assign(s.points.begin() + s.offsets[i], s.points.begin() + s.offsets[i + 1]);
+  return out;
+}
+
+Strands pack(const std::vector<detail::Polyline>& polylines) {
+  Strands s;
+  std::size_t total = 0;
+  for (const auto& p : polylines) total += p.size();
+  s.points.reserve(total);
+  s.offsets.reserve(polylines.size() + 1);
+  for (const auto& p : polylines) {
+    s.points.insert(s.points.end(), p.begin(), p.end());
+    s.offsets.push_back(static_cast<int>(s.points.size()));
+  }
+  return s;
+}
+
+std::vector<int> affected_strands(const StrandDetail& d, const std::vector<detail::Polyline>& strands,
+                                  const DetailContext& context) {
+  std::vector<char> in_region;
+  if (!d.region.empty()) {
+    int top = 0;
+    for (const int v : context.root_vertex) top = std::max(top, v + 1);
+    in_region.assign(top, 0);
+    for (const int v : d.region)
+      if (v < top) in_region[v] = 1;
+  }
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(strands.size()); ++i)
+    if (strands[i].size() >= 2 && (d.region.empty() || in_region[context.root_vertex[i]])) out.push_back(i);
+  return out;
+}
+
+void apply_one(const StrandDetail& d, std::vector<detail::Polyline>& strands, const DetailContext& context) {
+  const std::vector<int> affected = affected_strands(d, strands, context);
+  if (const auto* clump = std::get_if<ClumpDetail>(&d.shape)) {
+    detail::clump_strands(*clump, d.seed, affected, strands, context);
+    return;
+  }
+  const auto n = static_cast<std::ptrdiff_t>(affected.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const int i = affected[k];
+    detail::Polyline& p = strands[i];
+    std::visit(Overloaded{[&](const CurlDetail& c) { p = detail::curl_strand(c, d.seed, i, p, context); },
+                          [&](const FrizzDetail& f) { p = detail::frizz_strand(f, d.seed, i, p, context); },
+                          [&](const LengthDetail& l) { p = detail::vary_length(l, d.seed, i, p); },
+                          [&](const CutDetail& c) { p = detail::cut_strand(c, p); }, [](const ClumpDetail&) {}},
+               d.shape);
+  }
+}
+
+}  // namespace
+
+Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDetail>& details,
+                            const DetailContext& context) {
+  const std::string fn = "hair_sketch::apply_strand_detail()";
+  if (static_cast<int>(context.root_vertex.size()) != strands.count())
+    throw InvalidArgument(fn + ": the detail context is for " + std::to_string(context.root_vertex.size()) +
+                          " strands, not " + std::to_string(strands.count()));
+  for (const auto& d : details) check_detail(d, std::numeric_limits<int>::max(), fn);
+  if (details.empty()) return strands;
+  std::vector<detail::Polyline> polylines = unpack(strands);
+  for (const auto& d : details) apply_one(d, polylines, context);
+  return pack(polylines);
+}
+
+}  // namespace lapis::hair_sketch
