@@ -14,7 +14,7 @@ double max_difference(const Field& a, const Field& b) { return (a - b).cwiseAbs(
 // An empty document with the small test settings, and its grid.
 struct Fresh {
   const Head& head = bundled_head();
-  Document doc{Hairstyle{small_settings(), {}, {}, {}}};
+  Document doc{Hairstyle{small_settings(), {}, {}, {}, {}}};
   Grid grid = hairstyle_grid(head, doc.style().settings);
 };
 

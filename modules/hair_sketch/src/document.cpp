@@ -1,6 +1,8 @@
 // The undoable hairstyle document: commands and their inverses.
 #include "lapis/hair_sketch/document.h"
 
+#include <limits>
+
 #include "lapis/core/error.h"
 
 namespace lapis::hair_sketch {
@@ -64,8 +66,10 @@ bool operator==(const RecordedStroke& a, const RecordedStroke& b) {
 
 bool same_hairstyle(const Hairstyle& a, const Hairstyle& b) {
   if (!(a.settings == b.settings) || !same_camera(a.camera, b.camera) || a.strokes != b.strokes ||
-      a.primitives.size() != b.primitives.size())
+      a.primitives.size() != b.primitives.size() || a.details.size() != b.details.size())
     return false;
+  for (size_t i = 0; i < a.details.size(); ++i)
+    if (!same_detail(a.details[i], b.details[i])) return false;
   for (size_t i = 0; i < a.primitives.size(); ++i)
     if (!same_primitive(a.primitives[i], b.primitives[i])) return false;
   return true;
@@ -95,6 +99,10 @@ Command Document::apply(const Command& c) {
         } else if constexpr (std::is_same_v<T, SetCamera>) {
           inverse.change = SetCamera{style_.camera};
           style_.camera = ch.camera;
+        } else if constexpr (std::is_same_v<T, SetDetails>) {
+          for (const auto& d : ch.details) check_detail(d, std::numeric_limits<int>::max(), "hair_sketch::Document");
+          inverse.change = SetDetails{style_.details};
+          style_.details = ch.details;
         } else {
           inverse.change = SetSettings{style_.settings};
           style_.settings = ch.settings;

@@ -1,5 +1,6 @@
 #include "lapis/hair_sketch/live_hairstyle.h"
 
+#include <algorithm>
 #include <chrono>
 #include <utility>
 
@@ -21,19 +22,59 @@ LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings
       roots_(sample_roots(head, settings.roots)) {}
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {
+  return update(primitives, {}, std::move(reuse));
+}
+
+namespace {
+
+bool same_primitives(const std::vector<StylePrimitive>& a, const std::vector<StylePrimitive>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), same_primitive);
+}
+
+// Copies `from` into `to`'s storage (a fresh allocation pays a page fault per 4 KB).
+void copy_into(const Strands& from, Strands& to) {
+  to.points.assign(from.points.begin(), from.points.end());
+  to.offsets.assign(from.offsets.begin(), from.offsets.end());
+}
+
+}  // namespace
+
+LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
+                                 const std::vector<StrandDetail>& details, Strands reuse) {
+  for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), "hair_sketch::LiveHairstyle::update()");
   LiveUpdate out;
   out.strands = std::move(reuse);
   const auto t0 = std::chrono::steady_clock::now();
-  out.solves.push_back(field_.update(primitives));
-  // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
-  if (settings_.scalp_avoidance && !primitives.empty())
-    out.solves.push_back(field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
+  out.regrown = !grown_valid_ || !same_primitives(primitives, last_primitives_);
+  if (out.regrown) {
+    out.solves.push_back(field_.update(primitives));
+    // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
+    if (settings_.scalp_avoidance && !primitives.empty())
+      out.solves.push_back(
+          field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
+  }
   out.solve_ms = ms_since(t0);
   out.constraints = field_.constraints().size();
   const auto t1 = std::chrono::steady_clock::now();
-  grower_.set_options(settings_.growth);
-  grower_.grow(SampledField(field_.grid(), field_.field()), roots_, out.strands);
+  if (out.regrown) {
+    grown_valid_ = false;  // until the growth below completes
+    grower_.set_options(settings_.growth);
+    grower_.grow(SampledField(field_.grid(), field_.field()), roots_, grown_);
+    last_primitives_ = primitives;
+    grown_valid_ = true;
+  }
   out.growth_ms = ms_since(t1);
+  const auto t2 = std::chrono::steady_clock::now();
+  if (details.empty()) {
+    copy_into(grown_, out.strands);
+  } else {
+    if (!clearance_) {
+      clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
+      detail_context_ = detail_context(*head_, roots_, clearance_.get());
+    }
+    out.strands = apply_strand_detail(grown_, details, detail_context_);
+  }
+  out.detail_ms = ms_since(t2);
   out.total_ms = ms_since(t0);
   return out;
 }

@@ -43,6 +43,30 @@ json to_json(const geometry::CameraMatrices& c) {
           {"viewport", json::array({c.viewport[0], c.viewport[1], c.viewport[2], c.viewport[3]})}};
 }
 
+json to_json(const StrandDetail& d) {
+  json j = {{"type", detail_type(d)}, {"seed", d.seed}, {"region", d.region}};
+  if (const auto* c = std::get_if<CurlDetail>(&d.shape)) {
+    j.update({{"frequency", c->frequency},
+              {"radius", c->radius},
+              {"frequency_growth", c->frequency_growth},
+              {"radius_growth", c->radius_growth},
+              {"phase_jitter", c->phase_jitter},
+              {"radius_jitter", c->radius_jitter},
+              {"root_fade", c->root_fade}});
+  } else if (const auto* k = std::get_if<ClumpDetail>(&d.shape)) {
+    j.update({{"clumps", k->clumps}, {"strength", k->strength}, {"profile", k->profile}});
+  } else if (const auto* f = std::get_if<FrizzDetail>(&d.shape)) {
+    j.update({{"amplitude", f->amplitude}, {"wavelength", f->wavelength}, {"root_fade", f->root_fade}});
+  } else if (const auto* l = std::get_if<LengthDetail>(&d.shape)) {
+    j["variation"] = l->variation;
+  } else {
+    const auto& cut = std::get<CutDetail>(d.shape);
+    j["camera"] = to_json(cut.camera);
+    j["line"] = to_json(cut.line);
+  }
+  return j;
+}
+
 json to_json(const StylePrimitive& p) {
   json j = {{"type", primitive_type(p)}, {"viewpoint", to_json(p.viewpoint)}, {"support", to_string(p.support)}};
   if (const auto* s = std::get_if<StreamCurve>(&p.shape)) {
@@ -214,6 +238,52 @@ class Reader {
     }
     return p;
   }
+  StrandDetail detail(const json& j, const std::string& path) const {
+    StrandDetail d;
+    d.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffLL));
+    const json& region = array(key(j, path, "region"), path + ".region", 100'000'000);
+    for (std::size_t i = 0; i < region.size(); ++i) {
+      const std::string at = path + ".region[" + std::to_string(i) + "]";
+      if (!region[i].is_number_integer()) fail(at, std::string("expected an integer, got ") + type_name(region[i]));
+      d.region.push_back(static_cast<int>(json_integer<IoError>(region[i], where(at), 0, (1LL << 31) - 1)));
+    }
+    const std::string type = string(j, path, "type");
+    if (type == "curl" || type == "wave") {
+      CurlDetail c;
+      c.helical = type == "curl";
+      c.frequency = number(j, path, "frequency", 1e-9, 1e6);
+      c.radius = number(j, path, "radius", 0, 1e6);
+      c.frequency_growth = number(j, path, "frequency_growth", -0.99, 1e6);
+      c.radius_growth = number(j, path, "radius_growth", -1, 1e6);
+      c.phase_jitter = number(j, path, "phase_jitter", 0, 1);
+      c.radius_jitter = number(j, path, "radius_jitter", 0, 1);
+      c.root_fade = number(j, path, "root_fade", 0, 1e6);
+      d.shape = c;
+    } else if (type == "clump") {
+      ClumpDetail c;
+      c.clumps = static_cast<int>(integer(j, path, "clumps", 1, 10'000'000));
+      c.strength = number(j, path, "strength", 0, 1);
+      c.profile = number(j, path, "profile", 1e-3, 1e3);
+      d.shape = c;
+    } else if (type == "frizz") {
+      FrizzDetail f;
+      f.amplitude = number(j, path, "amplitude", 0, 1e6);
+      f.wavelength = number(j, path, "wavelength", 1e-9, 1e6);
+      f.root_fade = number(j, path, "root_fade", 0, 1e6);
+      d.shape = f;
+    } else if (type == "length") {
+      d.shape = LengthDetail{number(j, path, "variation", 0, 1)};
+    } else if (type == "cut") {
+      CutDetail c;
+      c.camera = camera(key(j, path, "camera"), path + ".camera");
+      c.line = stroke(key(j, path, "line"), path + ".line");
+      if (c.line.size() < 2) fail(path + ".line", "a cut line needs at least two points");
+      d.shape = c;
+    } else {
+      fail(path + ".type", "expected curl, wave, clump, frizz, length or cut, got \"" + type + "\"");
+    }
+    return d;
+  }
   RecordedStroke recorded(const json& j, const std::string& path) const {
     RecordedStroke r;
     const std::string action = string(j, path, "action");
@@ -273,6 +343,8 @@ std::string session_to_json(const Hairstyle& style) {
   j["camera"] = to_json(style.camera);
   j["primitives"] = json::array();
   for (const auto& p : style.primitives) j["primitives"].push_back(to_json(p));
+  j["details"] = json::array();
+  for (const auto& d : style.details) j["details"].push_back(to_json(d));
   j["strokes"] = json::array();
   for (const auto& r : style.strokes) {
     json strokes = json::array();
@@ -299,6 +371,11 @@ Hairstyle session_from_json(std::string_view text, const std::string& source, co
   const json& prims = rd.array(rd.key(j, "$", "primitives"), "$.primitives", limits.max_items);
   for (std::size_t i = 0; i < prims.size(); ++i)
     h.primitives.push_back(rd.primitive(prims[i], "$.primitives[" + std::to_string(i) + "]"));
+  if (j.contains("details")) {
+    const json& details = rd.array(j["details"], "$.details", limits.max_items);
+    for (std::size_t i = 0; i < details.size(); ++i)
+      h.details.push_back(rd.detail(details[i], "$.details[" + std::to_string(i) + "]"));
+  }
   if (j.contains("strokes")) {
     const json& st = rd.array(j["strokes"], "$.strokes", limits.max_items);
     for (std::size_t i = 0; i < st.size(); ++i)

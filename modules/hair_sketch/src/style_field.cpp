@@ -82,8 +82,16 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   r.field = field.field();
   r.constraints = field.constraints().size();
   t0 = std::chrono::steady_clock::now();
-  r.strands = grow_strands(SampledField(r.grid, r.field), sample_roots(head, s.roots), s.growth);
+  const std::vector<Eigen::Vector3d> roots = sample_roots(head, s.roots);
+  r.strands = grow_strands(SampledField(r.grid, r.field), roots, s.growth);
   r.growth_ms = ms_since(t0);
+  if (!style.details.empty()) {
+    t0 = std::chrono::steady_clock::now();
+    for (const auto& d : style.details) check_detail(d, head.mesh.num_vertices(), "hair_sketch::build_hairstyle()");
+    const HeadClearance clearance(head, r.grid);
+    r.strands = apply_strand_detail(r.strands, style.details, detail_context(head, roots, &clearance));
+    r.detail_ms = ms_since(t0);
+  }
   t0 = std::chrono::steady_clock::now();
   r.penetrating_segments = count_penetrating_segments(r.strands, head);
   r.penetration_ms = ms_since(t0);

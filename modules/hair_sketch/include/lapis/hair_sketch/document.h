@@ -18,6 +18,7 @@
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/ponytail.h"
 #include "lapis/hair_sketch/sketch.h"
+#include "lapis/hair_sketch/strand_detail.h"
 #include "lapis/hair_sketch/stream_curve.h"
 
 namespace lapis::hair_sketch {
@@ -70,6 +71,7 @@ struct Hairstyle {
   geometry::CameraMatrices camera;
   std::vector<StylePrimitive> primitives;
   std::vector<RecordedStroke> strokes;  // the input that made `primitives`, in order
+  std::vector<StrandDetail> details;    // applied to the grown strands in order (§4.7)
 };
 bool same_hairstyle(const Hairstyle& a, const Hairstyle& b);
 
@@ -91,7 +93,12 @@ struct SetCamera {
 struct SetSettings {
   HairstyleSettings settings;
 };
-using Change = std::variant<InsertPrimitive, RemovePrimitive, ReplacePrimitive, SetCamera, SetSettings>;
+// The whole detail stack: adding, editing, reordering or removing a detail is one command
+// whose inverse is the stack before it.
+struct SetDetails {
+  std::vector<StrandDetail> details;
+};
+using Change = std::variant<InsertPrimitive, RemovePrimitive, ReplacePrimitive, SetCamera, SetSettings, SetDetails>;
 
 struct Command {
   std::string name;  // for the Edit menu: "add stream curve", ...

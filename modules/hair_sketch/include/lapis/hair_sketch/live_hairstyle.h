@@ -1,8 +1,10 @@
 // The interactive loop of thesis ch. 4 as one object: a head, a grid and a field solver set
 // up once; then, per document revision, the primitives' constraints are diffed against the
 // previous ones and only the diff reaches the solver (§4.4.2), scalp avoidance is re-derived
-// from the new field (§4.6), and the strands regrow from fixed roots (§4.6). The sketching
-// app runs update() on a worker thread; build_hairstyle() is the one-shot equivalent.
+// from the new field (§4.6), and the strands regrow from fixed roots (§4.6). Strand detail
+// (§4.7) is applied to the grown strands last; an edit of the details alone reapplies them to
+// the strands already grown, without a solve or a regrowth. The sketching app runs update() on a worker thread;
+// build_hairstyle() is the one-shot equivalent.
 #pragma once
 
 #include <memory>
@@ -11,6 +13,7 @@
 #include "lapis/hair_sketch/document.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/strand_detail.h"
 #include "lapis/hair_sketch/style_field.h"
 
 namespace lapis::hair_sketch {
@@ -21,6 +24,8 @@ struct LiveUpdate {
   int constraints = 0;
   double solve_ms = 0;   // constraint diff + field update(s)
   double growth_ms = 0;  // regrowing every strand
+  double detail_ms = 0;  // applying the strand details
+  bool regrown = false;  // false: the primitives were unchanged, only the details were reapplied
   double total_ms = 0;
 };
 
@@ -34,6 +39,10 @@ class LiveHairstyle {
   // earlier update the caller is done with; the new strands are written into their storage
   // (a fresh allocation's page faults cost as much as the growth, StrandGrower).
   LiveUpdate update(const std::vector<StylePrimitive>& primitives, Strands reuse = {});
+  // The same, then `details` in order. Throws InvalidArgument for a detail out of its domain or
+  // whose region names a vertex the head does not have; the strands are then unchanged.
+  LiveUpdate update(const std::vector<StylePrimitive>& primitives, const std::vector<StrandDetail>& details,
+                    Strands reuse = {});
 
   const HairstyleSettings& settings() const { return settings_; }
   const hair_field::Grid& grid() const { return field_.grid(); }
@@ -46,6 +55,14 @@ class LiveHairstyle {
   StyleField field_;
   std::vector<Eigen::Vector3d> roots_;
   StrandGrower grower_;
+  // The strands as grown for last_primitives_, before detail.
+  Strands grown_;
+  std::vector<StylePrimitive> last_primitives_;
+  bool grown_valid_ = false;
+  // Made on the first update with details: the clearance costs a few hundred closest-point
+  // queries per refined cell, which hair without detail never needs.
+  std::unique_ptr<HeadClearance> clearance_;
+  DetailContext detail_context_;
 };
 
 }  // namespace lapis::hair_sketch

@@ -15,9 +15,17 @@
 //                    "height", "discontinuity", "samples_per_side"} |
 //                   {"type": "ponytail", ..., "spine", "cross_section", "profile_a",
 //                    "profile_b", "tightness", "inner_ratio", "outer_ratio"}],
+//    "details": [{"type": "curl|wave", "seed", "region": [vertex indices], "frequency", "radius",
+//                 "frequency_growth", "radius_growth", "phase_jitter", "radius_jitter",
+//                 "root_fade"} |
+//                {"type": "clump", ..., "clumps", "strength", "profile"} |
+//                {"type": "frizz", ..., "amplitude", "wavelength", "root_fade"} |
+//                {"type": "length", ..., "variation"} |
+//                {"type": "cut", ..., "camera": {...}, "line": [[x,y],...]}],
 //    "strokes": [{"action": "stream_curve|dividing_curve|hint|tilt|ponytail",
 //                 "target": i, "camera": {...}, "strokes": [[[x,y],...], ...]}]}
-// Every key is required except "strokes" (empty) and "target" (-1).
+// Every key is required except "details" and "strokes" (empty) and "target" (-1). The
+// parameters are those of strand_detail.h's structs.
 #pragma once
 
 #include <filesystem>
@@ -32,7 +40,7 @@ namespace lapis::hair_sketch {
 struct SessionLimits {
   std::uintmax_t max_file_bytes = 64u << 20;  // larger files are refused before parsing
   std::size_t max_points = 100000;            // per curve or stroke
-  std::size_t max_items = 10000;              // primitives, strokes
+  std::size_t max_items = 10000;              // primitives, details, strokes
 };
 
 std::string session_to_json(const Hairstyle& style);

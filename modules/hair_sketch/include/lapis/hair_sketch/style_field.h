@@ -60,12 +60,12 @@ struct HairstyleResult {
   int constraints = 0;
   int penetrating_segments = 0;
   std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
-  double grid_ms = 0, solve_ms = 0, growth_ms = 0, penetration_ms = 0;
+  double grid_ms = 0, solve_ms = 0, growth_ms = 0, detail_ms = 0, penetration_ms = 0;
 };
 
 // Solves the document's field from scratch (style, then scalp avoidance if enabled), grows
-// settings.roots strands and counts penetrating segments. Deterministic: the same document
-// and head give bit-identical strands.
+// settings.roots strands, applies the details and counts penetrating segments (after detail). Deterministic: the same
+// document and head give bit-identical strands.
 HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head);
 
 }  // namespace lapis::hair_sketch
