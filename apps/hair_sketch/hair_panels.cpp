@@ -21,7 +21,7 @@ bool edit_on_release(StylePrimitive& copy, Edit&& widget) {
   return ImGui::IsItemDeactivatedAfterEdit();
 }
 
-const char* kToolKeys = "1 stream  2 dividing  3 ponytail  4 hint  5 tilt  6 select";
+const char* kToolKeys = "1 stream  2 dividing  3 ponytail  4 hint  5 tilt  6 select  7 cut line  8 detail region";
 
 }  // namespace
 
@@ -30,6 +30,7 @@ void HairSketchApp::on_gui(viewer::Viewer& v) {
   viewer::PanelColumn column(static_cast<float>(v.width()), static_cast<float>(v.height()), 320, 3);
   draw_toolbar(v, column);
   draw_primitive_panel(v, column);
+  draw_detail_panel(v, column);
   draw_file_panel(v, column);
   draw_settings_panel(v);
   draw_overlay(v);
@@ -37,11 +38,10 @@ void HairSketchApp::on_gui(viewer::Viewer& v) {
 
 void HairSketchApp::draw_toolbar(viewer::Viewer& v, viewer::PanelColumn& column) {
   column.begin("Tools");
-  const Tool tools[] = {Tool::StreamCurve, Tool::DividingCurve, Tool::Ponytail, Tool::Hint, Tool::Tilt, Tool::Select};
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < static_cast<int>(std::size(kTools)); ++i) {
     if (i % 2) ImGui::SameLine(160);  // two a row: three cut "ponytail" at this width
-    if (ImGui::RadioButton(tool_name(tools[i]), tool_ == tools[i])) {
-      tool_ = tools[i];
+    if (ImGui::RadioButton(tool_name(kTools[i]), tool_ == kTools[i])) {
+      tool_ = kTools[i];
       ponytail_strokes_.clear();
       curves_dirty_ = true;
     }
@@ -191,8 +191,9 @@ void HairSketchApp::draw_overlay(viewer::Viewer& v) {
     std::snprintf(buf, sizeof buf, "%d strands, %d segments, %lld unknowns", u.strands.count(), u.strands.segments(),
                   static_cast<long long>(last_->grid.num_nodes()));
     v.overlay(buf);
-    std::snprintf(buf, sizeof buf, "last update: solve %.0f ms + growth %.0f ms = %.0f ms (%s)", u.solve_ms,
-                  u.growth_ms, u.total_ms, u.solves.empty() ? "-" : to_string(u.solves.front().method));
+    std::snprintf(buf, sizeof buf, "last update: solve %.0f ms + growth %.0f ms + detail %.0f ms = %.0f ms (%s)",
+                  u.solve_ms, u.growth_ms, u.detail_ms, u.total_ms,
+                  u.solves.empty() ? "-" : to_string(u.solves.front().method));
     v.overlay(buf);
   }
   if (!latencies_ms_.empty()) {

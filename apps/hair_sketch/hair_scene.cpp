@@ -1,6 +1,6 @@
-// What the hair app draws: the head (scalp tinted on request), the strands with root-to-tip
-// colour, the style curves, the stroke preview, the selected curve's supporting surface and
-// field glyphs on a slice.
+// What the hair app draws: the head (scalp tinted on request, the selected detail's region), the strands with
+// root-to-tip colour, the style curves, the stroke preview, the selected curve's supporting surface and field glyphs on
+// a slice.
 #include <cstdint>
 
 #include "hair_sketch_app.h"
@@ -31,6 +31,14 @@ void HairSketchApp::update_head_item(viewer::Viewer& v) {
     for (Eigen::Index f = 0; f < head_.mesh.F.rows(); ++f)
       if (head_.scalp_face[static_cast<size_t>(f)])
         for (int k = 0; k < 3; ++k) item.colors.row(head_.mesh.F(f, k)) << 0.55f, 0.62f, 0.85f;
+  }
+  // The selected detail's region, and what the brush paints into it.
+  const auto& details = document_.style().details;
+  const bool has_detail = selected_detail_ >= 0 && selected_detail_ < static_cast<int>(details.size());
+  if (has_detail && (!details[selected_detail_].region.empty() || !painted_.empty())) {
+    if (item.colors.rows() == 0) item.colors = item.base_color.transpose().replicate(head_.mesh.V.rows(), 1);
+    for (const int i : details[selected_detail_].region) item.colors.row(i) << 0.95f, 0.55f, 0.2f;
+    for (const int i : painted_) item.colors.row(i) << 1.0f, 0.75f, 0.3f;
   }
   ++item.version;
   head_dirty_ = false;

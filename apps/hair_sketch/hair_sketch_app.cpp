@@ -30,6 +30,10 @@ const char* tool_name(Tool t) {
       return "tilt edit";
     case Tool::Select:
       return "select";
+    case Tool::Cut:
+      return "cut line";
+    case Tool::Region:
+      return "detail region";
   }
   return "?";
 }
@@ -105,9 +109,8 @@ bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (ctrl && e.key == GLFW_KEY_O) return load(v, paths_.session), true;
   if (ctrl && e.key == GLFW_KEY_E) return export_strands(v), true;
   if (ctrl) return false;
-  const Tool tools[] = {Tool::StreamCurve, Tool::DividingCurve, Tool::Ponytail, Tool::Hint, Tool::Tilt, Tool::Select};
-  if (e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_6) {
-    tool_ = tools[e.key - GLFW_KEY_1];
+  if (e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_8) {
+    tool_ = kTools[e.key - GLFW_KEY_1];
     ponytail_strokes_.clear();
     curves_dirty_ = true;
     return true;
@@ -129,7 +132,13 @@ void HairSketchApp::begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
             viewer::Tone::Warning);
     return;
   }
+  if (tool_ == Tool::Region && selected_detail_ < 0) {
+    v.flash("detail region: select a detail in the Detail panel first", viewer::Tone::Warning);
+    return;
+  }
   drawing_ = true;
+  painted_.clear();
+  if (tool_ == Tool::Region) paint_region(v, p);
   stroke_.assign(1, p);
   preview_.clear();
 }
@@ -137,6 +146,7 @@ void HairSketchApp::begin_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
 void HairSketchApp::extend_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
   if ((p - stroke_.back()).norm() < 2.0) return;  // a mouse at rest adds nothing
   stroke_.push_back(p);
+  if (tool_ == Tool::Region) paint_region(v, p);
   // The preview follows the mouse: the stroke's 3D curve where it can already be
   // interpreted, the raw stroke otherwise.
   preview_.clear();
@@ -174,6 +184,19 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
       break;
     case Tool::Select:
       return;
+    case Tool::Cut:
+      return add_cut_line(v);
+    case Tool::Region: {
+      std::vector<StrandDetail> details = document_.style().details;
+      if (selected_detail_ < 0 || selected_detail_ >= static_cast<int>(details.size())) return;
+      std::set<int> region(details[selected_detail_].region.begin(), details[selected_detail_].region.end());
+      region.insert(painted_.begin(), painted_.end());
+      details[selected_detail_].region.assign(region.begin(), region.end());
+      painted_.clear();
+      stroke_.clear();
+      update_preview_item(v);
+      return set_details(v, std::move(details), "paint detail region");
+    }
   }
   if (tool_ == Tool::Ponytail) {
     ponytail_strokes_.push_back(stroke_);
@@ -256,6 +279,7 @@ void HairSketchApp::undo(viewer::Viewer& v) {
   if (!document_.can_undo()) return v.flash("nothing to undo");
   document_.undo();
   selected_ = std::min(selected_, static_cast<int>(document_.style().primitives.size()) - 1);
+  head_dirty_ = true;  // the selected detail's region may have changed
   last_edit_time_ = v.time();
   curves_dirty_ = true;
   request_regrowth();
@@ -264,6 +288,7 @@ void HairSketchApp::undo(viewer::Viewer& v) {
 void HairSketchApp::redo(viewer::Viewer& v) {
   if (!document_.can_redo()) return v.flash("nothing to redo");
   document_.redo();
+  head_dirty_ = true;
   last_edit_time_ = v.time();
   curves_dirty_ = true;
   request_regrowth();
@@ -376,23 +401,25 @@ void HairSketchApp::request_regrowth() {
   const Head* head = &head_;
   const HairstyleSettings settings = document_.style().settings;
   const std::vector<StylePrimitive> primitives = document_.style().primitives;
+  const std::vector<StrandDetail> details = document_.style().details;
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
-  worker_.submit([slot, head, settings, primitives, revision, epoch, spare = std::move(spare_strands_)]() mutable {
-    if (!slot->live || slot->epoch != epoch) {
-      slot->live.reset();  // free the old solver before building the new one
-      slot->live = std::make_unique<LiveHairstyle>(*head, settings);
-      slot->epoch = epoch;
-    }
-    Regrowth r;
-    r.revision = revision;
-    r.settings_epoch = epoch;
-    r.update = slot->live->update(primitives, std::move(spare));
-    r.grid = slot->live->grid();
-    r.field = std::make_shared<const Field>(slot->live->field());
-    return r;
-  });
+  worker_.submit(
+      [slot, head, settings, primitives, details, revision, epoch, spare = std::move(spare_strands_)]() mutable {
+        if (!slot->live || slot->epoch != epoch) {
+          slot->live.reset();  // free the old solver before building the new one
+          slot->live = std::make_unique<LiveHairstyle>(*head, settings);
+          slot->epoch = epoch;
+        }
+        Regrowth r;
+        r.revision = revision;
+        r.settings_epoch = epoch;
+        r.update = slot->live->update(primitives, details, std::move(spare));
+        r.grid = slot->live->grid();
+        r.field = std::make_shared<const Field>(slot->live->field());
+        return r;
+      });
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {

@@ -24,7 +24,9 @@ namespace lapis::hair_app {
 using namespace lapis::hair_sketch;
 using namespace lapis::hair_field;
 
-enum class Tool { StreamCurve, DividingCurve, Ponytail, Hint, Tilt, Select };
+enum class Tool { StreamCurve, DividingCurve, Ponytail, Hint, Tilt, Select, Cut, Region };
+inline constexpr Tool kTools[] = {Tool::StreamCurve, Tool::DividingCurve, Tool::Ponytail, Tool::Hint,
+                                  Tool::Tilt,        Tool::Select,        Tool::Cut,      Tool::Region};
 const char* tool_name(Tool t);
 
 // What the worker hands back for one document revision.
@@ -74,6 +76,9 @@ class HairSketchApp final : public viewer::ViewerApp {
   void undo(viewer::Viewer& v);
   void redo(viewer::Viewer& v);
   void delete_selected(viewer::Viewer& v);
+  void set_details(viewer::Viewer& v, std::vector<StrandDetail> details, const std::string& name);
+  void add_cut_line(viewer::Viewer& v);
+  void paint_region(viewer::Viewer& v, const Eigen::Vector2d& p);
 
   // Files.
   void save(viewer::Viewer& v, const std::filesystem::path& path);
@@ -96,6 +101,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   void draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn& column);
   void draw_settings_panel(viewer::Viewer& v);
   void draw_file_panel(viewer::Viewer& v, viewer::PanelColumn& column);
+  void draw_detail_panel(viewer::Viewer& v, viewer::PanelColumn& column);
   void draw_overlay(viewer::Viewer& v);
 
   Head head_;
@@ -105,6 +111,9 @@ class HairSketchApp final : public viewer::ViewerApp {
 
   Tool tool_ = Tool::StreamCurve;
   int selected_ = -1;
+  int selected_detail_ = -1;
+  std::set<int> painted_;  // head vertices painted by the region brush during a drag
+  float region_brush_pixels_ = 30;
   int exit_status_ = 0;  // 1 when the export on exit failed
   std::set<int> hidden_;
   bool drawing_ = false;
