@@ -9,6 +9,7 @@
 #include "lapis/geometry/camera.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/session.h"
+#include "lapis/hair_sketch/style_field.h"
 #include "lapis/viewer/input_events.h"
 #include "lapis/viewer/orbit_camera.h"
 
@@ -179,4 +180,59 @@ TEST_CASE("apps: hair app — a headless export that cannot be written fails the
   CHECK(output.find("exported") == std::string::npos);
   // The autosave beside --save-session F/s.json, F a file, is reported, not an abort.
   CHECK(output.find("autosave on exit failed: core::create_parent_directories(): ") != std::string::npos);
+}
+
+TEST_CASE("apps: hair app — a cut line drawn with xdotool (tool 7) ends the strands it crosses") {
+  const fs::path dir = scratch_dir();
+  hair_sketch::Hairstyle start = hair_sketch::load_session(kSource / "assets/sessions/smooth.json");
+  start.settings.head_mesh = (kSource / "assets/head.obj").string();
+  start.settings.scalp_mask = (kSource / "assets/head_scalp.txt").string();
+  const fs::path session = dir / "cut.json";
+  hair_sketch::save_session(session, start);
+  // Across the hair, clear of the panels (Hair at the bottom left, the column on the right).
+  const int y = 330, x0 = 200, x1 = 540;
+  std::string drag = "xdotool mousemove --window $w " + std::to_string(x0) + " " + std::to_string(y) + " mousedown 1";
+  for (int x = x0 + 20; x <= x1; x += 20)
+    drag += " mousemove --window $w " + std::to_string(x) + " " + std::to_string(y) + " sleep 0.02";
+  drag += " mouseup 1";
+  const std::string size = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+  const std::string body = kApp + size + " --session " + session.string() + " --ready-file " +
+                           (dir / "cut.ready").string() +
+                           " &\napp=$!\n"
+                           "window lapis-hair-sketch || { kill $app; exit 3; }\n"
+                           "wait_ready '[ $busy -eq 0 ]' || { kill $app; exit 4; }\n"
+                           "mark; xdotool key --window $w 7; wait_handled 2 0 || { kill $app; exit 5; }\n"
+                           "mark; " +
+                           drag +
+                           "\nwait_handled 0 2 || { kill $app; exit 6; }\n"
+                           "mark; xdotool key --window $w ctrl+s; wait_handled 4 0 || { kill $app; exit 7; }\n"
+                           "xdotool key --window $w ctrl+q; wait $app\n";
+  REQUIRE(run_under_xvfb(ready_script(dir / "cut.sh", dir / "cut.ready", body)) == 0);
+
+  const hair_sketch::Hairstyle style = hair_sketch::load_session(session);
+  REQUIRE(style.details.size() == 1);
+  const auto* cut = std::get_if<hair_sketch::CutDetail>(&style.details[0].shape);
+  REQUIRE(cut != nullptr);
+  CHECK((cut->line.front() - Eigen::Vector2d(x0, y)).norm() < 0.5);
+  CHECK((cut->line.back() - Eigen::Vector2d(x1, y)).norm() < 0.5);
+
+  // Segments that cross the drawn line downward, seen with the camera it was drawn with.
+  const hair_sketch::Head head = hair_sketch::load_session_head(style, session);
+  const auto crossings = [&](const hair_sketch::Strands& s) {
+    int n = 0;
+    for (int i = 0; i < s.count(); ++i)
+      for (int k = s.offsets[i] + 1; k < s.offsets[i + 1]; ++k) {
+        const Eigen::Vector3d a = geometry::project(cut->camera, s.points[k - 1].cast<double>()),
+                              b = geometry::project(cut->camera, s.points[k].cast<double>());
+        n += a.x() > x0 + 1 && a.x() < x1 - 1 && a.y() < y - 0.5 && b.y() > y + 0.5;
+      }
+    return n;
+  };
+  hair_sketch::Hairstyle uncut = style;
+  uncut.details.clear();
+  const int before = crossings(hair_sketch::build_hairstyle(uncut, head).strands);
+  const int after = crossings(hair_sketch::build_hairstyle(style, head).strands);
+  MESSAGE("segments crossing the cut line: " << before << " without the cut, " << after << " with it");
+  CHECK(before > 100);
+  CHECK(after == 0);
 }
