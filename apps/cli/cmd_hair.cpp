@@ -82,6 +82,8 @@ int run(const std::vector<std::string>& argv) {
   j["session"] = session_path.string();
   j["replayed_strokes"] = replay ? static_cast<int>(session.strokes.size()) : 0;
   j["primitives"] = style.primitives.size();
+  j["details"] = nlohmann::json::array();
+  for (const auto& d : style.details) j["details"].push_back(detail_type(d));
   j["strands"] = grown.count();
   j["roots_without_hair"] = r.strands.count() - grown.count();
   j["segments"] = grown.segments();
@@ -98,13 +100,9 @@ int run(const std::vector<std::string>& argv) {
                            {"solve_ms", s.solve_ms},
                            {"iterations", s.iterations},
                            {"detail", s.detail}});
-  j["timings_ms"] = {{"replay", replay_ms},
-                     {"grid", r.grid_ms},
-                     {"solve", r.solve_ms},
-                     {"growth", r.growth_ms},
-                     {"penetration", r.penetration_ms},
-                     {"write", write_ms},
-                     {"total", ms_since(t0)}};
+  j["timings_ms"] = {{"replay", replay_ms},   {"grid", r.grid_ms},     {"solve", r.solve_ms},
+                     {"growth", r.growth_ms}, {"detail", r.detail_ms}, {"penetration", r.penetration_ms},
+                     {"write", write_ms},     {"total", ms_since(t0)}};
   emit_report(j, args);
   outputs.commit();
   return 0;

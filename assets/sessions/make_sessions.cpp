@@ -1,5 +1,6 @@
 // Generates the example sessions assets/sessions/{smooth,parting,ponytails}.json, which
-// recreate thesis Figs. 4.6–4.8 on the bundled head: strokes are drawn by projecting 3D
+// recreate thesis Figs. 4.6–4.8 on the bundled head, and {curly_bob,wavy_long}.json, which add
+// strand detail (§4.7) to the smooth style: strokes are drawn by projecting 3D
 // paths over the head with orbit-style cameras, interpreted exactly as the app would, and
 // recorded in the session. Deterministic; run by hand, outputs are committed:
 //   lapis_make_sessions <source dir>
@@ -185,6 +186,55 @@ void ponytails(Drawer& d) {
   }
 }
 
+StrandDetail with_seed(decltype(StrandDetail::shape) shape, std::uint32_t seed) {
+  StrandDetail d;
+  d.shape = std::move(shape);
+  d.seed = seed;
+  return d;
+}
+
+// The smooth style cut level with the jaw by a line drawn from a level side view, varied in
+// length, gathered into clumps and curled into ringlets that widen toward the tips.
+void curly_bob(Drawer& d) {
+  smooth(d);
+  CutDetail cut;
+  cut.camera = look_at({6, -0.4, 0}, {0, -0.4, 0});
+  const double y = lapis::geometry::project(cut.camera, Eigen::Vector3d(0, -0.8, 0)).y();
+  cut.line = {Eigen::Vector2d(-100, y), Eigen::Vector2d(cut.camera.viewport[2] + 100, y)};
+  ClumpDetail clumps;
+  clumps.clumps = 160;
+  clumps.strength = 0.55;
+  clumps.profile = 1.2;
+  CurlDetail ringlets;
+  ringlets.frequency = 6;
+  ringlets.radius = 0.045;
+  ringlets.radius_growth = 0.4;
+  d.doc.execute(
+      {"add details",
+       SetDetails{{with_seed(LengthDetail{0.12}, 1), with_seed(cut, 2), with_seed(clumps, 3), with_seed(ringlets, 4)}},
+       std::nullopt});
+}
+
+// The smooth style in long, loose waves: neighbouring strands wave together (little phase
+// jitter) in soft clumps, with a trace of frizz.
+void wavy_long(Drawer& d) {
+  smooth(d);
+  ClumpDetail clumps;
+  clumps.clumps = 220;
+  clumps.strength = 0.35;
+  clumps.profile = 2;
+  CurlDetail waves;
+  waves.helical = false;
+  waves.frequency = 1.6;
+  waves.radius = 0.07;
+  waves.radius_growth = 0.5;
+  waves.phase_jitter = 0.12;
+  FrizzDetail frizz;
+  frizz.amplitude = 0.004;
+  d.doc.execute(
+      {"add details", SetDetails{{with_seed(clumps, 1), with_seed(waves, 2), with_seed(frizz, 3)}}, std::nullopt});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -195,8 +245,10 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = std::filesystem::path(argv[1]) / "assets" / "sessions";
   const Head head = load_bundled_head(argv[1]);
   try {
-    for (auto [name, unknowns, draw] : {std::tuple{"smooth", 8000.0, &smooth}, std::tuple{"parting", 8000.0, &parting},
-                                        std::tuple{"ponytails", 30000.0, &ponytails}}) {
+    for (auto [name, unknowns, draw] :
+         {std::tuple{"smooth", 8000.0, &smooth}, std::tuple{"parting", 8000.0, &parting},
+          std::tuple{"ponytails", 30000.0, &ponytails}, std::tuple{"curly_bob", 8000.0, &curly_bob},
+          std::tuple{"wavy_long", 8000.0, &wavy_long}}) {
       Drawer d = start(head, unknowns);
       draw(d);
       save_session(dir / (std::string(name) + ".json"), d.doc.style());

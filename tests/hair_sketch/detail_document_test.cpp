@@ -56,7 +56,8 @@ TEST_CASE("hair_sketch: details are undoable document entries and round-trip thr
 
   const auto path = temp_path("lapis_detail_document_test", "details.json");
   save_session(path, with);
-  CHECK(same_hairstyle(load_session(path), with));  // bit-identical parameters, cameras and regions
+  CHECK(same_hairstyle(load_session(path), with));                  // bit-identical parameters, cameras and regions
+  CHECK(replay_strokes(with, bundled_head()).details.size() == 3);  // details are not strokes: kept
 
   StrandDetail bad;
   CurlDetail negative;

@@ -168,7 +168,7 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
           doctest::test_suite("slow")) {
   const fs::path dir = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
   int found = 0;
-  for (const char* name : {"smooth", "parting", "ponytails"}) {
+  for (const char* name : {"smooth", "parting", "ponytails", "curly_bob", "wavy_long"}) {
     CAPTURE(name);
     const fs::path session = dir / (std::string(name) + ".json");
     REQUIRE(fs::exists(session));
@@ -188,7 +188,7 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
         CHECK(strands_through_first_section(r.strands, *tail) >= r.strands.count() / 5);
     ++found;
   }
-  CHECK(found == 3);
+  CHECK(found == 5);
 }
 
 TEST_CASE("hair_sketch: a saved session names its head relative to itself, and finds it again") {

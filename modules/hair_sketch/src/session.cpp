@@ -343,8 +343,10 @@ std::string session_to_json(const Hairstyle& style) {
   j["camera"] = to_json(style.camera);
   j["primitives"] = json::array();
   for (const auto& p : style.primitives) j["primitives"].push_back(to_json(p));
-  j["details"] = json::array();
-  for (const auto& d : style.details) j["details"].push_back(to_json(d));
+  if (!style.details.empty()) {  // optional: sessions without detail read as before
+    j["details"] = json::array();
+    for (const auto& d : style.details) j["details"].push_back(to_json(d));
+  }
   j["strokes"] = json::array();
   for (const auto& r : style.strokes) {
     json strokes = json::array();

@@ -14,7 +14,10 @@ Eigen::Vector3f keep_clear(const Eigen::Vector3f& from, const Eigen::Vector3f& t
   const double at_to = clearance(to);
   if (at_to >= context.min_clearance) return to;
   const double at_from = clearance(from);
-  if (at_to >= at_from) return to;  // no deeper than the grown strand already is
+  // Where growth left the strand inside the head, detail leaves it be: wound about a point
+  // inside, it would cross the scalp back and forth.
+  if (at_from < 0) return from;
+  if (at_to >= at_from) return to;  // no closer than the grown strand already is
   const double floor = std::min<double>(context.min_clearance, at_from);
   Eigen::Vector3f offset = to - from;
   for (int halving = 0; halving < 4; ++halving) {

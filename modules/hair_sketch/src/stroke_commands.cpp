@@ -91,6 +91,7 @@ Hairstyle replay_strokes(const Hairstyle& session, const Head& head) {
   Hairstyle start;
   start.settings = session.settings;
   start.camera = session.camera;
+  start.details = session.details;  // not made by strokes: carried as they are
   Document doc(std::move(start));
   const Grid grid = hairstyle_grid(head, session.settings);
   for (size_t i = 0; i < session.strokes.size(); ++i) {

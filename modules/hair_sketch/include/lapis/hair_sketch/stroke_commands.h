@@ -18,7 +18,7 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& stroke
 // command_from_stroke, then Document::execute.
 void apply_stroke(Document& document, const RecordedStroke& stroke, const Head& head, const hair_field::Grid& grid);
 
-// The session's settings and camera with the primitives rebuilt from its recorded strokes
+// The session's settings, camera and strand details with the primitives rebuilt from its recorded strokes
 // alone (grid from the settings). Throws StrokeRejected naming the stroke's index when one
 // is rejected: a recorded session only holds strokes that were accepted.
 Hairstyle replay_strokes(const Hairstyle& session, const Head& head);
