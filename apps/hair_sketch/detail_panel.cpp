@@ -122,7 +122,11 @@ void HairSketchApp::paint_region(viewer::Viewer& v, const Eigen::Vector2d& p) {
 void HairSketchApp::draw_detail_panel(viewer::Viewer& v, viewer::PanelColumn& column) {
   column.begin("Detail");
   const auto& details = document_.style().details;
-  if (details.empty()) ImGui::TextDisabled("none: add one below (applied after growth, in order)");
+  if (details.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("none: add one below (applied after growth, in order)");
+    ImGui::PopStyleColor();
+  }
   for (int i = 0; i < static_cast<int>(details.size()); ++i) {
     ImGui::PushID(i);
     std::string label = std::to_string(i) + " " + detail_type(details[i]);

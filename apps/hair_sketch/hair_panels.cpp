@@ -125,8 +125,8 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn&
 }
 
 void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 290), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(330, 280), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 336), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(330, 326), ImGuiCond_FirstUseEver);
   ImGui::Begin("Hair");
   HairstyleSettings s = document_.style().settings;
   bool changed = false;
@@ -139,6 +139,13 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   ImGui::SliderFloat("max length (d)", &length, 5, 400);
   if (ImGui::IsItemDeactivatedAfterEdit()) s.growth.max_length = length, changed = true;
   if (ImGui::Checkbox("scalp avoidance (thesis 4.6)", &s.scalp_avoidance)) changed = true;
+  // Field detail (thesis 4.7, Eq. 4.1 with δ from the wavy example): 0 is the smooth field.
+  float wave_amplitude = static_cast<float>(s.field_detail.amplitude),
+        wave_length = static_cast<float>(s.field_detail.wavelength);
+  ImGui::SliderFloat("field waves", &wave_amplitude, 0, 1, "%.2f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) s.field_detail.amplitude = wave_amplitude, changed = true;
+  ImGui::SliderFloat("wave length", &wave_length, 0.1f, 2, "%.2f");
+  if (ImGui::IsItemDeactivatedAfterEdit()) s.field_detail.wavelength = wave_length, changed = true;
   if (changed) {
     execute(v, Command{"change settings", SetSettings{s}, std::nullopt});
     settings_changed();

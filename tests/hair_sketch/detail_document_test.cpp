@@ -56,7 +56,12 @@ TEST_CASE("hair_sketch: details are undoable document entries and round-trip thr
 
   const auto path = temp_path("lapis_detail_document_test", "details.json");
   save_session(path, with);
-  CHECK(same_hairstyle(load_session(path), with));                  // bit-identical parameters, cameras and regions
+  CHECK(same_hairstyle(load_session(path), with));  // bit-identical parameters, cameras and regions
+  Hairstyle field_waves = with;                     // and the field detail settings
+  field_waves.settings.field_detail.amplitude = 0.3;
+  field_waves.settings.field_detail.wavelength = 0.7;
+  CHECK(same_hairstyle(session_from_json(session_to_json(field_waves)), field_waves));
+  CHECK_FALSE(same_hairstyle(field_waves, with));
   CHECK(replay_strokes(with, bundled_head()).details.size() == 3);  // details are not strokes: kept
 
   StrandDetail bad;

@@ -18,7 +18,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings)
     : head_(&head),
       settings_(settings),
-      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field),
+      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field, settings.field_detail),
       roots_(sample_roots(head, settings.roots)) {}
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {

@@ -313,6 +313,10 @@ class Reader {
     s.scalp_avoidance = boolean(j, path, "scalp_avoidance");
     s.support = support(j, path);
     s.sketch.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
+    if (j.contains("field_detail_amplitude")) {  // optional: off when absent
+      s.field_detail.amplitude = number(j, path, "field_detail_amplitude", 0, 1e6);
+      s.field_detail.wavelength = number(j, path, "field_detail_wavelength", 1e-9, 1e6);
+    }
     return s;
   }
 
@@ -340,6 +344,10 @@ std::string session_to_json(const Hairstyle& style) {
                    {"scalp_avoidance", s.scalp_avoidance},
                    {"support", to_string(s.support)},
                    {"tail_segments", s.sketch.tail_segments}};
+  if (s.field_detail.amplitude > 0) {
+    j["settings"]["field_detail_amplitude"] = s.field_detail.amplitude;
+    j["settings"]["field_detail_wavelength"] = s.field_detail.wavelength;
+  }
   j["camera"] = to_json(style.camera);
   j["primitives"] = json::array();
   for (const auto& p : style.primitives) j["primitives"].push_back(to_json(p));

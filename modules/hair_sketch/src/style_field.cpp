@@ -53,8 +53,16 @@ ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, c
   return ConstraintSet::merge(groups);
 }
 
-StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, const FieldSolverOptions& options)
-    : head_(&head), grid_(grid), solver_(make_field_solver(grid, method, options)) {}
+StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, const FieldSolverOptions& options,
+                       const FieldDetailOptions& detail)
+    : head_(&head), grid_(grid), solver_(make_field_solver(grid, method, options)) {
+  if (detail.amplitude > 0) {
+    example_ = wavy_example_field(grid, head.center, detail);
+    detailed_ = example_;
+  } else {
+    wavy_example_field(grid, head.center, detail);  // checks the options
+  }
+}
 
 FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitives,
                                     const std::vector<Constraint>& extra) {
@@ -62,8 +70,14 @@ FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitive
   for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid_, *head_));
   if (!extra.empty()) groups.push_back(extra);
   ConstraintSet next = ConstraintSet::merge(groups);
+  if (example_.size()) {  // u = t − tᵉ meets cᵢ − tᵉᵢ (field_detail.h)
+    std::vector<std::vector<Constraint>> shifted{next.items()};
+    for (Constraint& c : shifted.front()) c.direction -= example_.row(c.node).transpose();
+    next = ConstraintSet::merge(shifted);
+  }
   const FieldSolveReport report = solver_->apply(diff(current_, next), next);
   current_ = std::move(next);
+  if (example_.size()) detailed_ = example_ + solver_->field();
   return report;
 }
 
@@ -72,7 +86,7 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   HairstyleResult r;
   auto t0 = std::chrono::steady_clock::now();
   r.grid = hairstyle_grid(head, s);
-  StyleField field(head, r.grid, s.field_method, s.field);
+  StyleField field(head, r.grid, s.field_method, s.field, s.field_detail);
   r.grid_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   r.solves.push_back(field.update(style.primitives));

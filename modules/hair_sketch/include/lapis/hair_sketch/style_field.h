@@ -11,6 +11,7 @@
 #include "lapis/hair_field/field_solver.h"
 #include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/document.h"
+#include "lapis/hair_sketch/field_detail.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 
@@ -33,15 +34,18 @@ hair_field::ConstraintSet style_constraints(const std::vector<StylePrimitive>& p
 // Precompute once (the solver), then update per document revision: the new constraint set
 // is diffed against the last one and only the diff is applied. Undo is just another update,
 // whose diff is the inverse of the edit's.
+//
+// With field detail (field_detail.h), the solver solves for u = t − tᵉ: constraint targets are
+// cᵢ − tᵉᵢ, and field() is tᵉ + u.
 class StyleField {
  public:
   // Throws ResourceLimit when the method's memory estimate exceeds the solver's limit.
   StyleField(const Head& head, const hair_field::Grid& grid, hair_field::FieldMethod method,
-             const hair_field::FieldSolverOptions& options = {});
+             const hair_field::FieldSolverOptions& options = {}, const FieldDetailOptions& detail = {});
   // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance).
   hair_field::FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
                                       const std::vector<hair_field::Constraint>& extra = {});
-  const hair_field::Field& field() const { return solver_->field(); }
+  const hair_field::Field& field() const { return example_.size() ? detailed_ : solver_->field(); }
   const hair_field::ConstraintSet& constraints() const { return current_; }
   const hair_field::Grid& grid() const { return grid_; }
   hair_field::FieldMethod method() const { return solver_->method(); }
@@ -50,7 +54,9 @@ class StyleField {
   const Head* head_;
   hair_field::Grid grid_;
   std::unique_ptr<hair_field::FieldSolver> solver_;
-  hair_field::ConstraintSet current_;
+  hair_field::ConstraintSet current_;  // as the solver sees them (minus tᵉ with field detail)
+  hair_field::Field example_;          // tᵉ; empty without field detail
+  hair_field::Field detailed_;         // tᵉ + u
 };
 
 struct HairstyleResult {
