@@ -60,7 +60,7 @@ py::dict build(const Session& s) {
                                       "spacing"_a = r.grid.spacing, "dims"_a = py::make_tuple(d[0], d[1], d[2])),
                   "constraints"_a = r.constraints, "penetrating_segments"_a = r.penetrating_segments,
                   "timings_ms"_a = py::dict("grid"_a = r.grid_ms, "solve"_a = r.solve_ms, "growth"_a = r.growth_ms,
-                                            "penetration"_a = r.penetration_ms));
+                                            "detail"_a = r.detail_ms, "penetration"_a = r.penetration_ms));
 }
 
 void bind_session(py::module_& m) {
@@ -117,6 +117,15 @@ points[offsets[i]:offsets[i + 1]]), the field (dims z, y, x, 3) with its grid, c
             return out;
           },
           "The primitives' types in order: 'stream_curve', 'dividing_curve', 'ponytail'.")
+      .def_property_readonly(
+          "details",
+          [](const Session& s) {
+            py::list out;
+            for (const StrandDetail& d : s.style.details) out.append(detail_type(d));
+            return out;
+          },
+          "The strand details applied after growth, in order (thesis §4.7): 'curl', 'wave', 'clump', 'frizz', "
+          "'length', 'cut'. They come from the session file; build() and LiveHairstyle apply them.")
       .def(
           "remove_primitive",
           [](Session& s, int i) {

@@ -43,19 +43,22 @@ py::dict solve_dict(const hair_field::FieldSolveReport& r) {
 
 py::dict update(Live& l) {
   // Copied with the GIL held: another thread may edit the session while the field solves.
-  const std::vector<StylePrimitive> primitives = l.session.cast<const Session&>().style.primitives;
+  const Hairstyle& style = l.session.cast<const Session&>().style;
+  const std::vector<StylePrimitive> primitives = style.primitives;
+  const std::vector<StrandDetail> details = style.details;
   Strands reuse = l.pool->take();
   LiveUpdate u;
   {
     py::gil_scoped_release release;
-    u = l.live->update(primitives, std::move(reuse));
+    u = l.live->update(primitives, details, std::move(reuse));
   }
   py::tuple strands = strands_to_numpy(std::move(u.strands), l.pool);
   py::list solves;
   for (const hair_field::FieldSolveReport& r : u.solves) solves.append(solve_dict(r));
   return py::dict("points"_a = strands[0], "offsets"_a = strands[1], "constraints"_a = u.constraints,
-                  "solves"_a = solves,
-                  "timings_ms"_a = py::dict("solve"_a = u.solve_ms, "growth"_a = u.growth_ms, "total"_a = u.total_ms));
+                  "solves"_a = solves, "regrown"_a = u.regrown,
+                  "timings_ms"_a = py::dict("solve"_a = u.solve_ms, "growth"_a = u.growth_ms, "detail"_a = u.detail_ms,
+                                            "total"_a = u.total_ms));
 }
 
 }  // namespace
@@ -72,8 +75,9 @@ void bind_hair_live(py::module_& m) {
 
 update() returns a dict: points (n, 3) float32 and offsets (strands + 1,) int32 as
 HairSession.build() returns them, the constraint count, the solves (the style field's, then
-the scalp avoidance's: method, diff sizes, iterations, error estimate, timings) and
-timings_ms (solve, growth, total). The strands regrow into the storage of an earlier result
+the scalp avoidance's: method, diff sizes, iterations, error estimate, timings), regrown
+(False when the primitives were unchanged and only the session's strand details were applied
+again) and timings_ms (solve, growth, detail, total). The strands regrow into the storage of an earlier result
 whose arrays are gone, so drop old results to keep an edit loop fast. The settings (grid,
 roots, field method) are the session's when the LiveHairstyle is made; make a new one after
 changing them. Multigrid solves are iterative: after edits the field matches a from-scratch

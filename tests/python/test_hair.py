@@ -150,3 +150,17 @@ def test_field_method_is_a_setting_each_method_solves_alike():
     assert np.abs(refactorized - exact).max() < 1e-9 * np.abs(exact).max()
     with pytest.raises(TypeError):
         s.field_method = "multigrid"
+
+
+def test_live_hairstyle_applies_the_session_details_without_regrowing_for_them():
+    s = small(lapis.HairSession.load(str(SESSIONS / "curly_bob.json")))
+    assert s.details == ["length", "cut", "clump", "curl"]
+    live = lapis.LiveHairstyle(s)
+    first = live.update()
+    assert first["regrown"]
+    points = first["points"].copy()
+    again = live.update()  # nothing changed: the grown strands are reused, the details reapplied
+    assert not again["regrown"]
+    assert np.array_equal(again["points"], points)
+    built = s.build()
+    assert np.array_equal(built["points"], points)  # the same details as the one-shot build
