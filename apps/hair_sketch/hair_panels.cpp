@@ -46,6 +46,8 @@ void HairSketchApp::draw_toolbar(viewer::Viewer& v, viewer::PanelColumn& column)
       curves_dirty_ = true;
     }
   }
+  ImGui::Checkbox("symmetric (M)", &symmetric_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("new curves get a twin mirrored across the head's sagittal plane");
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", kToolKeys);
   ImGui::PopStyleColor();
@@ -109,6 +111,7 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn&
       commit |= edit_on_release(copy, [&](StylePrimitive&) { ImGui::SliderFloat("tightness", &t, 0.0f, 1.0f); });
       p->tightness = t;
     }
+    if (ImGui::Checkbox("mirrored twin", &copy.mirrored)) commit = true;
     int mode = copy.support == SupportMode::Ruled ? 0 : 1;
     if (ImGui::Combo("supporting surface", &mode, "ruled\0strip\0")) {
       copy.support = mode == 0 ? SupportMode::Ruled : SupportMode::Strip;

@@ -6,6 +6,7 @@
 #include "hair_sketch_app.h"
 #include "lapis/hair_sketch/sketch.h"
 #include "lapis/hair_sketch/style_field.h"
+#include "lapis/hair_sketch/symmetry.h"
 #include "primitive_geometry.h"
 #include "strand_display.h"
 
@@ -77,8 +78,11 @@ void HairSketchApp::update_curve_items(viewer::Viewer& v) {
   const auto& prims = document_.style().primitives;
   for (size_t i = 0; i < prims.size(); ++i) {
     if (hidden_.count(static_cast<int>(i))) continue;
-    for (const auto& line : primitive_polylines(prims[i]))
-      curves.add_strip(line, curve_color(prims[i], static_cast<int>(i) == selected_));
+    const Eigen::Vector3f color = curve_color(prims[i], static_cast<int>(i) == selected_);
+    for (const auto& line : primitive_polylines(prims[i])) curves.add_strip(line, color);
+    if (prims[i].mirrored)  // the twin, dimmer: it follows the primitive
+      for (const auto& line : primitive_polylines(mirror_image(prims[i], head_.center.x())))
+        curves.add_strip(line, 0.6f * color);
   }
   curves.width = 3.0f;
   curves.visible = show_curves_;

@@ -12,6 +12,7 @@
 #include "lapis/hair_sketch/sketch.h"
 #include "lapis/hair_sketch/stroke_commands.h"
 #include "lapis/hair_sketch/style_field.h"
+#include "lapis/hair_sketch/symmetry.h"
 #include "primitive_geometry.h"
 
 namespace lapis::hair_app {
@@ -116,6 +117,11 @@ bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     return true;
   }
   if (e.key == GLFW_KEY_DELETE || e.key == GLFW_KEY_BACKSPACE) return delete_selected(v), true;
+  if (e.key == GLFW_KEY_M) {
+    symmetric_ = !symmetric_;
+    v.flash(symmetric_ ? "symmetric sketching on: new curves get a mirrored twin" : "symmetric sketching off");
+    return true;
+  }
   if (e.key == GLFW_KEY_ESCAPE) {
     drawing_ = false;
     stroke_.clear();
@@ -166,6 +172,7 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
   preview_.clear();
   RecordedStroke rec;
   rec.camera = v.camera_matrices();
+  rec.mirrored = symmetric_;
   switch (tool_) {
     case Tool::StreamCurve:
       rec.action = StrokeAction::StreamCurve;
@@ -252,7 +259,10 @@ void HairSketchApp::select_at(viewer::Viewer& v, const Eigen::Vector2d& p) {
   const auto& prims = document_.style().primitives;
   for (size_t i = 0; i < prims.size(); ++i) {
     if (hidden_.count(static_cast<int>(i))) continue;
-    for (const auto& line : primitive_polylines(prims[i]))
+    auto lines = primitive_polylines(prims[i]);
+    if (prims[i].mirrored)  // clicking the twin selects the primitive it follows
+      for (auto& line : primitive_polylines(mirror_image(prims[i], head_.center.x()))) lines.push_back(std::move(line));
+    for (const auto& line : lines)
       for (const auto& q : line) {
         const Eigen::Vector3d s = geometry::project(cam, q);
         const double d = (s.head<2>() - p).norm();

@@ -112,7 +112,8 @@ class HairSketchApp final : public viewer::ViewerApp {
   Tool tool_ = Tool::StreamCurve;
   int selected_ = -1;
   int selected_detail_ = -1;
-  std::set<int> painted_;  // head vertices painted by the region brush during a drag
+  bool symmetric_ = false;  // new primitives get a mirrored twin (M)
+  std::set<int> painted_;   // head vertices painted by the region brush during a drag
   float region_brush_pixels_ = 30;
   int exit_status_ = 0;  // 1 when the export on exit failed
   std::set<int> hidden_;

@@ -24,7 +24,8 @@ constexpr const char* kUsage =
     "                         adapted to the frame time in a window, all with --headless)\n"
     "--save-session: where Ctrl+S saves (default: the --session file, else hairstyle.json);\n"
     "the autosave (every minute and on exit) goes beside it as OUT.json.autosave.json.\n"
-    "Left-drag sketches with the current tool (keys 1-8; 7 draws a cut line, 8 paints the selected detail's region), "
+    "Left-drag sketches with the current tool (keys 1-8; 7 draws a cut line, 8 paints the selected detail's region; M "
+    "mirrors new curves), "
     "right-drag orbits, middle-drag pans,\n"
     "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
     "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n";

@@ -45,16 +45,36 @@ std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& poly, 
   return out;
 }
 
+namespace {
+
+// The nodes of the cell containing grid coordinate x along one axis: its lower node and how many
+// (2; 1 when x is on a node plane to rounding: the point lies on the face between two cells and
+// trilinear lookups there read only that face's nodes, so only they are constrained, which
+// keeps the constraints of a curve's mirror image the mirror of the curve's, symmetry.h).
+int cell_span(double x, int& lower) {
+  const double nearest = std::round(x);
+  if (std::abs(x - nearest) < 1e-9) {
+    lower = static_cast<int>(nearest);
+    return 1;
+  }
+  lower = static_cast<int>(std::floor(x));
+  return 2;
+}
+
+}  // namespace
+
 void constrain_cell(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
                     std::vector<Constraint>& out) {
   const Eigen::Vector3d q = grid.to_grid(p);
-  const int i0 = static_cast<int>(std::floor(q.x())), j0 = static_cast<int>(std::floor(q.y())),
-            k0 = static_cast<int>(std::floor(q.z()));
-  for (int c = 0; c < 8; ++c) {
-    const int i = i0 + (c & 1), j = j0 + ((c >> 1) & 1), k = k0 + (c >> 2);
-    if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2]) continue;
-    out.push_back({grid.index(i, j, k), dir});
-  }
+  int i0 = 0, j0 = 0, k0 = 0;
+  const int ni = cell_span(q.x(), i0), nj = cell_span(q.y(), j0), nk = cell_span(q.z(), k0);
+  for (int dk = 0; dk < nk; ++dk)
+    for (int dj = 0; dj < nj; ++dj)
+      for (int di = 0; di < ni; ++di) {
+        const int i = i0 + di, j = j0 + dj, k = k0 + dk;
+        if (i < 0 || j < 0 || k < 0 || i >= grid.dims[0] || j >= grid.dims[1] || k >= grid.dims[2]) continue;
+        out.push_back({grid.index(i, j, k), dir});
+      }
 }
 
 void constrain_nearest(const Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,

@@ -22,7 +22,8 @@ constexpr double kMaxCurveSamples = 1 << 20;
 std::vector<Eigen::Vector3d> resample(const std::vector<Eigen::Vector3d>& polyline, double h, const char* who);
 
 // Appends a constraint on each of the 8 corners of the grid cell containing p (those inside
-// the grid): a segment's "neighbouring grid points".
+// the grid): a segment's "neighbouring grid points". A p on a face, edge or node of the
+// lattice (to rounding) constrains only that face's 4, edge's 2 or the 1 node.
 void constrain_cell(const hair_field::Grid& grid, const Eigen::Vector3d& p, const Eigen::Vector3d& dir,
                     std::vector<hair_field::Constraint>& out);
 

@@ -41,7 +41,9 @@ const char* primitive_type(const StylePrimitive& p) {
 }
 
 bool same_primitive(const StylePrimitive& a, const StylePrimitive& b) {
-  if (a.shape.index() != b.shape.index() || a.viewpoint != b.viewpoint || a.support != b.support) return false;
+  if (a.shape.index() != b.shape.index() || a.viewpoint != b.viewpoint || a.support != b.support ||
+      a.mirrored != b.mirrored)
+    return false;
   return std::visit([&](const auto& x) { return same_shape(x, std::get<std::decay_t<decltype(x)>>(b.shape)); },
                     a.shape);
 }
@@ -62,7 +64,8 @@ const char* to_string(StrokeAction a) {
 }
 
 bool operator==(const RecordedStroke& a, const RecordedStroke& b) {
-  return a.action == b.action && a.target == b.target && same_camera(a.camera, b.camera) && a.strokes == b.strokes;
+  return a.action == b.action && a.target == b.target && same_camera(a.camera, b.camera) && a.strokes == b.strokes &&
+         a.mirrored == b.mirrored;
 }
 
 bool same_hairstyle(const Hairstyle& a, const Hairstyle& b) {

@@ -69,6 +69,7 @@ json to_json(const StrandDetail& d) {
 
 json to_json(const StylePrimitive& p) {
   json j = {{"type", primitive_type(p)}, {"viewpoint", to_json(p.viewpoint)}, {"support", to_string(p.support)}};
+  if (p.mirrored) j["mirrored"] = true;  // optional: false when absent
   if (const auto* s = std::get_if<StreamCurve>(&p.shape)) {
     j["points"] = to_json(s->points);
     j["tail_segments"] = s->tail_segments;
@@ -207,6 +208,7 @@ class Reader {
     StylePrimitive p;
     p.viewpoint = vec<3>(key(j, path, "viewpoint"), path + ".viewpoint");
     p.support = support(j, path);
+    if (j.contains("mirrored")) p.mirrored = boolean(j, path, "mirrored");
     const std::string type = string(j, path, "type");
     if (type == "stream_curve") {
       StreamCurve s;
@@ -294,6 +296,7 @@ class Reader {
     if (!known) fail(path + ".action", "unknown action \"" + action + "\"");
     if (j.contains("target")) r.target = static_cast<int>(integer(j, path, "target", -1, 1 << 30));
     r.camera = camera(key(j, path, "camera"), path + ".camera");
+    if (j.contains("mirrored")) r.mirrored = boolean(j, path, "mirrored");
     const json& a = array(key(j, path, "strokes"), path + ".strokes", 4);
     for (std::size_t i = 0; i < a.size(); ++i)
       r.strokes.push_back(stroke(a[i], path + ".strokes[" + std::to_string(i) + "]"));
@@ -361,6 +364,7 @@ std::string session_to_json(const Hairstyle& style) {
     for (const auto& st : r.strokes) strokes.push_back(to_json(st));
     j["strokes"].push_back(
         {{"action", to_string(r.action)}, {"target", r.target}, {"camera", to_json(r.camera)}, {"strokes", strokes}});
+    if (r.mirrored) j["strokes"].back()["mirrored"] = true;
   }
   return j.dump(1);
 }

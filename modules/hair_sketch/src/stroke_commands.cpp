@@ -80,6 +80,7 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, con
       break;
     }
   }
+  if (auto* insert = std::get_if<InsertPrimitive>(&c.change)) insert->primitive.mirrored = s.mirrored;
   return c;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "lapis/hair_sketch/scalp_avoidance.h"
+#include "lapis/hair_sketch/symmetry.h"
 
 namespace lapis::hair_sketch {
 using hair_field::Constraint;
@@ -36,6 +37,14 @@ SketchOptions sketch_options(const Grid& grid, const HairstyleSettings& settings
 }
 
 std::vector<Constraint> primitive_constraints(const StylePrimitive& p, const Grid& grid, const Head& head) {
+  if (p.mirrored) {  // the primitive's, then its twin's (symmetry.h)
+    StylePrimitive own = p;
+    own.mirrored = false;
+    std::vector<Constraint> out = primitive_constraints(own, grid, head);
+    const std::vector<Constraint> twin = primitive_constraints(mirror_image(own, head.center.x()), grid, head);
+    out.insert(out.end(), twin.begin(), twin.end());
+    return out;
+  }
   return std::visit(
       [&](const auto& shape) -> std::vector<Constraint> {
         using T = std::decay_t<decltype(shape)>;

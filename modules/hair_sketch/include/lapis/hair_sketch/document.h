@@ -31,6 +31,9 @@ struct StylePrimitive {
   std::variant<StreamCurve, DividingCurve, Ponytail> shape;
   Eigen::Vector3d viewpoint = Eigen::Vector3d::Zero();
   SupportMode support = SupportMode::Strip;
+  // Symmetric sketching (symmetry.h): the mirror image across the head's sagittal plane is part
+  // of the style too, a twin that follows every edit of this primitive.
+  bool mirrored = false;
 };
 // "stream_curve", "dividing_curve" or "ponytail".
 const char* primitive_type(const StylePrimitive& p);
@@ -65,6 +68,7 @@ struct RecordedStroke {
   int target = -1;                  // Hint, Tilt: the edited primitive's index
   geometry::CameraMatrices camera;  // as drawn
   std::vector<Stroke> strokes;      // one, or four for a ponytail
+  bool mirrored = false;            // created with symmetric sketching on
 };
 bool operator==(const RecordedStroke& a, const RecordedStroke& b);
 

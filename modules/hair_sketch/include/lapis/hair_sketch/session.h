@@ -25,7 +25,8 @@
 //                {"type": "cut", ..., "camera": {...}, "line": [[x,y],...]}],
 //    "strokes": [{"action": "stream_curve|dividing_curve|hint|tilt|ponytail",
 //                 "target": i, "camera": {...}, "strokes": [[[x,y],...], ...]}]}
-// Every key is required except "details" and "strokes" (empty) and "target" (-1). The
+// Every key is required except "details" and "strokes" (empty), "target" (-1) and a primitive's
+// or a stroke's "mirrored" (false). The
 // parameters are those of strand_detail.h's structs.
 #pragma once
 
