@@ -43,6 +43,7 @@ void HairSketchApp::draw_toolbar(viewer::Viewer& v, viewer::PanelColumn& column)
     if (ImGui::RadioButton(tool_name(kTools[i]), tool_ == kTools[i])) {
       tool_ = kTools[i];
       ponytail_strokes_.clear();
+      ponytail_cameras_.clear();
       curves_dirty_ = true;
     }
   }

@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -113,6 +114,7 @@ bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
   if (e.key >= GLFW_KEY_1 && e.key <= GLFW_KEY_8) {
     tool_ = kTools[e.key - GLFW_KEY_1];
     ponytail_strokes_.clear();
+    ponytail_cameras_.clear();
     curves_dirty_ = true;
     return true;
   }
@@ -126,6 +128,7 @@ bool HairSketchApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
     drawing_ = false;
     stroke_.clear();
     ponytail_strokes_.clear();
+    ponytail_cameras_.clear();
     preview_.clear();
     return true;
   }
@@ -207,6 +210,7 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
   }
   if (tool_ == Tool::Ponytail) {
     ponytail_strokes_.push_back(stroke_);
+    ponytail_cameras_.push_back(rec.camera);  // the view may turn between the strokes (§4.5)
     stroke_.clear();
     if (ponytail_strokes_.size() < 4) {
       curves_dirty_ = true;
@@ -215,6 +219,12 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     }
     rec.strokes = std::move(ponytail_strokes_);
     ponytail_strokes_.clear();
+    const auto& first = ponytail_cameras_.front();
+    const bool one_view = std::all_of(ponytail_cameras_.begin(), ponytail_cameras_.end(), [&](const auto& c) {
+      return c.view == first.view && c.projection == first.projection && c.viewport == first.viewport;
+    });
+    if (!one_view) rec.cameras = std::move(ponytail_cameras_);
+    ponytail_cameras_.clear();
   } else {
     rec.strokes = {std::move(stroke_)};
     stroke_.clear();

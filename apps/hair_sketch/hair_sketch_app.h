@@ -118,9 +118,10 @@ class HairSketchApp final : public viewer::ViewerApp {
   int exit_status_ = 0;  // 1 when the export on exit failed
   std::set<int> hidden_;
   bool drawing_ = false;
-  Stroke stroke_;                         // the stroke being drawn
-  std::vector<Stroke> ponytail_strokes_;  // spine, cross section, profile a, profile b
-  std::vector<Eigen::Vector3d> preview_;  // 3D preview of the stroke's curve
+  Stroke stroke_;                                           // the stroke being drawn
+  std::vector<Stroke> ponytail_strokes_;                    // spine, cross section, profile a, profile b
+  std::vector<geometry::CameraMatrices> ponytail_cameras_;  // each one's camera
+  std::vector<Eigen::Vector3d> preview_;                    // 3D preview of the stroke's curve
 
   // Display.
   bool show_scalp_ = false, show_glyphs_ = false, show_curves_ = true, show_strands_ = true;

@@ -279,3 +279,62 @@ TEST_CASE("hair_sketch: four strokes make a ponytail whose cross sections lie be
                             back, head, o),
       doctest::Contains("cross section"), StrokeRejected);
 }
+
+TEST_CASE("hair_sketch: a ponytail's strokes are each read with the camera they were drawn with") {
+  const Head& head = bundled_head();
+  const SketchOptions o = options();
+  const CameraMatrices back = look_at({0, 0.3, -5}, {0, 0.0, -0.8});
+  // The view turned 35 degrees between the spine and the other strokes.
+  const CameraMatrices turned = look_at({-5 * std::sin(0.6), 0.8, -5 * std::cos(0.6)}, {0, 0.0, -0.8});
+  std::vector<Eigen::Vector3d> spine;
+  for (int i = 0; i <= 10; ++i) spine.push_back(on_head({0, std::cos(0.9 + 0.05 * i), -std::sin(0.9 + 0.05 * i)}));
+  const Eigen::Vector3d start = spine.back(), down(0, -1, -0.15);
+  for (int i = 1; i <= 12; ++i) spine.push_back(start + 0.08 * i * down.normalized() + Eigen::Vector3d(0, 0, -0.1));
+  // The spine as read, and 3D curves on its supporting surface (seen from `back`).
+  const Stroke spine_stroke = project_path(back, spine);
+  const std::vector<Eigen::Vector3d> read = stream_curve_from_stroke(spine_stroke, back, head, o).points;
+  const SupportingSurface surf =
+      make_supporting_surface(read, lapis::geometry::eye_position(back), SupportMode::Strip, o);
+  // Points on segment i's piece of the surface at offset w (its midpoint, its mean ruling).
+  const auto on_surface = [&](int i, double w) {
+    return Eigen::Vector3d(0.5 * (surf.points[i] + surf.points[i + 1]) +
+                           w * (surf.rulings[i] + surf.rulings[i + 1]).normalized());
+  };
+  const int at = static_cast<int>(0.6 * read.size());
+  const double r = 0.12;
+  std::vector<Eigen::Vector3d> loop, pa, pb;
+  for (int k = 0; k <= 24; ++k) {
+    const double phi = 2 * M_PI * k / 24;
+    const int i =
+        std::clamp(at + static_cast<int>(std::lround(1.5 * std::sin(phi))), 0, static_cast<int>(read.size()) - 2);
+    loop.push_back(on_surface(i, r * std::cos(phi)));  // across the spine, on the strip
+  }
+  for (int i = at; i + 1 < static_cast<int>(read.size()); ++i) {
+    pa.push_back(on_surface(i, r));
+    pb.push_back(on_surface(i, -r));
+  }
+  const std::array<Stroke, 4> strokes{spine_stroke, project_path(turned, loop), project_path(turned, pa),
+                                      project_path(turned, pb)};
+  const Ponytail each = ponytail_from_strokes(strokes, {back, turned, turned, turned}, head, o);
+  // Each camera's reading recovers the curves drawn on the surface.
+  for (const auto& q : each.cross_section) CHECK(distance_to_path(q, loop) < 0.25 * o.spacing);
+  for (const auto& q : each.profile_a) CHECK(distance_to_path(q, pa) < 0.25 * o.spacing);
+  // Read with one camera for all four (the last one), the same strokes land elsewhere.
+  const Ponytail last = ponytail_from_strokes(strokes, turned, head, o);
+  double off = 0;
+  for (const auto& q : last.cross_section) off = std::max(off, distance_to_path(q, loop));
+  CHECK(off > 2 * o.spacing);
+  // Through the document: a recorded stroke with four cameras makes the same ponytail.
+  Hairstyle style;
+  style.settings = small_settings();
+  const Grid grid = hairstyle_grid(head, style.settings);
+  RecordedStroke rec = recorded(StrokeAction::Ponytail, turned, {strokes.begin(), strokes.end()});
+  rec.cameras = {back, turned, turned, turned};
+  Document doc(style);
+  apply_stroke(doc, rec, head, grid);
+  const auto& made = std::get<Ponytail>(doc.style().primitives.at(0).shape);
+  const Ponytail expected =
+      ponytail_from_strokes(strokes, {back, turned, turned, turned}, head, sketch_options(grid, style.settings));
+  CHECK(made.cross_section == expected.cross_section);
+  CHECK(doc.style().primitives[0].viewpoint == lapis::geometry::eye_position(back));
+}

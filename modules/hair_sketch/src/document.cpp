@@ -64,6 +64,9 @@ const char* to_string(StrokeAction a) {
 }
 
 bool operator==(const RecordedStroke& a, const RecordedStroke& b) {
+  if (a.cameras.size() != b.cameras.size()) return false;
+  for (std::size_t i = 0; i < a.cameras.size(); ++i)
+    if (!same_camera(a.cameras[i], b.cameras[i])) return false;
   return a.action == b.action && a.target == b.target && same_camera(a.camera, b.camera) && a.strokes == b.strokes &&
          a.mirrored == b.mirrored;
 }

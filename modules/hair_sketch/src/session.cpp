@@ -297,6 +297,11 @@ class Reader {
     if (j.contains("target")) r.target = static_cast<int>(integer(j, path, "target", -1, 1 << 30));
     r.camera = camera(key(j, path, "camera"), path + ".camera");
     if (j.contains("mirrored")) r.mirrored = boolean(j, path, "mirrored");
+    if (j.contains("cameras")) {
+      const json& cams = array(j["cameras"], path + ".cameras", 4);
+      for (std::size_t i = 0; i < cams.size(); ++i)
+        r.cameras.push_back(camera(cams[i], path + ".cameras[" + std::to_string(i) + "]"));
+    }
     const json& a = array(key(j, path, "strokes"), path + ".strokes", 4);
     for (std::size_t i = 0; i < a.size(); ++i)
       r.strokes.push_back(stroke(a[i], path + ".strokes[" + std::to_string(i) + "]"));
@@ -365,6 +370,11 @@ std::string session_to_json(const Hairstyle& style) {
     j["strokes"].push_back(
         {{"action", to_string(r.action)}, {"target", r.target}, {"camera", to_json(r.camera)}, {"strokes", strokes}});
     if (r.mirrored) j["strokes"].back()["mirrored"] = true;
+    if (!r.cameras.empty()) {
+      json cameras = json::array();
+      for (const auto& c : r.cameras) cameras.push_back(to_json(c));
+      j["strokes"].back()["cameras"] = cameras;
+    }
   }
   return j.dump(1);
 }

@@ -209,21 +209,29 @@ HintEdit interpret_hint(const std::vector<Eigen::Vector3d>& curve, const Eigen::
 
 Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes, const geometry::CameraMatrices& camera,
                                const Head& head, const SketchOptions& options) {
+  return ponytail_from_strokes(strokes, {camera, camera, camera, camera}, head, options);
+}
+
+Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes,
+                               const std::array<geometry::CameraMatrices, 4>& cameras, const Head& head,
+                               const SketchOptions& options) {
   constexpr const char* fn = "hair_sketch::ponytail_from_strokes()";
   Ponytail tail;
   try {
-    tail.spine = stream_curve_from_stroke(strokes[0], camera, head, options).points;
+    tail.spine = stream_curve_from_stroke(strokes[0], cameras[0], head, options).points;
   } catch (const StrokeRejected& e) {
     detail::reject(fn, std::string("spine: ") + e.what());
   }
+  // The spine's surface is seen from where the spine was drawn; the other strokes are rays of
+  // their own cameras onto it (§4.5: the user turns the view to draw them).
   const SupportingSurface surf =
-      make_supporting_surface(tail.spine, geometry::eye_position(camera), SupportMode::Strip, options);
+      make_supporting_surface(tail.spine, geometry::eye_position(cameras[0]), SupportMode::Strip, options);
   const char* names[] = {"spine", "cross section", "profile a", "profile b"};
   std::vector<Eigen::Vector3d>* outs[] = {nullptr, &tail.cross_section, &tail.profile_a, &tail.profile_b};
   for (int k = 1; k < 4; ++k) {
     try {
       detail::check_stroke(strokes[k], options, fn);
-      *outs[k] = lift_onto(surf, strokes[k], camera, false, fn).p;
+      *outs[k] = lift_onto(surf, strokes[k], cameras[k], false, fn).p;
     } catch (const StrokeRejected& e) {
       detail::reject(fn, std::string(names[k]) + ": " + e.what());
     }

@@ -50,7 +50,14 @@ Command command_from_stroke(const Hairstyle& style, const RecordedStroke& s, con
     case StrokeAction::Ponytail: {
       c.name = "add ponytail";
       const std::array<Stroke, 4> four{s.strokes[0], s.strokes[1], s.strokes[2], s.strokes[3]};
-      c.change = InsertPrimitive{end, {ponytail_from_strokes(four, s.camera, head, opt), eye, SupportMode::Strip}};
+      if (!s.cameras.empty() && s.cameras.size() != 4) reject("a ponytail needs 4 cameras or none");
+      const std::array<geometry::CameraMatrices, 4> cameras =
+          s.cameras.empty() ? std::array{s.camera, s.camera, s.camera, s.camera}
+                            : std::array{s.cameras[0], s.cameras[1], s.cameras[2], s.cameras[3]};
+      // The viewpoint is the spine's (its supporting surface is seen from there).
+      c.change = InsertPrimitive{
+          end,
+          {ponytail_from_strokes(four, cameras, head, opt), geometry::eye_position(cameras[0]), SupportMode::Strip}};
       break;
     }
     case StrokeAction::Hint: {

@@ -68,7 +68,10 @@ struct RecordedStroke {
   int target = -1;                  // Hint, Tilt: the edited primitive's index
   geometry::CameraMatrices camera;  // as drawn
   std::vector<Stroke> strokes;      // one, or four for a ponytail
-  bool mirrored = false;            // created with symmetric sketching on
+  // A ponytail whose strokes were drawn from different views: one camera per stroke. Empty:
+  // every stroke was drawn with `camera`.
+  std::vector<geometry::CameraMatrices> cameras;
+  bool mirrored = false;  // created with symmetric sketching on
 };
 bool operator==(const RecordedStroke& a, const RecordedStroke& b);
 

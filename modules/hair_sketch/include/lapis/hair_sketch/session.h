@@ -24,9 +24,11 @@
 //                {"type": "length", ..., "variation"} |
 //                {"type": "cut", ..., "camera": {...}, "line": [[x,y],...]}],
 //    "strokes": [{"action": "stream_curve|dividing_curve|hint|tilt|ponytail",
-//                 "target": i, "camera": {...}, "strokes": [[[x,y],...], ...]}]}
+//                 "target": i, "camera": {...}, "strokes": [[[x,y],...], ...],
+//                 "mirrored": bool, "cameras": [{...} x 4]}]}
 // Every key is required except "details" and "strokes" (empty), "target" (-1) and a primitive's
-// or a stroke's "mirrored" (false). The
+// or a stroke's "mirrored" (false) and "cameras" (a ponytail's four, when the view turned
+// between its strokes). The
 // parameters are those of strand_detail.h's structs.
 #pragma once
 

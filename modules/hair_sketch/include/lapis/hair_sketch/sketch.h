@@ -116,5 +116,11 @@ TiltEdit interpret_tilt(const DividingCurve& curve, const Stroke& stroke, const 
 // profile b}.
 Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes, const geometry::CameraMatrices& camera,
                                const Head& head, const SketchOptions& options);
+// The same with each stroke's own camera: the spine's surface is built from cameras[0]'s eye
+// and each other stroke is read with its camera's rays, so the user can turn the view between
+// the spine and the other strokes (§4.5).
+Ponytail ponytail_from_strokes(const std::array<Stroke, 4>& strokes,
+                               const std::array<geometry::CameraMatrices, 4>& cameras, const Head& head,
+                               const SketchOptions& options);
 
 }  // namespace lapis::hair_sketch
