@@ -67,8 +67,8 @@ inline double skull(const Vec& p) {
   d = smin(d, ellipsoid(p, {0, -0.62, 0.34}, {0.46, 0.38, 0.50}), 0.20);           // mouth and lower face
   d = smin(d, capsule(m, {0.54, -0.42, -0.14}, {0.22, -0.88, 0.56}, 0.13), 0.18);  // jaw line
   d = smin(d, ellipsoid(p, {0, -0.86, 0.62}, {0.23, 0.16, 0.21}), 0.12);           // chin
-  d = smin(d, ellipsoid(m, {0.47, -0.12, 0.55}, {0.22, 0.14, 0.25}), 0.12);        // cheekbones
-  d = smin(d, ellipsoid(m, {0.36, -0.42, 0.50}, {0.22, 0.26, 0.30}), 0.15);        // cheeks
+  d = smin(d, ellipsoid(m, {0.47, -0.12, 0.55}, {0.22, 0.14, 0.25}), 0.20);        // cheekbones
+  d = smin(d, ellipsoid(m, {0.38, -0.36, 0.46}, {0.24, 0.30, 0.32}), 0.20);        // cheeks
   d = smin(d, ellipsoid(m, {0.27, 0.12, 0.80}, {0.21, 0.07, 0.12}), 0.10);         // brow ridges
   return d;
 }
