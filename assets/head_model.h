@@ -112,10 +112,11 @@ inline double ears(const Vec& p) {
 
 // Neck, shoulders and chest, cut flat at the bottom and the arms like a sculptor's bust.
 inline double bust(const Vec& p) {
-  double d = round_cone(p, {0, -0.35, -0.12}, {0, -1.75, -0.08}, 0.43, 0.47);  // neck
+  // The neck leans forward from its base, as a standing person's does.
+  double d = round_cone(p, {0, -0.35, -0.12}, {0, -1.75, -0.22}, 0.43, 0.47);  // neck
   // Shoulders slope down from the base of the neck (the trapezius) to rounded tips.
   const double shoulders = capsule(mirror_x(p), {0.25, -1.62, -0.14}, {1.12, -1.92, -0.12}, 0.33);
-  const double chest = ellipsoid(p, {0, -2.30, 0.0}, {1.25, 0.62, 0.62});
+  const double chest = ellipsoid(p, {0, -2.30, 0.0}, {1.25, 0.62, 0.74});
   d = smin(d, smin(shoulders, chest, 0.30), 0.35);
   d = smax(d, -2.45 - p.y(), 0.08);              // the base
   return smax(d, std::abs(p.x()) - 1.42, 0.08);  // the arms' cut
