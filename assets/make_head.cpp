@@ -1,50 +1,83 @@
-// Generates assets/head.obj and assets/head_scalp.txt: a smooth human head with neck,
-// cranium, forehead, brow, nose, chin and ears, as a star-shaped surface r(direction)
-// about the head centre (origin; y up, face towards +z, head height ≈ 2 units), sampled on
-// a subdivided icosphere. Deterministic: the same files on every run.
+// Generates assets/head.obj and assets/head_scalp.txt: a human head and bust (eyes in their
+// sockets, nose, lips, chin, jaw line, ears, neck, shoulders) meshed from the implicit model of
+// head_model.h, and the scalp cap the hair grows from. Deterministic: the same files on every run.
 //   lapis_make_head <output dir>
-#include <cmath>
+// The surface is meshed by CGAL's Delaunay refinement (Boissonnat and Oudot 2005): every vertex
+// lies on the implicit surface, every triangle's smallest angle is bounded below, and the
+// manifold criterion makes the result a closed 2-manifold of the surface's topology. Marching
+// cubes would need a remeshing pass of its own to reach the same triangle quality.
+#include <CGAL/Complex_2_in_triangulation_3.h>
+#include <CGAL/IO/facets_in_complex_2_to_triangle_mesh.h>
+#include <CGAL/Implicit_surface_3.h>
+#include <CGAL/Random.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_default_triangulation_3.h>
+#include <CGAL/make_surface_mesh.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "head_model.h"
 #include "lapis/geometry/io.h"
-#include "lapis/geometry/procedural.h"
 
 namespace {
 
-// Gaussian bump of height h and angular width w (radians) around direction c.
-double bump(const Eigen::Vector3d& d, Eigen::Vector3d c, double w, double h) {
-  c.normalize();
-  const double a = std::acos(std::clamp(d.dot(c), -1.0, 1.0));
-  return h * std::exp(-0.5 * (a / w) * (a / w));
-}
+using Tr = CGAL::Surface_mesh_default_triangulation_3;
+using C2t3 = CGAL::Complex_2_in_triangulation_3<Tr>;
+using GT = Tr::Geom_traits;
+using Point = GT::Point_3;
+using Function = GT::FT (*)(Point);
+using Surface = CGAL::Implicit_surface_3<GT, Function>;
 
-double smooth_max(double a, double b, double k) {
-  return std::max(a, b) + std::log(std::exp(-k * std::abs(a - b)) + 1.0) / k;
-}
+// Surface meshing criteria: the smallest angle (degrees) CGAL guarantees, the largest
+// Delaunay ball radius (sets the size: about 60K triangles) and the largest distance from a
+// triangle's circumcentre to the surface (keeps the lips' groove and the ears' bowls).
+constexpr double kMinAngle = 30.0;
+constexpr double kMaxRadius = 0.028;
+constexpr double kMaxDistance = 0.003;
 
-double radius(const Eigen::Vector3d& d) {
-  // Cranium: an ellipsoid narrower than deep (ax, ay, az).
-  const double ax = 0.80, ay = 1.0, az = 0.95;
-  double r = 1.0 / std::sqrt((d.x() / ax) * (d.x() / ax) + (d.y() / ay) * (d.y() / ay) + (d.z() / az) * (d.z() / az));
-  // Jaw and cheeks taper below the eyes, more at the sides than at the front.
-  if (d.y() < 0) r *= 1.0 - 0.18 * (-d.y()) * (1.0 - 0.5 * std::max(0.0, d.z()));
-  r += bump(d, {0, 0.25, 1}, 0.35, 0.05);       // forehead
-  r += bump(d, {0.3, 0.12, 0.95}, 0.12, 0.04);  // brow ridges
-  r += bump(d, {-0.3, 0.12, 0.95}, 0.12, 0.04);
-  r += bump(d, {0, -0.12, 1}, 0.10, 0.20);      // nose
-  r += bump(d, {0, -0.65, 0.76}, 0.16, 0.07);   // chin
-  r += bump(d, {1, -0.05, -0.05}, 0.12, 0.16);  // ears
-  r += bump(d, {-1, -0.05, -0.05}, 0.12, 0.16);
-  r += bump(d, {0, 0.2, -1}, 0.45, 0.06);  // occiput
-  // Neck: a cylinder of radius 0.42 around −y, capped at y = −1.9, blended in smoothly.
-  const double c = -d.y(), s = std::sqrt(std::max(1e-12, 1.0 - c * c));
-  if (c > 0) {
-    const double neck = std::min(0.42 / s, 1.9 / c);
-    r = smooth_max(r, neck, 14.0);
+GT::FT model(Point p) { return head_model::head({p.x(), p.y(), p.z()}); }
+
+lapis::geometry::TriMesh mesh_model() {
+  // The mesher seeds itself by random rays; a fixed seed makes the output reproducible.
+  CGAL::get_default_random() = CGAL::Random(1);
+  Tr tr;
+  C2t3 c2t3(tr);
+  // A sphere about the cranium centre (inside the head) that holds the whole bust.
+  const Surface surface(model, GT::Sphere_3(CGAL::ORIGIN, 3.2 * 3.2), 1e-6);
+  const CGAL::Surface_mesh_default_criteria_3<Tr> criteria(kMinAngle, kMaxRadius, kMaxDistance);
+  CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_tag());
+  CGAL::Surface_mesh<Point> sm;
+  CGAL::facets_in_complex_2_to_triangle_mesh(c2t3, sm);
+
+  lapis::geometry::TriMesh mesh;
+  mesh.V.resize(sm.number_of_vertices(), 3);
+  mesh.F.resize(sm.number_of_faces(), 3);
+  for (auto v : sm.vertices()) {
+    const Point& p = sm.point(v);
+    mesh.V.row(v.idx()) << p.x(), p.y(), p.z();
   }
-  return r;
+  for (auto f : sm.faces()) {
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) mesh.F(f.idx(), k++) = v.idx();
+  }
+  return mesh;
+}
+
+double signed_volume(const lapis::geometry::TriMesh& m) {
+  double v = 0;
+  for (int f = 0; f < m.num_faces(); ++f) v += m.V.row(m.F(f, 0)).dot(m.V.row(m.F(f, 1)).cross(m.V.row(m.F(f, 2))));
+  return v / 6;
+}
+
+// The hair-bearing cap: on the cranium (not the face, which the forehead and cheeks pull
+// away from it, nor the neck), above a hairline that runs across the forehead, over the ears
+// and down to the nape, and clear of the ears.
+bool on_scalp(const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p.normalized();
+  const double hairline = 0.28 - 0.55 * std::max(0.0, -d.z()) + 0.25 * std::max(0.0, d.z());
+  return d.y() > hairline && std::abs(head_model::cranium_distance(p)) < 0.06 && head_model::ear_distance(p) > 0.12;
 }
 
 }  // namespace
@@ -55,18 +88,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::filesystem::path out(argv[1]);
-  lapis::geometry::TriMesh mesh = lapis::geometry::make_icosphere(5, 1.0);
+  lapis::geometry::TriMesh mesh = mesh_model();
+  if (signed_volume(mesh) < 0) mesh.F.col(1).swap(mesh.F.col(2));  // faces counter-clockwise from outside
   std::ofstream mask(out / "head_scalp.txt");
   mask << "# scalp vertices of head.obj (generated by assets/make_head.cpp), one index a line\n";
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    const Eigen::Vector3d d = mesh.V.row(i).transpose().normalized();
-    mesh.V.row(i) = (radius(d) * d).transpose();
-    // Hair grows above a plane through the forehead and the tops of the ears, lower at the
-    // back of the head (nape), not on the ears or the face.
-    const bool scalp = d.y() > 0.28 - 0.55 * std::max(0.0, -d.z()) + 0.25 * std::max(0.0, d.z()) &&
-                       bump(d, {1, -0.05, -0.05}, 0.12, 1) < 0.3 && bump(d, {-1, -0.05, -0.05}, 0.12, 1) < 0.3;
-    if (scalp) mask << i << "\n";
-  }
+  for (int i = 0; i < mesh.num_vertices(); ++i)
+    if (on_scalp(mesh.V.row(i).transpose())) mask << i << "\n";
   lapis::geometry::write_obj(out / "head.obj", mesh);
   std::printf("wrote %s (%d vertices, %d faces) and head_scalp.txt\n", (out / "head.obj").c_str(), mesh.num_vertices(),
               mesh.num_faces());

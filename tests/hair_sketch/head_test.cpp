@@ -9,6 +9,8 @@
 
 #include "fixture.h"
 #include "lapis/core/error.h"
+#include "lapis/geometry/connected_region.h"
+#include "lapis/geometry/connectivity.h"
 #include "lapis/geometry/procedural.h"
 #include "lapis/hair_sketch/stream_curve.h"
 
@@ -34,6 +36,121 @@ TEST_CASE("hair_sketch: the bundled head is a closed mesh with a scalp cap above
   // Neck below, crown above the centre.
   CHECK(head.box.min().y() < head.center.y() - 1.5);
   CHECK(head.box.max().y() > head.center.y() + 0.5);
+}
+
+namespace {
+
+double smallest_angle(const lapis::geometry::TriMesh& m, int f) {
+  double least = std::numbers::pi;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d p = m.V.row(m.F(f, k)).transpose(), a = m.V.row(m.F(f, (k + 1) % 3)).transpose(),
+                          b = m.V.row(m.F(f, (k + 2) % 3)).transpose();
+    least = std::min(least, std::acos(std::clamp((a - p).normalized().dot((b - p).normalized()), -1.0, 1.0)));
+  }
+  return least;
+}
+
+double signed_volume(const lapis::geometry::TriMesh& m) {
+  double v = 0;
+  for (int f = 0; f < m.num_faces(); ++f) v += m.V.row(m.F(f, 0)).dot(m.V.row(m.F(f, 1)).cross(m.V.row(m.F(f, 2))));
+  return v / 6;
+}
+
+}  // namespace
+
+TEST_CASE("hair_sketch: the bundled head is one closed, oriented, manifold surface of genus 0") {
+  const auto& mesh = bundled_head().mesh;
+  CHECK(mesh.num_faces() > 20000);  // tens of thousands of triangles
+  CHECK(mesh.num_faces() < 100000);
+  const lapis::geometry::Connectivity conn(mesh);
+  int open_or_shared = 0, same_direction = 0;
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    open_or_shared += conn.edge_face_count(e) != 2;
+    // Consistently oriented: the two faces run along their edge in opposite directions.
+    const auto [f, g] = conn.edge_faces(e);
+    if (f < 0 || g < 0) continue;
+    auto forward = [&](int face) {
+      for (int k = 0; k < 3; ++k)
+        if (mesh.F(face, k) == conn.edges()[e][0]) return mesh.F(face, (k + 1) % 3) == conn.edges()[e][1];
+      return false;
+    };
+    same_direction += forward(f) == forward(g);
+  }
+  CHECK(open_or_shared == 0);
+  CHECK(same_direction == 0);
+  // Manifold vertices: the faces around each one form a single closed fan.
+  int not_a_disc = 0;
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    try {
+      not_a_disc += conn.one_ring_ordered(v).size() != conn.vertex_faces(v).size() || conn.vertex_faces(v).empty();
+    } catch (const lapis::InvalidArgument&) {
+      ++not_a_disc;
+    }
+  }
+  CHECK(not_a_disc == 0);
+  CHECK(lapis::geometry::connected_components(conn).count == 1);
+  CHECK(lapis::geometry::euler_characteristic(conn) == 2);
+  CHECK(signed_volume(mesh) > 0);  // normals point out
+}
+
+TEST_CASE("hair_sketch: the bundled head has well-shaped triangles and no creases") {
+  const auto& mesh = bundled_head().mesh;
+  const auto& normals = bundled_head().face_normals;
+  double area_sum = 0, least_area = 1e300, least_angle = std::numbers::pi;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose(), b = mesh.V.row(mesh.F(f, 1)).transpose(),
+                          c = mesh.V.row(mesh.F(f, 2)).transpose();
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    area_sum += area;
+    least_area = std::min(least_area, area);
+    least_angle = std::min(least_angle, smallest_angle(mesh, f));
+  }
+  CHECK(least_area > 0.01 * area_sum / mesh.num_faces());
+  CHECK(least_angle * 180 / std::numbers::pi > 25);  // the mesher bounds it by 30 degrees
+  // Smooth: neighbouring faces turn by little anywhere, the lips' parting included.
+  const lapis::geometry::Connectivity conn(mesh);
+  double sharpest = 0;
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    const auto [f, g] = conn.edge_faces(e);
+    const double cos = std::clamp(normals.row(f).dot(normals.row(g)), -1.0, 1.0);
+    sharpest = std::max(sharpest, std::acos(cos) * 180 / std::numbers::pi);
+  }
+  CHECK(sharpest < 60);
+}
+
+TEST_CASE("hair_sketch: the bundled scalp is one cap on the cranium, above the face and clear of the ears") {
+  const Head& head = bundled_head();
+  const auto& V = head.mesh.V;
+  const auto mask =
+      read_scalp_mask(std::filesystem::path(LAPIS_SOURCE_DIR) / "assets" / "head_scalp.txt", head.mesh.num_vertices());
+  REQUIRE(mask.size() > 1000);
+  // The landmarks of the bundled head's conventions: brow ridges at y = 0.12, the face in
+  // front (z > 0), the ears' shells about |x| = 0.8 below y = 0.15, the nape at y ≈ -0.3.
+  int below_brow_in_front = 0, on_face = 0, on_ear = 0, below_nape = 0, off_cranium = 0;
+  for (int v : mask) {
+    const Eigen::Vector3d p = V.row(v).transpose();
+    below_brow_in_front += p.z() > 0 && p.y() < 0.12;
+    on_face += p.z() > 0.5 && p.y() < 0.35;
+    on_ear += std::abs(p.x()) > 0.72 && p.y() < 0.15 && std::abs(p.z() + 0.08) < 0.2;
+    below_nape += p.y() < -0.4;
+    // The cranium: an ellipsoid with semi-axes (0.78, 0.98, 0.98) about (0, 0.02, -0.05).
+    const double r = Eigen::Vector3d(p.x() / 0.78, (p.y() - 0.02) / 0.98, (p.z() + 0.05) / 0.98).norm();
+    off_cranium += r < 0.95 || r > 1.1;
+  }
+  CHECK(below_brow_in_front == 0);
+  CHECK(on_face == 0);
+  CHECK(on_ear == 0);
+  CHECK(below_nape == 0);
+  CHECK(off_cranium == 0);
+  // The crown belongs to the scalp, and the scalp is one patch reachable from it.
+  int crown = 0;
+  for (int v = 1; v < head.mesh.num_vertices(); ++v)
+    if (V(v, 1) > V(crown, 1)) crown = v;
+  std::vector<char> in(head.mesh.num_vertices(), 0);
+  for (int v : mask) in[v] = 1;
+  REQUIRE(in[crown]);
+  const lapis::geometry::Connectivity conn(head.mesh);
+  CHECK(lapis::geometry::connected_region(conn, crown, in).size() == mask.size());
 }
 
 TEST_CASE("hair_sketch: the scalp's solid angle seen from the centre is that of its cap") {

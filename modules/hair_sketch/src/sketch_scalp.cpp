@@ -85,6 +85,10 @@ StreamCurve stream_curve_from_stroke(const Stroke& stroke, const geometry::Camer
   }
   StreamCurve curve;
   curve.points = resample_curve(points, d, fn);
+  // Resampled points lie on chords between lifted ones, and a chord across a bulge of the face
+  // (a brow, a cheek) runs inside the head: those points are lifted again.
+  for (auto& p : curve.points)
+    if (head.inside(p)) p = keep_above(head, p, options.lift * d);
   curve.tail_segments = options.tail_segments;
   return curve;
 }
