@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
   bench::Table table({"session", "strands", "threads", "what", "segments out", "ms (median)"});
   nlohmann::json out;
   out["rows"] = nlohmann::json::array();
-  const auto record = [&](const std::string& session, int strands, int threads, const std::string& what,
-                          int segments, const std::vector<double>& ms) {
+  const auto record = [&](const std::string& session, int strands, int threads, const std::string& what, int segments,
+                          const std::vector<double>& ms) {
     table.row({session, std::to_string(strands), std::to_string(threads), what, std::to_string(segments),
                bench::fmt(bench::median(ms))});
     out["rows"].push_back({{"session", session},
@@ -75,7 +75,8 @@ int main(int argc, char** argv) {
           std::vector<double> ms;
           int segments = 0;
           for (int r = 0; r < repetitions; ++r)
-            ms.push_back(bench::time_ms([&] { segments = apply_strand_detail(grown.strands, {d}, context).segments(); }));
+            ms.push_back(
+                bench::time_ms([&] { segments = apply_strand_detail(grown.strands, {d}, context).segments(); }));
           record(name, strands, threads, std::string("only ") + detail_type(d), segments, ms);
         }
       }
@@ -85,7 +86,8 @@ int main(int argc, char** argv) {
       int segments = 0;
       for (int r = 0; r < repetitions; ++r) {
         style.details.front().seed += 1;  // a detail edit
-        edit.push_back(bench::time_ms([&] { segments = live.update(style.primitives, style.details).strands.segments(); }));
+        edit.push_back(
+            bench::time_ms([&] { segments = live.update(style.primitives, style.details).strands.segments(); }));
         LiveHairstyle baseline(head, style.settings);  // set-up not timed
         regrow.push_back(bench::time_ms([&] { baseline.update(style.primitives); }));
       }

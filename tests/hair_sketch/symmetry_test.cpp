@@ -3,6 +3,9 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <map>
+
+#include "lapis/geometry/procedural.h"
 
 #include "lapis/hair_sketch/session.h"
 #include "lapis/hair_sketch/symmetry.h"
@@ -29,23 +32,22 @@ double set_difference(const std::vector<Constraint>& a, const std::vector<Constr
   return worst;
 }
 
-}  // namespace
-
-TEST_CASE("hair_sketch: a twin's constraints are the mirror image of its primitive's") {
-  const Head& head = bundled_head();
+// The twin's constraints against the mirrored constraints of the primitive, for every primitive
+// of the bundled sessions on `head`; returns the worst difference per primitive type.
+std::map<std::string, double> twin_differences(const Head& head) {
+  std::map<std::string, double> worst;
   for (const char* name : {"smooth", "parting", "ponytails"}) {
     const Hairstyle style = load_session(kSessions / (std::string(name) + ".json"));
     const Grid grid = hairstyle_grid(head, style.settings);
-    // The grid is symmetric about the sagittal plane, so mirrored nodes are nodes.
+    // The grid is centred on the head's box, so symmetric about the sagittal plane.
     CHECK(std::abs(grid.origin.x() + grid.max_corner().x() - 2 * head.center.x()) < 1e-12);
     for (StylePrimitive p : style.primitives) {
-      const std::string what = std::string(name) + " " + primitive_type(p);
-      CAPTURE(what);
+      const std::string type = primitive_type(p);
       if (auto* d = std::get_if<DividingCurve>(&p.shape)) d->alpha0 = 0.4, d->alpha1 = -0.2;  // tilted both ways
       const auto own = primitive_constraints(p, grid, head);
       const auto twin = primitive_constraints(mirror_image(p, head.center.x()), grid, head);
       REQUIRE(!own.empty());
-      CHECK(set_difference(twin, mirror_constraints(own, grid)) < 1e-12);
+      worst[type] = std::max(worst[type], set_difference(twin, mirror_constraints(own, grid)));
       // Marked mirrored, the primitive brings both.
       p.mirrored = true;
       std::vector<Constraint> both = own;
@@ -53,6 +55,28 @@ TEST_CASE("hair_sketch: a twin's constraints are the mirror image of its primiti
       CHECK(set_difference(primitive_constraints(p, grid, head), both) == 0);
     }
   }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("hair_sketch: a twin's constraints are the mirror image of its primitive's") {
+  // On a head that is its own mirror image (an icosphere, whose vertex set is symmetric in x),
+  // every primitive's twin is exact.
+  const Head sphere = make_head(lapis::geometry::make_icosphere(4, 1.0),
+                                scalp_vertices_above(lapis::geometry::make_icosphere(4, 1.0), {0, 0.1, 0}, {0, 1, 0}));
+  for (const auto& [type, difference] : twin_differences(sphere)) {
+    CAPTURE(type);
+    CHECK(difference < 1e-12);
+  }
+  // The bundled head is meshed without regard to symmetry: stream curves and ponytails, which
+  // do not read the surface, are still exact; a dividing curve's frame follows the scalp's normals,
+  // whose mesh asymmetry it inherits (a few hundredths).
+  const auto bundled = twin_differences(bundled_head());
+  CHECK(bundled.at("stream_curve") < 1e-12);
+  CHECK(bundled.at("ponytail") < 1e-12);
+  CHECK(bundled.at("dividing_curve") < 0.1);
+  MESSAGE("dividing curve on the bundled head: twin within " << bundled.at("dividing_curve"));
 }
 
 TEST_CASE("hair_sketch: a mirrored stroke makes a mirrored primitive; undo removes it and its twin") {
