@@ -102,6 +102,9 @@ void smooth(Drawer& d) {
     const double p = side * 0.3 * kPi;
     d.add(StrokeAction::StreamCurve, d.facing(p),
           {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
+    // And from the hairline itself: over the brow's relief, hair there would fall on the face.
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
   }
 }
 

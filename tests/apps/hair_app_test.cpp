@@ -158,8 +158,11 @@ TEST_CASE("apps: hair app — every bundled session renders headless with a plau
     REQUIRE(run_under_xvfb(kApp + " --session " + entry.path().string() + " --headless --size 800x600 --screenshot " +
                            png.string() + " --save-session " + (scratch_dir() / "ignored.json").string()) == 0);
     const double hair = hair_fraction(viewer::read_png(png));
-    CHECK(hair > 0.02);  // not blank
-    CHECK(hair < 0.7);   // not all hair
+    MESSAGE(entry.path().filename().string() << ": " << hair << " of the pixels are hair");
+    // Not blank: skin and background count as none. 2000 one-pixel strands combed off the face
+    // cover 1.4% of an 800x600 view.
+    CHECK(hair > 0.01);
+    CHECK(hair < 0.7);  // not all hair
   }
   CHECK(sessions >= 3);
 }
