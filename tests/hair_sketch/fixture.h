@@ -2,6 +2,7 @@
 // enough for a direct factorization), solving a style and growing strands.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/ponytail.h"
 
 namespace hair_test {
 
@@ -37,6 +39,39 @@ inline Field solve_exact(const Grid& grid, const ConstraintSet& set) {
 
 inline double cosine(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return a.dot(b) / (a.norm() * b.norm() + 1e-300);
+}
+
+// Strands that enter the ponytail's annulus (within R2 = outer_ratio · r of C1's centre) and,
+// of those, the ones that then cross C1's plane within its radius (+ half a grid spacing):
+// the hair the tail should gather and the hair it does (thesis §4.5). Strands guided there
+// are funnelled before they reach C1's plane, so the thin slab of the centripetal constraints
+// itself is rarely visited.
+struct TailPassage {
+  int entered = 0, through = 0;
+};
+inline TailPassage strands_entering_tail(const Strands& st, const Ponytail& tail, double spacing) {
+  const Ponytail::Section sec = tail.first_section();
+  TailPassage out;
+  for (int s = 0; s < st.count(); ++s) {
+    bool in_annulus = false, passed = false;
+    for (int i = st.offsets[s]; i < st.offsets[s + 1]; ++i) {
+      const Eigen::Vector3d q = st.points[i].cast<double>() - sec.center;
+      const double h = q.dot(sec.normal), rho = (q - h * sec.normal).norm();
+      if (std::hypot(h, rho) <= tail.outer_ratio * sec.radius) in_annulus = true;
+      if (in_annulus && i + 1 < st.offsets[s + 1]) {
+        const Eigen::Vector3d q2 = st.points[i + 1].cast<double>() - sec.center;
+        const double h2 = q2.dot(sec.normal);
+        if ((h <= 0) != (h2 <= 0) || h2 == 0) {
+          const double t = h / (h - h2);
+          const Eigen::Vector3d x = q + t * (q2 - q);
+          if ((x - x.dot(sec.normal) * sec.normal).norm() <= sec.radius + 0.5 * spacing) passed = true;
+        }
+      }
+    }
+    out.entered += in_annulus;
+    out.through += in_annulus && passed;
+  }
+  return out;
 }
 
 }  // namespace hair_test

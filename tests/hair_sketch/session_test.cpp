@@ -12,6 +12,7 @@
 
 #include "lapis/core/error.h"
 #include "lapis/hair_sketch/export.h"
+#include "lapis/hair_sketch/hair_file.h"
 #include "lapis/hair_sketch/session.h"
 #include "sketch_fixture.h"
 
@@ -184,8 +185,21 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
     CHECK(r.strands.count() - grown.count() == report["roots_without_hair"].get<int>());
     CHECK(r.penetrating_segments == report["penetrating_segments"].get<int>());
     for (const auto& p : style.primitives)  // each tail gathers a fifth of the hair or more
-      if (const auto* tail = std::get_if<Ponytail>(&p.shape))
+      if (const auto* tail = std::get_if<Ponytail>(&p.shape)) {
         CHECK(strands_through_first_section(r.strands, *tail) >= r.strands.count() / 5);
+        const auto [entered, through] = strands_entering_tail(r.strands, *tail, r.grid.spacing);
+        MESSAGE(std::string(name) << ": " << through << " of " << entered
+                                  << " strands entering a tail pass through C1");
+        // The bundled ponytails pass 88%, short of 90% (the synthetic tail of style_test passes
+        // all): a regression below 85% fails.
+        CHECK(through >= 0.85 * entered);
+      }
+    // The export is a .hair file that reads back under strict validation, strand for strand.
+    const fs::path hair = temp_path(std::string(name) + ".hair");
+    write_hair_file(hair, to_hair_file(grown));
+    const Strands back = strands_from_hair_file(read_hair_file(hair));
+    CHECK(back.offsets == grown.offsets);
+    CHECK(back.points == grown.points);
     ++found;
   }
   CHECK(found == 5);

@@ -150,29 +150,7 @@ TEST_CASE("hair_sketch: a ponytail pulls strands from its annulus through the fi
   RootOptions ro;
   ro.count = 6000;
   const Strands st = grow_strands(SampledField(g, f), sample_roots(head, ro));
-  int entered = 0, through = 0;
-  for (int s = 0; s < st.count(); ++s) {
-    bool in_annulus = false, passed = false;
-    for (int i = st.offsets[s]; i < st.offsets[s + 1]; ++i) {
-      const Eigen::Vector3d q = st.points[i].cast<double>() - sec.center;
-      const double h = q.dot(sec.normal), rho = (q - h * sec.normal).norm();
-      // Entering the annulus' reach: within R2 = 1.9 r of C1's centre. (Strands guided
-      // there are funnelled before they reach C1's plane, so the thin slab of the
-      // centripetal constraints itself is rarely visited.)
-      if (std::hypot(h, rho) <= pt.outer_ratio * sec.radius) in_annulus = true;
-      if (in_annulus && i + 1 < st.offsets[s + 1]) {
-        const Eigen::Vector3d q2 = st.points[i + 1].cast<double>() - sec.center;
-        const double h2 = q2.dot(sec.normal);
-        if ((h <= 0) != (h2 <= 0) || h2 == 0) {
-          const double t = h / (h - h2);
-          const Eigen::Vector3d x = q + t * (q2 - q);
-          if ((x - x.dot(sec.normal) * sec.normal).norm() <= sec.radius + 0.5 * g.spacing) passed = true;
-        }
-      }
-    }
-    entered += in_annulus;
-    through += in_annulus && passed;
-  }
+  const auto [entered, through] = strands_entering_tail(st, pt, g.spacing);
   MESSAGE(through << " of " << entered << " strands entering the annulus pass through C1");
   REQUIRE(entered > 20);
   CHECK(through >= 0.9 * entered);
