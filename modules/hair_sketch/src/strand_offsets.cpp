@@ -40,19 +40,36 @@ Polyline refine(const Polyline& p, const std::vector<float>& arc, float step) {
   return step < mean_step(arc) ? resample(p, arc, step) : p;
 }
 
+// A grown strand sampled finer for an offset detail: the points, their arc lengths, and the
+// grown strand's length (t = arc / length).
+struct Sampled {
+  Polyline points;
+  std::vector<float> arc;
+  float length = 0;
+};
+Sampled sample_finer(const Polyline& grown, float step) {
+  const std::vector<float> grown_arc = arc_lengths(grown);
+  Sampled s;
+  s.length = grown_arc.back();
+  s.points = s.length > 0 ? refine(grown, grown_arc, step) : grown;
+  s.arc = arc_lengths(s.points);
+  return s;
+}
+
 Eigen::Vector3f outward(const Polyline& p, const DetailContext& context) { return p.front() - context.center; }
 
 }  // namespace
 
 Polyline curl_strand(const CurlDetail& d, std::uint32_t seed, int index, const Polyline& grown,
                      const DetailContext& context) {
-  const std::vector<float> grown_arc = arc_lengths(grown);
-  const float length = grown_arc.back();
-  if (!(length > 0) || d.radius == 0) return grown;  // bit-identical to no detail
+  if (d.radius == 0) return grown;  // bit-identical to no detail
   // At least 12 points per turn where the frequency peaks.
   const float peak = static_cast<float>(d.frequency * std::max(1.0, 1.0 + d.frequency_growth));
-  const Polyline p = refine(grown, grown_arc, 1 / (12 * peak));
-  const std::vector<float> arc = arc_lengths(p);
+  const Sampled sampled = sample_finer(grown, 1 / (12 * peak));
+  const float length = sampled.length;
+  if (!(length > 0)) return grown;
+  const Polyline& p = sampled.points;
+  const std::vector<float>& arc = sampled.arc;
   // The normal starts along the scalp's outward direction, so a wave (along the binormal)
   // swings across the strand within the layer of hair, as neighbouring strands do.
   const Frames frames = rotation_minimizing_frames(p, outward(p, context));
@@ -92,12 +109,12 @@ Eigen::Vector3f catmull_rom(const std::vector<Eigen::Vector3f>& knots, int k, fl
 
 Polyline frizz_strand(const FrizzDetail& d, std::uint32_t seed, int index, const Polyline& grown,
                       const DetailContext& context) {
-  const std::vector<float> grown_arc = arc_lengths(grown);
-  const float length = grown_arc.back();
-  if (!(length > 0) || d.amplitude == 0) return grown;  // bit-identical to no detail
+  if (d.amplitude == 0) return grown;  // bit-identical to no detail
   const float wavelength = static_cast<float>(d.wavelength);
-  const Polyline p = refine(grown, grown_arc, wavelength / 4);
-  const std::vector<float> arc = arc_lengths(p);
+  const Sampled sampled = sample_finer(grown, wavelength / 4);
+  if (!(sampled.length > 0)) return grown;
+  const Polyline& p = sampled.points;
+  const std::vector<float>& arc = sampled.arc;
   const int spans = static_cast<int>(std::ceil(arc.back() / wavelength)) + 1;
   // Knot k sits at arc length (k − 1)·wavelength: one extra knot each side for Catmull–Rom.
   std::vector<Eigen::Vector3f> knots(spans + 3);
