@@ -160,11 +160,18 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("segments of strands drawn (0: all); adapts to the frame time until you set it");
   if (budget_set) strand_budget_.pin(drawn);
+  int look = strand_look_ == StrandLook::Ribbons ? 0 : 1;
+  const bool look_set = ImGui::Combo("strands as", &look, "ribbons\0lines\0");
+  if (look_set) strand_look_ = look == 0 ? StrandLook::Ribbons : StrandLook::Lines;
+  const bool shadow_set = ImGui::Checkbox("self-shadowing", &self_shadowing_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("strands under other hair get less light (density-based occlusion)");
   if (ImGui::ColorEdit3("root colour", root_color_.data()) | ImGui::ColorEdit3("tip colour", tip_color_.data()) |
-      ImGui::SliderFloat("strand width", &strand_width_, 0.5f, 3.0f) | budget_set) {
+      ImGui::SliderFloat("strand width", &strand_width_, 0.5f, 4.0f) | budget_set | look_set | shadow_set) {
     if (last_) update_strand_item(v, last_->update.strands);
+    head_dirty_ = true;  // the scalp under the hair takes the root colour
   }
-  if (ImGui::Checkbox("strands", &show_strands_)) v.scene().lines["strands"].visible = show_strands_;
+  if (ImGui::Checkbox("strands", &show_strands_))
+    v.scene().lines["strands"].visible = show_strands_, head_dirty_ = true;
   ImGui::SameLine();
   if (ImGui::Checkbox("curves", &show_curves_)) curves_dirty_ = true;
   ImGui::SameLine();

@@ -13,6 +13,15 @@
 namespace lapis::hair_app {
 namespace {
 
+// Per-strand variation of colour, the same at every regrowth and budget: brightness in
+// 0.8..1.15 and a slight shift between warmer and cooler (real hair varies in melanin mix).
+Eigen::Vector3f strand_color_variation(int strand) {
+  const auto hash = static_cast<std::uint32_t>(strand) * 2654435761u;
+  const float k = 0.8f + 0.35f * static_cast<float>(hash >> 8) / static_cast<float>(1u << 24);
+  const float warm = static_cast<float>((hash * 2246822519u) >> 8) / static_cast<float>(1u << 24) - 0.5f;
+  return k * Eigen::Vector3f(1.0f + 0.10f * warm, 1.0f, 1.0f - 0.12f * warm);
+}
+
 Eigen::Vector3f curve_color(const StylePrimitive& p, bool selected) {
   if (selected) return {1.0f, 0.85f, 0.2f};
   if (std::holds_alternative<StreamCurve>(p.shape)) return {0.25f, 0.65f, 1.0f};
@@ -27,6 +36,23 @@ void HairSketchApp::update_head_item(viewer::Viewer& v) {
   item.mesh = head_.mesh;
   item.base_color = {0.86f, 0.70f, 0.60f};  // skin
   item.colors.resize(0, 3);
+  if (show_strands_ && !show_scalp_) {
+    // Under the hair the scalp takes the roots' colour, as hair renderers do: a few thousand
+    // strands cover far less of the scalp than a real head's hundred thousand, and bare skin
+    // between them reads as a bald patch. The share of scalp faces around a vertex softens
+    // the hairline.
+    Eigen::VectorXf scalp = Eigen::VectorXf::Zero(head_.mesh.V.rows()), faces = scalp;
+    for (Eigen::Index f = 0; f < head_.mesh.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        faces[head_.mesh.F(f, k)] += 1;
+        if (head_.scalp_face[static_cast<size_t>(f)]) scalp[head_.mesh.F(f, k)] += 1;
+      }
+    item.colors.resize(head_.mesh.V.rows(), 3);
+    for (Eigen::Index i = 0; i < head_.mesh.V.rows(); ++i) {
+      const float w = 0.85f * (faces[i] > 0 ? scalp[i] / faces[i] : 0.0f);
+      item.colors.row(i) = ((1 - w) * item.base_color + w * root_color_).transpose();
+    }
+  }
   if (show_scalp_) {
     item.colors = item.base_color.transpose().replicate(head_.mesh.V.rows(), 1);
     for (Eigen::Index f = 0; f < head_.mesh.F.rows(); ++f)
@@ -56,20 +82,37 @@ void HairSketchApp::update_strand_item(viewer::Viewer& v, const Strands& strands
   item.strip_offsets = shown.offsets;
   for (int s = 0; s < shown.count(); ++s) {
     const int a = shown.offsets[static_cast<size_t>(s)], b = shown.offsets[static_cast<size_t>(s) + 1];
-    // A shade per source strand (0.8..1.15), the same at every regrowth and budget.
-    const auto hash = static_cast<std::uint32_t>(source[static_cast<size_t>(s)]) * 2654435761u;
-    const float k = 0.8f + 0.35f * static_cast<float>(hash >> 8) / static_cast<float>(1u << 24);
+    const Eigen::Vector3f variation = strand_color_variation(source[static_cast<size_t>(s)]);
     for (int i = a; i < b; ++i) {
       item.points.row(i) = shown.points[static_cast<size_t>(i)].transpose();
       const float t = b - a > 1 ? static_cast<float>(i - a) / static_cast<float>(b - a - 1) : 0.0f;
-      item.colors.row(i) = (k * ((1 - t) * root_color_ + t * tip_color_)).cwiseMin(1.0f).transpose();
+      item.colors.row(i) = ((1 - t) * root_color_ + t * tip_color_).cwiseProduct(variation).cwiseMin(1.0f).transpose();
     }
   }
-  item.shading = viewer::LineShading::KajiyaKay;
+  const bool ribbons = strand_look_ == StrandLook::Ribbons;
+  item.light.clear();
+  if (ribbons && self_shadowing_) {
+    // The occlusion grid comes from every strand, not the displayed subset: the light inside
+    // the hair does not change with the drawing budget.
+    if (!occlusion_) occlusion_ = std::make_shared<const StrandOcclusion>(strands);
+    item.light = occlusion_->transmittance(shown);
+  }
+  item.shading = ribbons ? viewer::LineShading::HairRibbons : viewer::LineShading::KajiyaKay;
   item.width = strand_width_;
-  item.alpha = 0.9f;
+  item.tip_width = 0.35f;
+  item.alpha = ribbons ? 1.0f : 0.9f;
   item.visible = show_strands_;
   ++item.version;
+}
+
+// A finished picture shows the hair on the head: every strand, no curves, previews or markers.
+void HairSketchApp::prepare_picture(viewer::Viewer& v) {
+  auto& scene = v.scene();
+  for (auto& [name, item] : scene.lines) item.visible = name == "strands" && show_strands_;
+  for (auto& [name, item] : scene.points) item.visible = false;
+  scene.meshes.erase("support");
+  strand_budget_.pin(0);
+  if (last_) update_strand_item(v, last_->update.strands);
 }
 
 void HairSketchApp::update_curve_items(viewer::Viewer& v) {

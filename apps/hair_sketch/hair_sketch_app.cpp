@@ -425,21 +425,22 @@ void HairSketchApp::request_regrowth() {
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
-  worker_.submit(
-      [slot, head, settings, primitives, details, revision, epoch, spare = std::move(spare_strands_)]() mutable {
-        if (!slot->live || slot->epoch != epoch) {
-          slot->live.reset();  // free the old solver before building the new one
-          slot->live = std::make_unique<LiveHairstyle>(*head, settings);
-          slot->epoch = epoch;
-        }
-        Regrowth r;
-        r.revision = revision;
-        r.settings_epoch = epoch;
-        r.update = slot->live->update(primitives, details, std::move(spare));
-        r.grid = slot->live->grid();
-        r.field = std::make_shared<const Field>(slot->live->field());
-        return r;
-      });
+  worker_.submit([slot, head, settings, primitives, details, revision, epoch, shadows = wants_occlusion(),
+                  spare = std::move(spare_strands_)]() mutable {
+    if (!slot->live || slot->epoch != epoch) {
+      slot->live.reset();  // free the old solver before building the new one
+      slot->live = std::make_unique<LiveHairstyle>(*head, settings);
+      slot->epoch = epoch;
+    }
+    Regrowth r;
+    r.revision = revision;
+    r.settings_epoch = epoch;
+    r.update = slot->live->update(primitives, details, std::move(spare));
+    r.grid = slot->live->grid();
+    r.field = std::make_shared<const Field>(slot->live->field());
+    if (shadows) r.occlusion = std::make_shared<const StrandOcclusion>(r.update.strands);
+    return r;
+  });
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
@@ -455,6 +456,7 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   engine_error_.clear();
   if (r->revision == document_.revision() && last_edit_time_ > 0)
     latencies_ms_.push_back((v.time() - last_edit_time_) * 1000.0);
+  occlusion_ = r->occlusion;  // null when not asked for: made when first needed
   update_strand_item(v, r->update.strands);
   if (last_) spare_strands_ = std::move(last_->update.strands);
   last_ = std::move(r);

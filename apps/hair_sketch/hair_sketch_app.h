@@ -14,6 +14,7 @@
 #include "lapis/hair_sketch/document.h"
 #include "lapis/hair_sketch/head.h"
 #include "lapis/hair_sketch/live_hairstyle.h"
+#include "lapis/hair_sketch/strand_occlusion.h"
 #include "lapis/viewer/adaptive_budget.h"
 #include "lapis/viewer/latest_worker.h"
 #include "lapis/viewer/panel_column.h"
@@ -35,8 +36,13 @@ struct Regrowth {
   std::uint64_t settings_epoch = 0;
   LiveUpdate update;
   Grid grid;
-  std::shared_ptr<const Field> field;  // for glyphs
+  std::shared_ptr<const Field> field;                // for glyphs
+  std::shared_ptr<const StrandOcclusion> occlusion;  // self-shadowing, when the display asks for it
 };
+
+// How strands are drawn: ribbons (tapered, anti-aliased, self-shadowed: the look of the
+// hair) or one-pixel lines (the cheapest, for very large counts on software GL).
+enum class StrandLook { Ribbons, Lines };
 
 struct AppPaths {
   std::filesystem::path session;   // Ctrl+S / Ctrl+O
@@ -59,6 +65,8 @@ class HairSketchApp final : public viewer::ViewerApp {
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
   bool busy() const override;
+  void prepare_picture(viewer::Viewer& v) override;
+  void set_strand_look(StrandLook look) { strand_look_ = look; }
   int exit_status() const override { return exit_status_; }
   void benchmark_fields(nlohmann::json& j) const override;
 
@@ -126,7 +134,11 @@ class HairSketchApp final : public viewer::ViewerApp {
   // Display.
   bool show_scalp_ = false, show_glyphs_ = false, show_curves_ = true, show_strands_ = true;
   Eigen::Vector3f root_color_{0.16f, 0.09f, 0.05f}, tip_color_{0.55f, 0.36f, 0.20f};
-  float strand_width_ = 1.0f;
+  float strand_width_ = 1.5f;  // pixels at the root
+  StrandLook strand_look_ = StrandLook::Ribbons;
+  bool self_shadowing_ = true;
+  bool wants_occlusion() const { return strand_look_ == StrandLook::Ribbons && self_shadowing_; }
+  std::shared_ptr<const StrandOcclusion> occlusion_;  // of the strands on screen
   // Strand segments drawn (display_strands, strand_display.h; 0: every segment), adapted to keep
   // frames near 80 ms: software rendering of 20K full strands (4M segments, 4× MSAA) takes
   // two seconds a frame. Headless runs (screenshots, demos) draw everything.

@@ -1,7 +1,8 @@
 // lapis-hair-sketch [--session FILE] [--head MESH] [--replay EVENTS] [--screenshot OUT.png]
 //                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
 //                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
-//                   [--roots N] [--draw-segments N]
+//                   [--roots N] [--draw-segments N] [--strands ribbons|lines]
+//                   [--render OUT.png --size WxH [--supersample N]]
 #include <filesystem>
 #include <memory>
 
@@ -22,6 +23,9 @@ constexpr const char* kUsage =
     "                         [--export-obj OUT.obj] [--save-session OUT.json] [--roots N]\n"
     "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
     "                         adapted to the frame time in a window, all with --headless)\n"
+    "                         [--strands ribbons|lines]  (default ribbons: tapered, shaded, self-shadowed)\n"
+    "                         [--render OUT.png [--supersample N]]  (once grown, the hair on the head\n"
+    "                         without panels at --size, N x N samples per pixel (default 3); then exit)\n"
     "--save-session: where Ctrl+S saves (default: the --session file, else hairstyle.json);\n"
     "the autosave (every minute and on exit) goes beside it as OUT.json.autosave.json.\n"
     "Left-drag sketches with the current tool (keys 1-8; 7 draws a cut line, 8 paints the selected detail's region; M "
@@ -33,8 +37,8 @@ constexpr const char* kUsage =
 std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string>& rest) {
   using namespace lapis;
   const cli::Args args(rest);
-  args.allow_only(
-      {"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots", "--draw-segments"});
+  args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots",
+                   "--draw-segments", "--strands"});
   hair_app::AppPaths paths;
   hair_sketch::Hairstyle style;
   hair_sketch::Head head;
@@ -64,6 +68,10 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
   paths.export_obj = args.get("--export-obj", "out/hairstyle.obj");
   paths.export_on_exit = args.has("--export-hair") || args.has("--export-obj");
   auto app = std::make_unique<hair_app::HairSketchApp>(std::move(head), std::move(style), paths);
+  const std::string look = args.get("--strands", "ribbons");
+  if (look != "ribbons" && look != "lines")
+    throw UsageError("lapis-hair-sketch: --strands expects ribbons or lines, got '" + look + "'");
+  app->set_strand_look(look == "lines" ? hair_app::StrandLook::Lines : hair_app::StrandLook::Ribbons);
   if (args.has("--draw-segments"))
     app->set_drawn_segments(static_cast<int>(args.get_int("--draw-segments", 0, 0, 100000000)));
   return app;

@@ -2,6 +2,7 @@
 // file, and rendered headless for every bundled session.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -147,24 +148,93 @@ TEST_CASE("apps: hair app — replaying a recorded event file reproduces the rec
     CHECK(hair_sketch::same_primitive(replayed.primitives[i], expected.primitives[i]));
 }
 
-TEST_CASE("apps: hair app — every bundled session renders headless with a plausible amount of hair") {
+namespace {
+
+// Mean absolute difference per channel, in levels (0..255), of two pictures of one size.
+double mean_difference(const viewer::Image& a, const viewer::Image& b) {
+  REQUIRE(a.rgba.size() == b.rgba.size());
+  double sum = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4)
+    for (size_t c = 0; c < 3; ++c) sum += std::abs(static_cast<int>(a.rgba[k + c]) - static_cast<int>(b.rgba[k + c]));
+  return sum / static_cast<double>(3 * a.rgba.size() / 4);
+}
+
+// Of the pixels where either picture shows something (not the background of its top left
+// corner), the share that differ by more than `levels` in some channel.
+double share_changed(const viewer::Image& a, const viewer::Image& b, int levels) {
+  REQUIRE(a.rgba.size() == b.rgba.size());
+  size_t covered = 0, changed = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4) {
+    int from_background = 0, difference = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      from_background =
+          std::max({from_background, std::abs(a.rgba[k + c] - a.rgba[c]), std::abs(b.rgba[k + c] - b.rgba[c])});
+      difference = std::max(difference, std::abs(a.rgba[k + c] - b.rgba[k + c]));
+    }
+    if (from_background <= 6) continue;
+    ++covered;
+    if (difference > levels) ++changed;
+  }
+  return covered ? static_cast<double>(changed) / static_cast<double>(covered) : 0.0;
+}
+
+}  // namespace
+
+TEST_CASE("apps: hair app — every bundled session renders headless, as ribbons unlike plain lines") {
   int sessions = 0;
   for (const auto& entry : fs::directory_iterator(kSource / "assets/sessions")) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".json" || name.find(".report.") != std::string::npos) continue;
     ++sessions;
     CAPTURE(entry.path().string());
-    const fs::path png = scratch_dir() / (entry.path().stem().string() + ".png");
-    REQUIRE(run_under_xvfb(kApp + " --session " + entry.path().string() + " --headless --size 800x600 --screenshot " +
-                           png.string() + " --save-session " + (scratch_dir() / "ignored.json").string()) == 0);
-    const double hair = hair_fraction(viewer::read_png(png));
-    MESSAGE(entry.path().filename().string() << ": " << hair << " of the pixels are hair");
+    const std::string stem = entry.path().stem().string();
+    const fs::path lines = scratch_dir() / (stem + "_lines.png"), ribbons = scratch_dir() / (stem + "_ribbons.png");
+    const std::string common = kApp + " --session " + entry.path().string() + " --size 640x480 --supersample 2" +
+                               " --save-session " + (scratch_dir() / "ignored.json").string();
+    REQUIRE(run_under_xvfb(common + " --strands lines --render " + lines.string()) == 0);
+    REQUIRE(run_under_xvfb(common + " --render " + ribbons.string()) == 0);
+    const viewer::Image line_picture = viewer::read_png(lines), ribbon_picture = viewer::read_png(ribbons);
+    CHECK(ribbon_picture.width == 640);
+    CHECK(ribbon_picture.height == 480);
+    const double hair_lines = hair_fraction(line_picture), hair_ribbons = hair_fraction(ribbon_picture);
+    const double difference = mean_difference(line_picture, ribbon_picture);
+    MESSAGE(name << ": hair-coloured " << hair_lines << " (lines), " << hair_ribbons << " (ribbons); mean difference "
+                 << difference << " levels; of the pixels drawn, " << share_changed(line_picture, ribbon_picture, 8)
+                 << " / " << share_changed(line_picture, ribbon_picture, 16) << " differ by > 8 / 16 levels");
     // Not blank: skin and background count as none. 2000 one-pixel strands combed off the face
     // cover 1.4% of an 800x600 view.
-    CHECK(hair > 0.01);
-    CHECK(hair < 0.7);  // not all hair
+    CHECK(hair_lines > 0.01);
+    CHECK(hair_ribbons > 0.01);
+    CHECK(hair_ribbons < 0.7);  // not all hair
+    // Ribbons taper, are shaded with two highlights and self-shadowed: a different picture
+    // where there is hair.
+    CHECK(share_changed(line_picture, ribbon_picture, 8) > 0.1);
   }
   CHECK(sessions >= 3);
+}
+
+TEST_CASE("apps: hair app — a render drawn in small tiles is the render drawn whole") {
+  // Tiles restrict the projection to their part of the picture; a wrong restriction shifts,
+  // stretches or seams the parts.
+  const fs::path whole = scratch_dir() / "whole.png", tiled = scratch_dir() / "tiled.png";
+  const std::string common = kApp + " --session " + (kSource / "assets/sessions/parting.json").string() +
+                             " --size 500x380 --supersample 2 --save-session " +
+                             (scratch_dir() / "ignored.json").string();
+  REQUIRE(run_under_xvfb(common + " --render " + whole.string()) == 0);
+  REQUIRE(run_under_xvfb(common + " --render-tile 97 --render " + tiled.string()) == 0);
+  const viewer::Image a = viewer::read_png(whole), b = viewer::read_png(tiled);
+  REQUIRE(a.width == b.width);
+  size_t differing = 0;
+  for (size_t k = 0; k < a.rgba.size(); k += 4)
+    for (size_t c = 0; c < 3; ++c)
+      if (std::abs(static_cast<int>(a.rgba[k + c]) - static_cast<int>(b.rgba[k + c])) > 24) {
+        ++differing;
+        break;
+      }
+  const double share = static_cast<double>(differing) / static_cast<double>(a.rgba.size() / 4);
+  MESSAGE("mean difference " << mean_difference(a, b) << " levels; " << share << " of the pixels differ by > 24");
+  CHECK(mean_difference(a, b) < 0.5);
+  CHECK(share < 0.002);
 }
 
 TEST_CASE("apps: hair app — a headless export that cannot be written fails the run, naming the cause") {

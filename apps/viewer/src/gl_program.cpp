@@ -24,13 +24,18 @@ GLuint compile(GLenum type, const char* source) {
 
 }  // namespace
 
-GLuint link_program(const char* vs, const char* fs) {
+GLuint link_program(const char* vs, const char* fs) { return link_program(vs, nullptr, fs); }
+
+GLuint link_program(const char* vs, const char* gs, const char* fs) {
   const GLuint p = glCreateProgram();
   const GLuint v = compile(GL_VERTEX_SHADER, vs), f = compile(GL_FRAGMENT_SHADER, fs);
+  const GLuint g = gs ? compile(GL_GEOMETRY_SHADER, gs) : 0;
   glAttachShader(p, v);
+  if (g) glAttachShader(p, g);
   glAttachShader(p, f);
   glLinkProgram(p);
   glDeleteShader(v);
+  if (g) glDeleteShader(g);
   glDeleteShader(f);
   GLint ok = 0;
   glGetProgramiv(p, GL_LINK_STATUS, &ok);

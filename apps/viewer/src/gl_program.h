@@ -10,5 +10,7 @@ namespace lapis::viewer {
 // A linked program of a vertex and a fragment shader. Needs a current OpenGL 3.3 core context.
 // Throws lapis::Error with the driver's log when a shader does not compile or link.
 GLuint link_program(const char* vertex_source, const char* fragment_source);
+// The same with a geometry shader between them (`geometry_source` may be null: none).
+GLuint link_program(const char* vertex_source, const char* geometry_source, const char* fragment_source);
 
 }  // namespace lapis::viewer

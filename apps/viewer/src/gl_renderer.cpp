@@ -26,19 +26,19 @@ constexpr GLuint kRestart = 0xFFFFFFFFu;
 // One vertex array with its buffers.
 struct GpuItem {
   GLuint vao = 0, ibo = 0;
-  GLuint vbo[3] = {0, 0, 0};
+  GLuint vbo[4] = {0, 0, 0, 0};
   GLsizei count = 0;
   std::uint64_t version = ~0ull;
 
   void create() {
     if (vao) return;
     glGenVertexArrays(1, &vao);
-    glGenBuffers(3, vbo);
+    glGenBuffers(4, vbo);
     glGenBuffers(1, &ibo);
   }
   void destroy() {
     if (!vao) return;
-    glDeleteBuffers(3, vbo);
+    glDeleteBuffers(4, vbo);
     glDeleteBuffers(1, &ibo);
     glDeleteVertexArrays(1, &vao);
     vao = 0;
@@ -63,6 +63,7 @@ class GlRenderer final : public Renderer {
       : use_cache_(frame_cache),
         mesh_program_(link_program(shaders::kMeshVertex, shaders::kMeshFragment)),
         line_program_(link_program(shaders::kLineVertex, shaders::kLineFragment)),
+        ribbon_program_(link_program(shaders::kRibbonVertex, shaders::kRibbonGeometry, shaders::kRibbonFragment)),
         point_program_(link_program(shaders::kPointVertex, shaders::kPointFragment)) {}
 
   ~GlRenderer() override {
@@ -70,10 +71,19 @@ class GlRenderer final : public Renderer {
       for (auto& [name, item] : *cache) item.destroy();
     glDeleteProgram(mesh_program_);
     glDeleteProgram(line_program_);
+    glDeleteProgram(ribbon_program_);
     glDeleteProgram(point_program_);
   }
 
   RenderStats stats() const override { return stats_; }
+
+  void render_uncached(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height,
+                       float pixel_scale) override {
+    stats_ = {};
+    pixel_scale_ = pixel_scale;
+    draw_scene(scene, camera, width, height);
+    pixel_scale_ = 1.0f;
+  }
 
   void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) override {
     const std::uint64_t signature = scene_signature(scene, camera, width, height);
@@ -82,6 +92,7 @@ class GlRenderer final : public Renderer {
       return;
     }
     stats_ = {};
+    pixel_scale_ = 1.0f;
     draw_scene(scene, camera, width, height);
     // Stored once the scene holds still for a second frame: storing resolves the MSAA buffer,
     // which a frame of an orbit (a new picture every frame) would pay for nothing.
@@ -165,12 +176,37 @@ class GlRenderer final : public Renderer {
     if (g.version != l.version) upload_lines(g, l);
     if (!g.count) return;
     stats_.strips += l.num_strips();
+    if (l.shading == LineShading::HairRibbons) return draw_ribbons(g, l, view, proj);
     set_camera(line_program_, view, proj);
     glUniform1i(glGetUniformLocation(line_program_, "kajiya_kay"), l.shading == LineShading::KajiyaKay);
     glUniform1f(glGetUniformLocation(line_program_, "alpha"), l.alpha);
-    glLineWidth(l.width);
+    glLineWidth(l.width * pixel_scale_);
     glBindVertexArray(g.vao);
     glDrawElements(GL_LINE_STRIP, g.count, GL_UNSIGNED_INT, nullptr);
+  }
+
+  // Ribbons write depth and turn their edge coverage into MSAA sample coverage, which needs
+  // no back-to-front order; without MSAA they blend instead (order-dependent at the edges).
+  void draw_ribbons(const GpuItem& g, const LineItem& l, const Eigen::Matrix4f& view, const Eigen::Matrix4f& proj) {
+    GLint viewport[4], samples = 0;
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glGetIntegerv(GL_SAMPLES, &samples);
+    set_camera(ribbon_program_, view, proj);
+    glUniform2f(glGetUniformLocation(ribbon_program_, "viewport"), static_cast<float>(viewport[2]),
+                static_cast<float>(viewport[3]));
+    glUniform1f(glGetUniformLocation(ribbon_program_, "width"), l.width * pixel_scale_);
+    glUniform1f(glGetUniformLocation(ribbon_program_, "tip_width"), l.tip_width);
+    glUniform1f(glGetUniformLocation(ribbon_program_, "alpha"), l.alpha);
+    if (samples > 0) {
+      glDisable(GL_BLEND);
+      glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    }
+    glBindVertexArray(g.vao);
+    glDrawElements(GL_LINE_STRIP, g.count, GL_UNSIGNED_INT, nullptr);
+    if (samples > 0) {
+      glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+      glEnable(GL_BLEND);
+    }
   }
 
   static void upload_lines(GpuItem& g, const LineItem& l) {
@@ -179,6 +215,8 @@ class GlRenderer final : public Renderer {
     const Eigen::Index n = l.points.rows();
     Points3f T(n, 3);
     Eigen::Matrix<float, Eigen::Dynamic, 4, Eigen::RowMajor> C(n, 4);
+    Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor> along_light(n, 2);  // ribbons' taper and light
+    const bool has_light = l.light.size() == static_cast<size_t>(n);
     std::vector<GLuint> idx;
     idx.reserve(static_cast<size_t>(n + l.num_strips()));
     for (int s = 0; s < l.num_strips(); ++s) {
@@ -194,6 +232,8 @@ class GlRenderer final : public Renderer {
           C(i, k) = l.colors.rows() == n ? l.colors(i, k) : l.base_color[k];
         }
         C(i, 3) = 1.0f;
+        along_light(i, 0) = b - a > 1 ? static_cast<float>(i - a) / static_cast<float>(b - a - 1) : 0.0f;
+        along_light(i, 1) = has_light ? l.light[static_cast<size_t>(i)] : 1.0f;
         idx.push_back(static_cast<GLuint>(i));
       }
       idx.push_back(kRestart);
@@ -201,6 +241,7 @@ class GlRenderer final : public Renderer {
     g.attribute(0, l.points.data(), static_cast<size_t>(l.points.size()), 3);
     g.attribute(1, T.data(), static_cast<size_t>(T.size()), 3);
     g.attribute(2, C.data(), static_cast<size_t>(C.size()), 4);
+    g.attribute(3, along_light.data(), static_cast<size_t>(along_light.size()), 2);
     g.indices(idx);
     g.version = l.version;
   }
@@ -223,7 +264,7 @@ class GlRenderer final : public Renderer {
     if (!g.count) return;
     stats_.points += g.count;
     set_camera(point_program_, view, proj);
-    glUniform1f(glGetUniformLocation(point_program_, "size"), p.size);
+    glUniform1f(glGetUniformLocation(point_program_, "size"), p.size * pixel_scale_);
     glBindVertexArray(g.vao);
     glDrawElements(GL_POINTS, g.count, GL_UNSIGNED_INT, nullptr);
   }
@@ -247,7 +288,8 @@ class GlRenderer final : public Renderer {
   }
 
   bool use_cache_;
-  GLuint mesh_program_, line_program_, point_program_;
+  GLuint mesh_program_, line_program_, ribbon_program_, point_program_;
+  float pixel_scale_ = 1.0f;  // widths and sizes in pixels are multiplied by it (supersampled pictures)
   std::unordered_map<std::string, GpuItem> meshes_, lines_, points_;
   FrameCache cache_;
   std::uint64_t last_signature_ = 0;

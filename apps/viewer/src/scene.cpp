@@ -38,7 +38,8 @@ std::uint64_t scene_signature(const Scene& scene, const geometry::CameraMatrices
     h.add_matrix(m.base_color);
   }
   for (const auto& [name, l] : scene.lines) {
-    h.add(name), h.add(l.version), h.add(l.visible), h.add(l.alpha), h.add(l.width), h.add(l.shading), h.add(l.on_top);
+    h.add(name), h.add(l.version), h.add(l.visible), h.add(l.alpha), h.add(l.width), h.add(l.tip_width),
+        h.add(l.shading), h.add(l.on_top);
     h.add_matrix(l.base_color);
   }
   for (const auto& [name, p] : scene.points) {
@@ -72,6 +73,7 @@ void LineItem::add_strip(const std::vector<Eigen::Vector3d>& strip, const Eigen:
 void LineItem::clear() {
   points.resize(0, 3);
   colors.resize(0, 3);
+  light.clear();
   strip_offsets.assign(1, 0);
   ++version;
 }

@@ -22,6 +22,7 @@
 #include "lapis/core/atomic_file.h"
 #include "lapis/core/error.h"
 #include "lapis/viewer/renderer.h"
+#include "picture.h"
 
 namespace lapis::viewer {
 
@@ -310,6 +311,18 @@ void Viewer::take_screenshot(const std::filesystem::path& path) {
   std::printf("screenshot: %s\n", path.string().c_str());
 }
 
+void Viewer::take_picture(const std::filesystem::path& path) {
+  app_->prepare_picture(*this);
+  const auto start = Clock::now();
+  const PictureOptions o{options_.width, options_.height, options_.supersample, options_.msaa_samples,
+                         options_.render_tile};
+  const Image image = render_picture(*window_->renderer, scene_, camera_.matrices(o.width, o.height), o);
+  core::create_parent_directories(path);
+  write_png(path, image);
+  std::printf("render: %s (%dx%d, %dx%d samples per pixel, %.1f s)\n", path.string().c_str(), o.width, o.height,
+              o.supersample, o.supersample, std::chrono::duration<double>(Clock::now() - start).count());
+}
+
 void Viewer::report_ready(bool busy) {
   const std::string state = " events=" + std::to_string(handled_events_) +
                             " buttons=" + std::to_string(handled_buttons_) + " keys=" + std::to_string(handled_keys_) +
@@ -463,6 +476,7 @@ bool Viewer::close_when_done() {
     // The second idle frame: panels that size themselves to their content (the overlay)
     // take one frame to fit what the result just changed.
     if (auto_shot) take_screenshot(options_.screenshot), options_.screenshot.clear();
+    if (!options_.render.empty()) take_picture(options_.render), options_.render.clear();
     if (options_.exit_after_replay || options_.headless) glfwSetWindowShouldClose(w, GLFW_TRUE);
   }
   return true;

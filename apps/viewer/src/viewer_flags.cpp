@@ -24,7 +24,17 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
       o.record = value(i, "--record");
     else if (a == "--screenshot")
       o.screenshot = value(i, "--screenshot");
-    else if (a == "--exit-after-replay")
+    else if (a == "--render")
+      o.render = value(i, "--render"), o.headless = true;
+    else if (a == "--supersample") {
+      const std::string s = value(i, "--supersample");
+      if (std::sscanf(s.c_str(), "%d", &o.supersample) != 1 || o.supersample < 1 || o.supersample > 8)
+        throw UsageError("viewer: --supersample expects 1..8 samples per pixel along each axis, got '" + s + "'");
+    } else if (a == "--render-tile") {
+      const std::string s = value(i, "--render-tile");
+      if (std::sscanf(s.c_str(), "%d", &o.render_tile) != 1 || o.render_tile < 16)
+        throw UsageError("viewer: --render-tile expects a tile side of at least 16 pixels, got '" + s + "'");
+    } else if (a == "--exit-after-replay")
       o.exit_after_replay = true;
     else if (a == "--no-frame-cache")
       o.frame_cache = false;

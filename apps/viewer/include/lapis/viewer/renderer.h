@@ -22,6 +22,14 @@ class Renderer {
   // Draws the scene into the current framebuffer of the given pixel size.
   virtual void render(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) = 0;
   virtual RenderStats stats() const { return {}; }
+  // Draws the scene as render() does but never from a cache, with every width and size given
+  // in pixels multiplied by `pixel_scale`: the same picture at a higher resolution
+  // (supersampling), or a tile of it (the projection then covers the tile only).
+  virtual void render_uncached(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height,
+                               float pixel_scale) {
+    (void)pixel_scale;
+    render(scene, camera, width, height);
+  }
 };
 
 // Needs a current OpenGL 3.3 core context (the Viewer makes one). With `frame_cache`, the

@@ -29,7 +29,13 @@ struct MeshItem {
 
 enum class LineShading {
   Flat,       // constant colour: curves, markers
-  KajiyaKay,  // hair fibres: Kajiya–Kay diffuse + specular around the strand tangent
+  KajiyaKay,  // hair fibres as lines: Kajiya–Kay diffuse + specular around the strand tangent
+  // Hair fibres as camera-facing ribbons: `width` pixels wide at the root tapering to
+  // `tip_width` · `width` at the tip, anti-aliased edges (coverage, resolved by MSAA's
+  // alpha-to-coverage, so no sorting), Kajiya–Kay with two highlights shifted along the strand
+  // (the cuticle's tilt: a white one toward the root, a tinted one toward the tip) and each
+  // point lit by `light` (self-shadowing).
+  HairRibbons,
 };
 
 struct LineItem {
@@ -37,7 +43,9 @@ struct LineItem {
   std::vector<int> strip_offsets{0};  // strip i is points[offsets[i], offsets[i+1])
   Points3f colors;                    // per point, or empty for base_color
   Eigen::Vector3f base_color{0.2f, 0.6f, 1.0f};
-  float width = 1.0f;  // pixels
+  float width = 1.0f;        // pixels
+  float tip_width = 0.35f;   // HairRibbons: the width at a strip's end, as a fraction of `width`
+  std::vector<float> light;  // HairRibbons: per point, the light reaching it in [0, 1], or empty: 1
   float alpha = 1.0f;
   LineShading shading = LineShading::Flat;
   bool on_top = false;  // ignore depth (previews, selections)

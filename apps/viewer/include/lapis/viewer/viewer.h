@@ -30,11 +30,17 @@ struct ViewerOptions {
   std::filesystem::path replay;      // replay this event log
   std::filesystem::path record;      // record the input stream to this file on exit
   std::filesystem::path screenshot;  // written when the app is idle (after a replay)
-  bool exit_after_replay = false;    // quit once the replay is over and the app idle
-  std::filesystem::path benchmark;   // write frame statistics here on exit
-  bool frame_cache = true;           // reuse the picture of an unchanged scene (--no-frame-cache:
-                                     // draw it every frame, the baseline of bench/apps)
-  double idle_timeout_s = 300;       // give up waiting for a busy app after a replay
+  // A finished picture (--render OUT.png, implies headless): once the app is idle, the scene
+  // without panels, as the app prepares it (ViewerApp::prepare_picture), at --size, each pixel
+  // averaged from supersample² samples (and MSAA); then the app exits.
+  std::filesystem::path render;
+  int supersample = 3;
+  int render_tile = 0;              // the picture is drawn in tiles of this side (output pixels); 0: the largest
+  bool exit_after_replay = false;   // quit once the replay is over and the app idle
+  std::filesystem::path benchmark;  // write frame statistics here on exit
+  bool frame_cache = true;          // reuse the picture of an unchanged scene (--no-frame-cache:
+                                    // draw it every frame, the baseline of bench/apps)
+  double idle_timeout_s = 300;      // give up waiting for a busy app after a replay
   // Readiness for scripts that drive the window (xdotool): rewritten atomically after the
   // first frame and after every frame that handled input or changed the app's busy state, as
   // one line "frame=F events=N buttons=B keys=K busy=0|1 asking=0|1" (input events, mouse
@@ -44,7 +50,8 @@ struct ViewerOptions {
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --exit-after-replay, --benchmark F, --ready-file F, --size WxH, --msaa N, --no-frame-cache) and returns the arguments
+// --render F, --supersample N, --render-tile N, --exit-after-replay, --benchmark F, --ready-file F, --size WxH,
+// --msaa N, --no-frame-cache) and returns the arguments
 // it did not consume. Throws UsageError on a flag missing its value or with a malformed one.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);
 
@@ -63,6 +70,9 @@ class ViewerApp {
   virtual void on_exit(Viewer&) {}
   // True while work whose result should be on screen is pending (replays wait for it).
   virtual bool busy() const { return false; }
+  // Sets the scene up for a finished picture (--render): no tool overlays, everything drawn at
+  // full quality. Called once, when the app is idle, right before the picture is drawn.
+  virtual void prepare_picture(Viewer&) {}
   // Extra fields for the --benchmark report.
   virtual void benchmark_fields(nlohmann::json&) const {}
   // The user asks to quit (Ctrl+Q, the window's close button) in an interactive run (not
@@ -138,6 +148,7 @@ class Viewer {
   std::string frame_limit() const;  // the overlay's note on what the last frame cost
   void keep_open_if_app_asks();     // a user's quit that the app's may_close() declines
   void take_screenshot(const std::filesystem::path& path);
+  void take_picture(const std::filesystem::path& path);  // options_.render
   void write_benchmark(const ViewerApp& app) const;
   void record(const InputEvent& e);
   // The steps of run(): open the window with ImGui and the renderer; per frame, wait until
