@@ -143,6 +143,12 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   ImGui::SliderFloat("max length (d)", &length, 5, 400);
   if (ImGui::IsItemDeactivatedAfterEdit()) s.growth.max_length = length, changed = true;
   if (ImGui::Checkbox("scalp avoidance (thesis 4.6)", &s.scalp_avoidance)) changed = true;
+  // The gravity prior (gravity_prior.h): 0 is the thesis' field.
+  float prior = static_cast<float>(s.gravity_prior.strength);
+  ImGui::SliderFloat("gravity prior", &prior, 0, 1, prior == 0 ? "off" : "%.2f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("where nothing is sketched, hair leaves the scalp and falls (0: the thesis' field)");
+  if (ImGui::IsItemDeactivatedAfterEdit()) s.gravity_prior.strength = prior, changed = true;
   // Field detail (thesis 4.7, Eq. 4.1 with δ from the wavy example): 0 is the smooth field.
   float wave_amplitude = static_cast<float>(s.field_detail.amplitude),
         wave_length = static_cast<float>(s.field_detail.wavelength);

@@ -34,6 +34,9 @@ constexpr const char* kUsage =
     "wheel zooms, F frames the head, Ctrl+Z / Ctrl+Shift+Z undo / redo, Ctrl+S / Ctrl+O save /\n"
     "open the session, Ctrl+E exports .hair and .obj, Delete removes the selected curve.\n";
 
+// A new style starts with hair that falls (gravity_prior.h); sessions keep what they were made with.
+constexpr double kNewStylePrior = 0.3;
+
 std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string>& rest) {
   using namespace lapis;
   const cli::Args args(rest);
@@ -52,11 +55,13 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
       if (!p->empty() && std::filesystem::path(*p).is_relative())
         *p = std::filesystem::absolute(paths.session.parent_path() / *p).lexically_normal().string();
   } else if (args.has("--head")) {
+    style.settings.gravity_prior.strength = kNewStylePrior;
     paths.session = "hairstyle.json";
     head = hair_sketch::load_head(args.get("--head"));
     style.settings.head_mesh = std::filesystem::absolute(args.get("--head")).lexically_normal().string();
   } else {
     paths.session = "hairstyle.json";
+    style.settings.gravity_prior.strength = kNewStylePrior;
     style.settings.head_mesh = asset_path("head.obj").string();
     style.settings.scalp_mask = asset_path("head_scalp.txt").string();
     head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);

@@ -52,7 +52,8 @@ bool operator==(const HairstyleSettings& a, const HairstyleSettings& b) {
   return a.head_mesh == b.head_mesh && a.scalp_mask == b.scalp_mask &&
          a.grid.target_unknowns == b.grid.target_unknowns && a.field_method == b.field_method &&
          a.field.omega == b.field.omega && a.field_detail.amplitude == b.field_detail.amplitude &&
-         a.field_detail.wavelength == b.field_detail.wavelength && a.roots.count == b.roots.count &&
+         a.field_detail.wavelength == b.field_detail.wavelength &&
+         a.gravity_prior.strength == b.gravity_prior.strength && a.roots.count == b.roots.count &&
          a.roots.seed == b.roots.seed && a.growth.step == b.growth.step && a.growth.max_length == b.growth.max_length &&
          a.scalp_avoidance == b.scalp_avoidance && a.support == b.support &&
          a.sketch.tail_segments == b.sketch.tail_segments;

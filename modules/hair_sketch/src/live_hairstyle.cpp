@@ -18,7 +18,8 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings)
     : head_(&head),
       settings_(settings),
-      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field, settings.field_detail),
+      field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field, settings.field_detail,
+             settings.gravity_prior),
       roots_(sample_roots(head, settings.roots)) {}
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {
@@ -49,7 +50,7 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   if (out.regrown) {
     out.solves.push_back(field_.update(primitives));
     // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
-    if (settings_.scalp_avoidance && !primitives.empty())
+    if (settings_.scalp_avoidance && !field_.constraints().empty())
       out.solves.push_back(
           field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
   }

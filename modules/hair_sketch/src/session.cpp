@@ -321,6 +321,8 @@ class Reader {
     s.scalp_avoidance = boolean(j, path, "scalp_avoidance");
     s.support = support(j, path);
     s.sketch.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
+    if (j.contains("gravity_prior"))  // optional: off when absent
+      s.gravity_prior.strength = number(j, path, "gravity_prior", 0, 10);
     if (j.contains("field_detail_amplitude")) {  // optional: off when absent
       s.field_detail.amplitude = number(j, path, "field_detail_amplitude", 0, 1e6);
       s.field_detail.wavelength = number(j, path, "field_detail_wavelength", 1e-9, 1e6);
@@ -352,6 +354,7 @@ std::string session_to_json(const Hairstyle& style) {
                    {"scalp_avoidance", s.scalp_avoidance},
                    {"support", to_string(s.support)},
                    {"tail_segments", s.sketch.tail_segments}};
+  if (s.gravity_prior.strength > 0) j["settings"]["gravity_prior"] = s.gravity_prior.strength;
   if (s.field_detail.amplitude > 0) {
     j["settings"]["field_detail_amplitude"] = s.field_detail.amplitude;
     j["settings"]["field_detail_wavelength"] = s.field_detail.wavelength;

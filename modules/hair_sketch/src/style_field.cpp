@@ -63,8 +63,11 @@ ConstraintSet style_constraints(const std::vector<StylePrimitive>& primitives, c
 }
 
 StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, const FieldSolverOptions& options,
-                       const FieldDetailOptions& detail)
-    : head_(&head), grid_(grid), solver_(make_field_solver(grid, method, options)) {
+                       const FieldDetailOptions& detail, const GravityPriorOptions& prior)
+    : head_(&head),
+      grid_(grid),
+      solver_(make_field_solver(grid, method, options)),
+      prior_(gravity_prior_constraints(head, grid, prior)) {
   if (detail.amplitude > 0) {
     example_ = wavy_example_field(grid, head.center, detail);
     detailed_ = example_;
@@ -78,7 +81,7 @@ FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitive
   std::vector<std::vector<Constraint>> groups;
   for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid_, *head_));
   if (!extra.empty()) groups.push_back(extra);
-  ConstraintSet next = ConstraintSet::merge(groups);
+  ConstraintSet next = with_prior(ConstraintSet::merge(groups), prior_);
   if (example_.size()) {  // u = t − tᵉ meets cᵢ − tᵉᵢ (field_detail.h)
     std::vector<std::vector<Constraint>> shifted{next.items()};
     for (Constraint& c : shifted.front()) c.direction -= example_.row(c.node).transpose();
@@ -95,11 +98,11 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   HairstyleResult r;
   auto t0 = std::chrono::steady_clock::now();
   r.grid = hairstyle_grid(head, s);
-  StyleField field(head, r.grid, s.field_method, s.field, s.field_detail);
+  StyleField field(head, r.grid, s.field_method, s.field, s.field_detail, s.gravity_prior);
   r.grid_ms = ms_since(t0);
   t0 = std::chrono::steady_clock::now();
   r.solves.push_back(field.update(style.primitives));
-  if (s.scalp_avoidance && !style.primitives.empty())
+  if (s.scalp_avoidance && !field.constraints().empty())
     r.solves.push_back(field.update(style.primitives, scalp_avoidance_constraints(r.grid, field.field(), head)));
   r.solve_ms = ms_since(t0);
   r.field = field.field();

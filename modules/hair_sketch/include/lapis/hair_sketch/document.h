@@ -16,6 +16,7 @@
 #include "lapis/hair_field/field_solver.h"
 #include "lapis/hair_sketch/dividing_curve.h"
 #include "lapis/hair_sketch/field_detail.h"
+#include "lapis/hair_sketch/gravity_prior.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/ponytail.h"
 #include "lapis/hair_sketch/sketch.h"
@@ -47,6 +48,7 @@ struct HairstyleSettings {
   hair_field::FieldMethod field_method = hair_field::FieldMethod::Auto;
   hair_field::FieldSolverOptions field;      // field.omega: constraint weight ω, thesis §4.4.1
   FieldDetailOptions field_detail;           // δᵢ of Eq. 4.1 from an example field (§4.7); off by default
+  GravityPriorOptions gravity_prior;         // hair falls where nothing is sketched; off by default
   RootOptions roots;                         // roots.count strands to grow, roots.seed their jitter (§4.6)
   GrowthOptions growth;                      // growth.step l and growth.max_length, thesis §4.6
   bool scalp_avoidance = true;               // thesis §4.6's one-shot avoidance step before growing
@@ -55,8 +57,8 @@ struct HairstyleSettings {
                                              // spacing is the grid's (sketch_options)
 };
 // Equal in what a session stores: the paths, grid.target_unknowns, field_method,
-// field.omega, field_detail, roots.count and .seed, growth.step and .max_length, scalp_avoidance, support
-// and sketch.tail_segments.
+// field.omega, field_detail, gravity_prior.strength, roots.count and .seed, growth.step and .max_length,
+// scalp_avoidance, support and sketch.tail_segments.
 bool operator==(const HairstyleSettings& a, const HairstyleSettings& b);
 
 // What a recorded stroke did: create a primitive or edit primitive `target`.

@@ -7,8 +7,8 @@
 //   {"format": "lapis-hair-session", "version": 1,
 //    "settings": {"head_mesh", "scalp_mask", "grid_unknowns", "field_method", "omega",
 //                 "roots", "seed", "step", "max_length", "scalp_avoidance", "support",
-//                 "tail_segments", optionally "field_detail_amplitude" and
-//                 "field_detail_wavelength"},
+//                 "tail_segments", optionally "gravity_prior" (the prior's strength),
+//                 "field_detail_amplitude" and "field_detail_wavelength"},
 //    "camera": {"view": [16, row-major], "projection": [16], "viewport": [x, y, w, h]},
 //    "primitives": [{"type": "stream_curve", "viewpoint": [3], "support": "strip",
 //                    "points": [[x,y,z],...], "tail_segments"} |

@@ -12,6 +12,7 @@
 #include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/document.h"
 #include "lapis/hair_sketch/field_detail.h"
+#include "lapis/hair_sketch/gravity_prior.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
 
@@ -41,8 +42,10 @@ class StyleField {
  public:
   // Throws ResourceLimit when the method's memory estimate exceeds the solver's limit.
   StyleField(const Head& head, const hair_field::Grid& grid, hair_field::FieldMethod method,
-             const hair_field::FieldSolverOptions& options = {}, const FieldDetailOptions& detail = {});
-  // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance).
+             const hair_field::FieldSolverOptions& options = {}, const FieldDetailOptions& detail = {},
+             const GravityPriorOptions& prior = {});
+  // Re-solves for primitives (plus `extra` constraints, e.g. scalp avoidance, and the gravity
+  // prior where neither constrains a node).
   hair_field::FieldSolveReport update(const std::vector<StylePrimitive>& primitives,
                                       const std::vector<hair_field::Constraint>& extra = {});
   const hair_field::Field& field() const { return example_.size() ? detailed_ : solver_->field(); }
@@ -54,9 +57,10 @@ class StyleField {
   const Head* head_;
   hair_field::Grid grid_;
   std::unique_ptr<hair_field::FieldSolver> solver_;
-  hair_field::ConstraintSet current_;  // as the solver sees them (minus tᵉ with field detail)
-  hair_field::Field example_;          // tᵉ; empty without field detail
-  hair_field::Field detailed_;         // tᵉ + u
+  hair_field::ConstraintSet current_;          // as the solver sees them (minus tᵉ with field detail)
+  hair_field::Field example_;                  // tᵉ; empty without field detail
+  hair_field::Field detailed_;                 // tᵉ + u
+  std::vector<hair_field::Constraint> prior_;  // gravity_prior.h; empty when off
 };
 
 struct HairstyleResult {
