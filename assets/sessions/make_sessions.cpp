@@ -79,11 +79,12 @@ struct Drawer {
   }
 };
 
-Drawer start(const Head& head, double unknowns) {
+Drawer start(const Head& head, double unknowns, double gravity_prior) {
   Hairstyle h;
   h.settings.head_mesh = "../head.obj";
   h.settings.scalp_mask = "../head_scalp.txt";
   h.settings.grid.target_unknowns = unknowns;
+  h.settings.gravity_prior.strength = gravity_prior;
   h.settings.field_method = FieldMethod::Auto;  // the thesis path to ~10K unknowns, multigrid beyond
   h.settings.roots.count = 2000;
   h.camera = look_at({0, 2.5, 5}, {0, 0.2, 0});
@@ -123,11 +124,14 @@ void parting(Drawer& d) {
       d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 0.3, 1.5, 110)});
     }
   d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 0.3, 1.5, 140)});
-  // The front hair swept off the face towards each side, behind the ears.
+  // The front hair swept off the face towards each side, behind the ears, from the hairline
+  // too (as in the smooth style).
   for (int side : {-1, 1}) {
     const double p = side * 0.3 * kPi;
     d.add(StrokeAction::StreamCurve, d.facing(p),
           {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
   }
   // Tilt the parting's start: hair on the right side sweeps slightly back.
   const auto& dc = std::get<DividingCurve>(d.doc.style().primitives[0].shape);
@@ -247,11 +251,15 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = std::filesystem::path(argv[1]) / "assets" / "sessions";
   const Head head = load_bundled_head(argv[1]);
   try {
-    for (auto [name, unknowns, draw] :
-         {std::tuple{"smooth", 8000.0, &smooth}, std::tuple{"parting", 8000.0, &parting},
-          std::tuple{"ponytails", 50000.0, &ponytails}, std::tuple{"curly_bob", 8000.0, &curly_bob},
-          std::tuple{"wavy_long", 8000.0, &wavy_long}}) {
-      Drawer d = start(head, unknowns);
+    // The gravity prior (gravity_prior.h) lets hair below the sketched curves fall instead of
+    // spreading sideways over the shoulders. Not for the ponytails: their curves sweep the
+    // front hair back from above, and where no curve reaches the hairline the prior would drop
+    // it over the face.
+    for (auto [name, unknowns, prior, draw] :
+         {std::tuple{"smooth", 8000.0, 0.3, &smooth}, std::tuple{"parting", 8000.0, 0.3, &parting},
+          std::tuple{"ponytails", 50000.0, 0.0, &ponytails}, std::tuple{"curly_bob", 8000.0, 0.3, &curly_bob},
+          std::tuple{"wavy_long", 8000.0, 0.3, &wavy_long}}) {
+      Drawer d = start(head, unknowns, prior);
       draw(d);
       save_session(dir / (std::string(name) + ".json"), d.doc.style());
       std::printf("%s: %zu primitives from %zu strokes\n", name, d.doc.style().primitives.size(),

@@ -40,7 +40,8 @@ double fall_of_far_side(const Strands& st, const std::vector<Eigen::Vector3d>& r
     const int a = st.offsets[static_cast<size_t>(s)], b = st.offsets[static_cast<size_t>(s) + 1];
     double walked = 0;
     int i = a;
-    while (i + 1 < b && walked < 1.0) walked += (st.points[static_cast<size_t>(i) + 1] - st.points[static_cast<size_t>(i)]).norm(), ++i;
+    while (i + 1 < b && walked < 1.0)
+      walked += (st.points[static_cast<size_t>(i) + 1] - st.points[static_cast<size_t>(i)]).norm(), ++i;
     const Eigen::Vector3d move = (st.points[static_cast<size_t>(i)] - st.points[static_cast<size_t>(a)]).cast<double>();
     if (move.norm() < 0.2) continue;
     sum += -move.y() / move.norm();

@@ -54,7 +54,7 @@ TEST_CASE("occlusion: side light reaches the slab's edges more than its core") {
   const StrandOcclusion occlusion(slab(60), o);
   const float core = occlusion.transmittance(Eigen::Vector3f(0.5f, 0.5f, 0.5f));
   const float edge = occlusion.transmittance(Eigen::Vector3f(0.5f, 0.5f, 0.02f));
-  CHECK(core < 0.05f);   // 0.5 deep from every side: 4 · exp(−5) / 4
+  CHECK(core < 0.05f);  // 0.5 deep from every side: 4 · exp(−5) / 4
   CHECK(edge > 0.15f);  // 0.02 deep from one of four sides: exp(−0.2) / 4
 }
 
