@@ -220,9 +220,9 @@ void HairSketchApp::draw_overlay(viewer::Viewer& v) {
                   u.solves.empty() ? "-" : to_string(u.solves.front().method));
     v.overlay(buf);
   }
-  if (!latencies_ms_.empty()) {
+  if (!edits_.empty()) {
     char buf[96];
-    std::snprintf(buf, sizeof buf, "edit to strands: %.0f ms", latencies_ms_.back());
+    std::snprintf(buf, sizeof buf, "edit to strands: %.0f ms", edits_.back().total_ms);
     v.overlay(buf);
   }
   if (last_ && shown_strands_ < last_->update.strands.count()) {

@@ -3,6 +3,7 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -425,22 +426,23 @@ void HairSketchApp::request_regrowth() {
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
-  worker_.submit([slot, head, settings, primitives, details, revision, epoch, shadows = wants_occlusion(),
-                  spare = std::move(spare_strands_)]() mutable {
-    if (!slot->live || slot->epoch != epoch) {
-      slot->live.reset();  // free the old solver before building the new one
-      slot->live = std::make_unique<LiveHairstyle>(*head, settings);
-      slot->epoch = epoch;
-    }
-    Regrowth r;
-    r.revision = revision;
-    r.settings_epoch = epoch;
-    r.update = slot->live->update(primitives, details, std::move(spare));
-    r.grid = slot->live->grid();
-    r.field = std::make_shared<const Field>(slot->live->field());
-    if (shadows) r.occlusion = std::make_shared<const StrandOcclusion>(r.update.strands);
-    return r;
-  });
+  worker_.submit(
+      [slot, head, settings, primitives, details, revision, epoch, spare = std::move(spare_strands_)]() mutable {
+        const auto start = std::chrono::steady_clock::now();
+        if (!slot->live || slot->epoch != epoch) {
+          slot->live.reset();  // free the old solver before building the new one
+          slot->live = std::make_unique<LiveHairstyle>(*head, settings);
+          slot->epoch = epoch;
+        }
+        Regrowth r;
+        r.revision = revision;
+        r.settings_epoch = epoch;
+        r.update = slot->live->update(primitives, details, std::move(spare));
+        r.grid = slot->live->grid();
+        r.field = std::make_shared<const Field>(slot->live->field());
+        r.worker_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return r;
+      });
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
@@ -454,16 +456,26 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   }
   if (!r) return;
   engine_error_.clear();
-  if (r->revision == document_.revision() && last_edit_time_ > 0)
-    latencies_ms_.push_back((v.time() - last_edit_time_) * 1000.0);
-  occlusion_ = r->occlusion;  // null when not asked for: made when first needed
+  const double display_start = v.time();
   update_strand_item(v, r->update.strands);
+  if (r->revision == document_.revision() && last_edit_time_ > 0) {
+    edits_.push_back(stages(*r, display_start, v.time()));
+    edit_drawn_in_frame_ = v.frame();  // the frame's drawing is added once it is known
+  }
   if (last_) spare_strands_ = std::move(last_->update.strands);
   last_ = std::move(r);
   if (show_glyphs_) update_glyph_item(v);
 }
 
 void HairSketchApp::on_frame(viewer::Viewer& v) {
+  if (edit_drawn_in_frame_ >= 0 && v.frame() > edit_drawn_in_frame_) {
+    // The frame that took the strands drew them after on_frame: its time less what on_frame
+    // spent preparing them.
+    EditStages& e = edits_.back();
+    e.draw_ms = std::max(0.0, v.last_frame_ms() - e.display_ms);
+    e.total_ms += e.draw_ms;
+    edit_drawn_in_frame_ = -1;
+  }
   // The previous frame's time adapts how much of the hair is drawn; not while the worker
   // regrows, whose share of the cores slows every frame whatever is drawn, and not after a frame
   // that reused the unchanged scene's picture, whose time says nothing about the strands.
@@ -477,9 +489,38 @@ void HairSketchApp::on_frame(viewer::Viewer& v) {
   autosave_if_due(v);
 }
 
+EditStages HairSketchApp::stages(const Regrowth& r, double display_start, double now) const {
+  EditStages e;
+  e.total_ms = (now - last_edit_time_) * 1000.0;
+  const LiveUpdate& u = r.update;
+  if (!u.solves.empty()) e.style_solve_ms = u.solves.front().total_ms;
+  e.avoidance_ms = u.avoidance_ms;
+  if (u.solves.size() > 1) e.avoidance_solve_ms = u.solves[1].total_ms;
+  for (const auto& s : u.solves) e.iterations += s.iterations;
+  e.growth_ms = u.growth_ms, e.detail_ms = u.detail_ms, e.occlusion_ms = occlusion_ms_;
+  e.display_ms = (now - display_start) * 1000.0;
+  e.waiting_ms = e.total_ms - r.worker_ms - e.display_ms;
+  return e;
+}
+
 void HairSketchApp::benchmark_fields(nlohmann::json& j) const {
   j["app"] = "lapis-hair-sketch";
-  j["edit_to_strands_ms"] = latencies_ms_;
+  std::vector<double> totals;
+  for (const auto& e : edits_) {
+    totals.push_back(e.total_ms);
+    j["edits"].push_back({{"total_ms", e.total_ms},
+                          {"style_solve_ms", e.style_solve_ms},
+                          {"avoidance_ms", e.avoidance_ms},
+                          {"avoidance_solve_ms", e.avoidance_solve_ms},
+                          {"iterations", e.iterations},
+                          {"growth_ms", e.growth_ms},
+                          {"detail_ms", e.detail_ms},
+                          {"occlusion_ms", e.occlusion_ms},
+                          {"display_ms", e.display_ms},
+                          {"draw_ms", e.draw_ms},
+                          {"waiting_ms", e.waiting_ms}});
+  }
+  j["edit_to_strands_ms"] = totals;
   if (last_) {
     j["strands"] = last_->update.strands.count();
     j["segments"] = last_->update.strands.segments();

@@ -36,8 +36,21 @@ struct Regrowth {
   std::uint64_t settings_epoch = 0;
   LiveUpdate update;
   Grid grid;
-  std::shared_ptr<const Field> field;                // for glyphs
-  std::shared_ptr<const StrandOcclusion> occlusion;  // self-shadowing, when the display asks for it
+  std::shared_ptr<const Field> field;  // for glyphs
+  double worker_ms = 0;                // the whole job on the worker
+};
+
+// Where one edit's time went, from the stroke's release to its strands on screen (--benchmark).
+struct EditStages {
+  double total_ms = 0;            // release → the frame that shows the strands drawn
+  double style_solve_ms = 0;      // the field with the style's constraints
+  double avoidance_ms = 0;        // finding scalp avoidance's constraints (§4.6)
+  double avoidance_solve_ms = 0;  // and the second solve with them
+  int iterations = 0;             // multigrid iterations of both solves (0: direct)
+  double growth_ms = 0, detail_ms = 0, occlusion_ms = 0;
+  double display_ms = 0;  // the strands decimated, coloured and lit (occlusion_ms of it) for the renderer
+  double draw_ms = 0;     // the rest of the frame that drew them first (upload and drawing)
+  double waiting_ms = 0;  // the rest: queued behind an older job, the frame that hands over
 };
 
 // How strands are drawn: ribbons (tapered, anti-aliased, self-shadowed: the look of the
@@ -98,6 +111,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   void settings_changed();
   void request_regrowth();
   void receive_regrowth(viewer::Viewer& v);
+  EditStages stages(const Regrowth& r, double display_start, double now) const;
 
   // Drawing (hair_scene.cpp) and panels (hair_panels.cpp).
   void update_head_item(viewer::Viewer& v);
@@ -137,8 +151,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   float strand_width_ = 1.5f;  // pixels at the root
   StrandLook strand_look_ = StrandLook::Ribbons;
   bool self_shadowing_ = true;
-  bool wants_occlusion() const { return strand_look_ == StrandLook::Ribbons && self_shadowing_; }
-  std::shared_ptr<const StrandOcclusion> occlusion_;  // of the strands on screen
+  double occlusion_ms_ = 0;  // the last self-shadowing of the strands on screen
   // Strand segments drawn (display_strands, strand_display.h; 0: every segment), adapted to keep
   // frames near 80 ms: software rendering of 20K full strands (4M segments, 4× MSAA) takes
   // two seconds a frame. Headless runs (screenshots, demos) draw everything.
@@ -159,7 +172,8 @@ class HairSketchApp final : public viewer::ViewerApp {
   std::string engine_error_;
   double last_edit_time_ = 0;
   double last_autosave_ = 0;
-  std::vector<double> latencies_ms_;       // edit → strands on screen, for --benchmark
+  std::vector<EditStages> edits_;          // edit → strands on screen, by stage, for --benchmark
+  long edit_drawn_in_frame_ = -1;          // the frame that first draws the last edit's strands
   viewer::LatestWorker<Regrowth> worker_;  // last: joined first, before what jobs use
 };
 

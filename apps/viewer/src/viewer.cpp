@@ -508,6 +508,11 @@ int Viewer::run(ViewerApp& app) {
   app_ = &app;
   open_window();
   app.on_start(*this);
+  if (options_.orbit) {
+    constexpr double kDegree = 3.14159265358979323846 / 180;
+    camera_.yaw = options_.orbit->x() * kDegree;
+    camera_.pitch = options_.orbit->y() * kDegree;
+  }
   int exit_code = 0;
   idle_since_replay_ = -1;
   idle_frames_after_replay_ = 0;

@@ -1,4 +1,5 @@
 // The command-line flags every app shares (viewer.h), parsed before the app reads its own.
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -34,6 +35,12 @@ std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions
       const std::string s = value(i, "--render-tile");
       if (std::sscanf(s.c_str(), "%d", &o.render_tile) != 1 || o.render_tile < 16)
         throw UsageError("viewer: --render-tile expects a tile side of at least 16 pixels, got '" + s + "'");
+    } else if (a == "--orbit") {
+      const std::string s = value(i, "--orbit");
+      double yaw = 0, pitch = 0;
+      if (std::sscanf(s.c_str(), "%lf,%lf", &yaw, &pitch) != 2 || !std::isfinite(yaw) || !(std::abs(pitch) < 90))
+        throw UsageError("viewer: --orbit expects YAW,PITCH in degrees (|pitch| < 90), got '" + s + "'");
+      o.orbit = Eigen::Vector2d(yaw, pitch);
     } else if (a == "--exit-after-replay")
       o.exit_after_replay = true;
     else if (a == "--no-frame-cache")

@@ -50,9 +50,13 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   if (out.regrown) {
     out.solves.push_back(field_.update(primitives));
     // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
-    if (settings_.scalp_avoidance && !field_.constraints().empty())
-      out.solves.push_back(
-          field_.update(primitives, scalp_avoidance_constraints(field_.grid(), field_.field(), *head_)));
+    if (settings_.scalp_avoidance && !field_.constraints().empty()) {
+      const auto t = std::chrono::steady_clock::now();
+      if (!avoidance_) avoidance_ = std::make_unique<ScalpAvoidance>(field_.grid(), *head_);
+      const std::vector<hair_field::Constraint> avoid = avoidance_->constraints(field_.field());
+      out.avoidance_ms = ms_since(t);
+      out.solves.push_back(field_.update(primitives, avoid));
+    }
   }
   out.solve_ms = ms_since(t0);
   out.constraints = field_.constraints().size();

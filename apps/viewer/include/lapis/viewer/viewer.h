@@ -35,7 +35,10 @@ struct ViewerOptions {
   // averaged from supersample² samples (and MSAA); then the app exits.
   std::filesystem::path render;
   int supersample = 3;
-  int render_tile = 0;              // the picture is drawn in tiles of this side (output pixels); 0: the largest
+  int render_tile = 0;  // the picture is drawn in tiles of this side (output pixels); 0: the largest
+  // --orbit YAW,PITCH (degrees): turns the orbit camera there once the app has placed it
+  // (pictures from a chosen side without an event file).
+  std::optional<Eigen::Vector2d> orbit;
   bool exit_after_replay = false;   // quit once the replay is over and the app idle
   std::filesystem::path benchmark;  // write frame statistics here on exit
   bool frame_cache = true;          // reuse the picture of an unchanged scene (--no-frame-cache:
@@ -50,7 +53,8 @@ struct ViewerOptions {
 };
 
 // Parses the flags every app shares (--headless, --replay F, --record F, --screenshot F,
-// --render F, --supersample N, --render-tile N, --exit-after-replay, --benchmark F, --ready-file F, --size WxH,
+// --render F, --supersample N, --render-tile N, --orbit YAW,PITCH, --exit-after-replay, --benchmark F, --ready-file F,
+// --size WxH,
 // --msaa N, --no-frame-cache) and returns the arguments
 // it did not consume. Throws UsageError on a flag missing its value or with a malformed one.
 std::vector<std::string> parse_viewer_flags(int argc, char** argv, ViewerOptions& options);

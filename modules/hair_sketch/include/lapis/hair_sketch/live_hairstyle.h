@@ -13,6 +13,7 @@
 #include "lapis/hair_sketch/document.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/scalp_avoidance.h"
 #include "lapis/hair_sketch/strand_detail.h"
 #include "lapis/hair_sketch/style_field.h"
 
@@ -22,10 +23,11 @@ struct LiveUpdate {
   Strands strands;
   std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
   int constraints = 0;
-  double solve_ms = 0;   // constraint diff + field update(s)
-  double growth_ms = 0;  // regrowing every strand
-  double detail_ms = 0;  // applying the strand details
-  bool regrown = false;  // false: the primitives were unchanged, only the details were reapplied
+  double solve_ms = 0;      // constraint diff + field update(s)
+  double avoidance_ms = 0;  // of solve_ms: finding scalp avoidance's constraints (§4.6)
+  double growth_ms = 0;     // regrowing every strand
+  double detail_ms = 0;     // applying the strand details
+  bool regrown = false;     // false: the primitives were unchanged, only the details were reapplied
   double total_ms = 0;
 };
 
@@ -62,6 +64,7 @@ class LiveHairstyle {
   // Made on the first update with details: the clearance costs a few hundred closest-point
   // queries per refined cell, which hair without detail never needs.
   std::unique_ptr<HeadClearance> clearance_;
+  std::unique_ptr<ScalpAvoidance> avoidance_;  // made on the first update that needs it
   DetailContext detail_context_;
 };
 

@@ -4,6 +4,7 @@
 // small magnitude (0.3) so their global influence stays low.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "lapis/hair_field/constraints.h"
@@ -18,9 +19,26 @@ struct ScalpAvoidanceOptions {
   double magnitude = 0.3;  // thesis §4.6
 };
 
-// Constraints from the current field (n by 3 on grid). Nodes just inside the surface are
-// included: trilinear lookups just outside it read them. Nodes with a vanishing direction
-// are left free.
+// The nodes near the head and the normals there depend on the grid and the head only, and
+// finding them (a closest-point query per node of the head's box) costs far more than the
+// projection itself: an interactive loop finds them once and projects per edit.
+class ScalpAvoidance {
+ public:
+  ScalpAvoidance(const hair_field::Grid& grid, const Head& head, const ScalpAvoidanceOptions& options = {});
+  // Constraints from the current field (n by 3 on the grid). Nodes just inside the surface are
+  // included: trilinear lookups just outside it read them. Nodes with a vanishing direction
+  // are left free.
+  std::vector<hair_field::Constraint> constraints(const hair_field::Field& field) const;
+  int near_nodes() const { return static_cast<int>(nodes_.size()); }
+
+ private:
+  std::int64_t num_nodes_ = 0;
+  double magnitude_ = 0;
+  std::vector<int> nodes_;                // within the band, by index
+  std::vector<Eigen::Vector3d> normals_;  // the head's at each one's closest point
+};
+
+// ScalpAvoidance(grid, head, options).constraints(field), for one-shot use.
 std::vector<hair_field::Constraint> scalp_avoidance_constraints(const hair_field::Grid& grid,
                                                                 const hair_field::Field& field, const Head& head,
                                                                 const ScalpAvoidanceOptions& options = {});
