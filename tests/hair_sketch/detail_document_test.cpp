@@ -99,3 +99,28 @@ TEST_CASE("hair_sketch: a detail edit reapplies detail to the grown strands, the
   CHECK_THROWS_WITH_AS(live.update(style.primitives, {outside}), doctest::Contains("region vertex"),
                        lapis::InvalidArgument);
 }
+
+TEST_CASE("hair_sketch: after several edits, a live hairstyle's field is a fresh build's (avoidance found once)") {
+  // LiveHairstyle keeps the scalp avoidance's near-head nodes from its first update; a later
+  // edit must still give the field build_hairstyle gives from scratch (up to the incremental
+  // solve's rounding).
+  const Head& head = bundled_head();
+  Hairstyle style = back_style();
+  style.settings.gravity_prior.strength = 0.3;
+  LiveHairstyle live(head, style.settings);
+  live.update(style.primitives);
+  StreamCurve side;
+  for (int i = 0; i <= 16; ++i) {
+    const double a = 0.3 + 1.2 * i / 16.0;
+    side.points.emplace_back(1.2 * std::sin(a), 1.2 * std::cos(a), 0.2);
+  }
+  style.primitives.push_back({side});
+  const LiveUpdate edited = live.update(style.primitives);
+  REQUIRE(edited.solves.size() == 2);  // the style, then the avoidance
+  const HairstyleResult fresh = build_hairstyle(style, head);
+  const double scale = fresh.field.cwiseAbs().maxCoeff();
+  const double difference = (live.field() - fresh.field).cwiseAbs().maxCoeff();
+  MESSAGE("largest field difference " << difference << " of " << scale);
+  CHECK(difference <= 1e-6 * scale);
+  CHECK(edited.strands.offsets == fresh.strands.offsets);
+}
