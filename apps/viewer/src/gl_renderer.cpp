@@ -197,6 +197,7 @@ class GlRenderer final : public Renderer {
     glUniform1f(glGetUniformLocation(ribbon_program_, "width"), l.width * pixel_scale_);
     glUniform1f(glGetUniformLocation(ribbon_program_, "tip_width"), l.tip_width);
     glUniform1f(glGetUniformLocation(ribbon_program_, "alpha"), l.alpha);
+    glUniform1f(glGetUniformLocation(ribbon_program_, "fringe"), samples > 0 ? 0.0f : 1.0f);
     if (samples > 0) {
       glDisable(GL_BLEND);
       glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);

@@ -84,9 +84,11 @@ void main() {
 
 // Hair ribbons (LineShading::HairRibbons). The geometry shader turns each segment of a line
 // strip into a quad facing the camera, `width` pixels wide at the root tapering to
-// tip_width · width, plus one pixel of fringe on each side whose coverage fades linearly:
-// anti-aliased edges, and sub-pixel strands that fade instead of flickering. Coverage goes out
-// as alpha, which the renderer turns into MSAA sample coverage, so ribbons need no sorting.
+// tip_width · width (at least one pixel: thinner strands fade instead of flickering). Without
+// MSAA each side gets one pixel of fringe whose coverage fades linearly; with MSAA the samples
+// anti-alias the edges, and a fringe would only double the fragments (software GL's cost).
+// Coverage goes out as alpha, which the renderer turns into MSAA sample coverage, so ribbons
+// need no sorting.
 inline constexpr const char* kRibbonVertex = R"(#version 330 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 tangent;
@@ -112,6 +114,7 @@ in VertexData { vec3 tangent; vec3 position; vec4 color; vec2 along_light; } v[]
 uniform vec2 viewport;    // pixels
 uniform float width;      // pixels, at the root
 uniform float tip_width;  // fraction of width at the tip
+uniform float fringe;     // pixels of fading edge on each side (0 with MSAA)
 out vec3 g_tangent;
 out vec3 g_position;
 out vec4 g_color;
@@ -129,7 +132,7 @@ void main() {
   for (int k = 0; k < 2; ++k) {
     vec4 c = gl_in[k].gl_Position;
     float half_w = 0.5 * width * mix(1.0, tip_width, v[k].along_light.x);
-    float extent = max(half_w, 0.5) + 1.0;
+    float extent = max(half_w, 0.5) + fringe;
     for (int side = -1; side <= 1; side += 2) {
       vec2 offset = n * (float(side) * extent) / half_viewport;
       gl_Position = vec4(c.xy + offset * c.w, c.z, c.w);
@@ -154,6 +157,7 @@ in float g_light;
 in float g_across;
 in float g_half;
 uniform float alpha;
+uniform float fringe;
 out vec4 frag;
 // Kajiya–Kay's specular lobe: brightest where the view lies on the cone of mirror directions
 // around the tangent.
@@ -164,8 +168,9 @@ float kajiya_kay(vec3 t, vec3 l, vec3 v, float power) {
 }
 void main() {
   // Coverage of this pixel by a ribbon of half width g_half: 1 inside, a linear ramp over the
-  // one-pixel fringe, scaled down for ribbons thinner than a pixel.
-  float coverage = clamp(max(g_half, 0.5) + 0.5 - abs(g_across), 0.0, 1.0) * min(2.0 * g_half, 1.0);
+  // fringe (if any), scaled down for ribbons thinner than a pixel.
+  float edge = fringe > 0.0 ? clamp(max(g_half, 0.5) + 0.5 * fringe - abs(g_across), 0.0, fringe) / fringe : 1.0;
+  float coverage = edge * min(2.0 * g_half, 1.0);
   if (coverage <= 0.0) discard;
   vec3 t = normalize(g_tangent);
   vec3 v = normalize(-g_position);
