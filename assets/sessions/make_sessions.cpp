@@ -104,8 +104,14 @@ void smooth(Drawer& d) {
     d.add(StrokeAction::StreamCurve, d.facing(p),
           {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
     // And from the hairline itself: over the brow's relief, hair there would fall on the face.
+    // At §4.6's 25K unknowns a curve steers fewer of the roots around it than at 8K, so two
+    // more sweep the hairline between the temple and the middle of the forehead.
     d.add(StrokeAction::StreamCurve, d.facing(p),
           {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.62, side * 0.01 * kPi, 1.3, side * 0.52 * kPi, 90)});
   }
 }
 
@@ -132,6 +138,8 @@ void parting(Drawer& d) {
           {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
     d.add(StrokeAction::StreamCurve, d.facing(p),
           {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
   }
   // Tilt the parting's start: hair on the right side sweeps slightly back.
   const auto& dc = std::get<DividingCurve>(d.doc.style().primitives[0].shape);
@@ -251,14 +259,15 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = std::filesystem::path(argv[1]) / "assets" / "sessions";
   const Head head = load_bundled_head(argv[1]);
   try {
+    // §4.6's resolutions: about 25K unknowns for smooth styles, 50K for ponytails.
     // The gravity prior (gravity_prior.h) lets hair below the sketched curves fall instead of
     // spreading sideways over the shoulders. Not for the ponytails: their curves sweep the
     // front hair back from above, and where no curve reaches the hairline the prior would drop
     // it over the face.
     for (auto [name, unknowns, prior, draw] :
-         {std::tuple{"smooth", 8000.0, 0.3, &smooth}, std::tuple{"parting", 8000.0, 0.3, &parting},
-          std::tuple{"ponytails", 50000.0, 0.0, &ponytails}, std::tuple{"curly_bob", 8000.0, 0.3, &curly_bob},
-          std::tuple{"wavy_long", 8000.0, 0.3, &wavy_long}}) {
+         {std::tuple{"smooth", 25000.0, 0.3, &smooth}, std::tuple{"parting", 25000.0, 0.3, &parting},
+          std::tuple{"ponytails", 50000.0, 0.0, &ponytails}, std::tuple{"curly_bob", 25000.0, 0.3, &curly_bob},
+          std::tuple{"wavy_long", 25000.0, 0.3, &wavy_long}}) {
       Drawer d = start(head, unknowns, prior);
       draw(d);
       save_session(dir / (std::string(name) + ".json"), d.doc.style());

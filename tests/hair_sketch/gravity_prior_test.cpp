@@ -140,3 +140,28 @@ TEST_CASE("gravity prior: off adds nothing; bad options are named") {
   o.down = Eigen::Vector3d::Zero();
   CHECK_THROWS_WITH_AS(gravity_prior_constraints(head, g, o), doctest::Contains("down"), lapis::InvalidArgument);
 }
+
+TEST_CASE("gravity prior: no prior node within its clearance of a sketched node") {
+  const Head& head = bundled_head();
+  const Grid g = small_grid();
+  GravityPriorOptions o;
+  o.strength = 0.3;
+  const auto prior = gravity_prior_constraints(head, g, o);
+  const auto curve = std::get<StreamCurve>(level_side_curve().shape).constraints(g);
+  const ConstraintSet sketched = ConstraintSet::from(curve);
+  const auto kept = prior_away_from(prior, sketched, g, o.clearance);
+  CHECK(kept.size() < prior.size());
+  size_t far = 0;  // prior nodes farther than the clearance from every curve node: all kept
+  for (const auto& p : prior) {
+    const auto a = g.coords(p.node);
+    int nearest = 1 << 30;
+    for (const auto& c : curve) {
+      const auto b = g.coords(c.node);
+      nearest = std::min(nearest, std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])}));
+    }
+    const bool is_kept = std::any_of(kept.begin(), kept.end(), [&](const auto& k) { return k.node == p.node; });
+    CHECK(is_kept == (nearest > o.clearance));
+    far += nearest > o.clearance;
+  }
+  CHECK(kept.size() == far);
+}

@@ -38,7 +38,13 @@ std::map<std::string, double> twin_differences(const Head& head) {
   std::map<std::string, double> worst;
   for (const char* name : {"smooth", "parting", "ponytails"}) {
     const Hairstyle style = load_session(kSessions / (std::string(name) + ".json"));
-    const Grid grid = hairstyle_grid(head, style.settings);
+    // At most 8K unknowns: on the bundled (asymmetric) mesh a finer grid puts a node at the edge
+    // of a dividing curve's band inside on one side and outside on the other, so the sets
+    // differ in size and cannot be compared node by node; the icosphere above shows the twin
+    // exact at any grid.
+    HairstyleSettings settings = style.settings;
+    settings.grid.target_unknowns = std::min(settings.grid.target_unknowns, 8000.0);
+    const Grid grid = hairstyle_grid(head, settings);
     // The grid is centred on the head's box, so symmetric about the sagittal plane.
     CHECK(std::abs(grid.origin.x() + grid.max_corner().x() - 2 * head.center.x()) < 1e-12);
     for (StylePrimitive p : style.primitives) {

@@ -15,6 +15,7 @@ void check(const GravityPriorOptions& o) {
   };
   if (!(o.strength >= 0) || !std::isfinite(o.strength)) bad("strength", "must be finite and not negative");
   if (o.stride < 1 || o.stride > 64) bad("stride", "must be in [1, 64]");
+  if (o.clearance < 0 || o.clearance > 64) bad("clearance", "must be in [0, 64]");
   if (!(o.turn_distance > 0) || !std::isfinite(o.turn_distance)) bad("turn_distance", "must be positive and finite");
   if (!o.down.allFinite() || o.down.norm() < 1e-12) bad("down", "must be a finite non-zero direction");
 }
@@ -48,6 +49,27 @@ std::vector<hair_field::Constraint> gravity_prior_constraints(const Head& head, 
         const Eigen::Vector3d d = gravity_prior_direction(head, p, o);
         if (d.squaredNorm() > 0) out.push_back({node, o.strength * d});
       }
+  return out;
+}
+
+std::vector<hair_field::Constraint> prior_away_from(const std::vector<hair_field::Constraint>& prior,
+                                                    const hair_field::ConstraintSet& sketched,
+                                                    const hair_field::Grid& grid, int clearance) {
+  if (prior.empty() || sketched.empty()) return prior;
+  // Mark the box of `clearance` nodes around each sketched node.
+  std::vector<char> near(static_cast<size_t>(grid.num_nodes()), 0);
+  for (const auto& c : sketched.items()) {
+    const auto ijk = grid.coords(c.node);
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::max(0, ijk[a] - clearance), hi[a] = std::min(grid.dims[a] - 1, ijk[a] + clearance);
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) near[static_cast<size_t>(grid.index(i, j, k))] = 1;
+  }
+  std::vector<hair_field::Constraint> out;
+  for (const auto& c : prior)
+    if (!near[static_cast<size_t>(c.node)]) out.push_back(c);
   return out;
 }
 

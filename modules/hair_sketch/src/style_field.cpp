@@ -67,7 +67,8 @@ StyleField::StyleField(const Head& head, const Grid& grid, FieldMethod method, c
     : head_(&head),
       grid_(grid),
       solver_(make_field_solver(grid, method, options)),
-      prior_(gravity_prior_constraints(head, grid, prior)) {
+      prior_(gravity_prior_constraints(head, grid, prior)),
+      prior_clearance_(prior.clearance) {
   if (detail.amplitude > 0) {
     example_ = wavy_example_field(grid, head.center, detail);
     detailed_ = example_;
@@ -80,8 +81,10 @@ FieldSolveReport StyleField::update(const std::vector<StylePrimitive>& primitive
                                     const std::vector<Constraint>& extra) {
   std::vector<std::vector<Constraint>> groups;
   for (const auto& p : primitives) groups.push_back(primitive_constraints(p, grid_, *head_));
+  const std::vector<Constraint> prior =
+      prior_.empty() ? prior_ : prior_away_from(prior_, ConstraintSet::merge(groups), grid_, prior_clearance_);
   if (!extra.empty()) groups.push_back(extra);
-  ConstraintSet next = with_prior(ConstraintSet::merge(groups), prior_);
+  ConstraintSet next = with_prior(ConstraintSet::merge(groups), prior);
   if (example_.size()) {  // u = t − tᵉ meets cᵢ − tᵉᵢ (field_detail.h)
     std::vector<std::vector<Constraint>> shifted{next.items()};
     for (Constraint& c : shifted.front()) c.direction -= example_.row(c.node).transpose();

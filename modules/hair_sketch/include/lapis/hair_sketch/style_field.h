@@ -61,6 +61,7 @@ class StyleField {
   hair_field::Field example_;                  // tᵉ; empty without field detail
   hair_field::Field detailed_;                 // tᵉ + u
   std::vector<hair_field::Constraint> prior_;  // gravity_prior.h; empty when off
+  int prior_clearance_ = 0;
 };
 
 struct HairstyleResult {
