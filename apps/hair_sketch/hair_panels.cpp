@@ -129,8 +129,8 @@ void HairSketchApp::draw_primitive_panel(viewer::Viewer& v, viewer::PanelColumn&
 }
 
 void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
-  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 430), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(350, 420), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(v.height()) - 336), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(350, 326), ImGuiCond_FirstUseEver);  // scrolls: the view stays clear
   ImGui::Begin("Hair");
   HairstyleSettings s = document_.style().settings;
   bool changed = false;

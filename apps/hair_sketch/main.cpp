@@ -1,7 +1,7 @@
 // lapis-hair-sketch [--session FILE] [--head MESH] [--replay EVENTS] [--screenshot OUT.png]
 //                   [--headless] [--exit-after-replay] [--record EVENTS] [--benchmark OUT.json]
 //                   [--export-hair OUT.hair] [--export-obj OUT.obj] [--save-session OUT.json]
-//                   [--roots N] [--draw-segments N] [--strands ribbons|lines]
+//                   [--roots N] [--draw-segments N] [--strands ribbons|lines] [--gravity-prior S]
 //                   [--render OUT.png --size WxH [--supersample N]]
 #include <filesystem>
 #include <memory>
@@ -24,6 +24,8 @@ constexpr const char* kUsage =
     "                         [--draw-segments N]  (strand segments drawn; 0: all; default:\n"
     "                         adapted to the frame time in a window, all with --headless)\n"
     "                         [--strands ribbons|lines]  (default ribbons: tapered, shaded, self-shadowed)\n"
+    "                         [--gravity-prior S]  (hair falls where nothing is sketched; 0: the thesis'\n"
+    "                         field; default 0.3 for a new style, the session's value otherwise)\n"
     "                         [--render OUT.png [--supersample N]]  (once grown, the hair on the head\n"
     "                         without panels at --size, N x N samples per pixel (default 3); then exit)\n"
     "--save-session: where Ctrl+S saves (default: the --session file, else hairstyle.json);\n"
@@ -41,7 +43,7 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
   using namespace lapis;
   const cli::Args args(rest);
   args.allow_only({"--session", "--head", "--export-hair", "--export-obj", "--save-session", "--roots",
-                   "--draw-segments", "--strands"});
+                   "--draw-segments", "--strands", "--gravity-prior"});
   hair_app::AppPaths paths;
   hair_sketch::Hairstyle style;
   hair_sketch::Head head;
@@ -67,6 +69,8 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
     head = hair_sketch::load_head(style.settings.head_mesh, style.settings.scalp_mask);
   }
   style.settings.roots.count = static_cast<int>(args.get_int("--roots", style.settings.roots.count, 1, 2000000));
+  style.settings.gravity_prior.strength =
+      args.get_double("--gravity-prior", style.settings.gravity_prior.strength, 0, 10);
   if (args.has("--save-session")) paths.session = args.get("--save-session");
   paths.autosave = paths.session.string() + ".autosave.json";
   paths.export_hair = args.get("--export-hair", "out/hairstyle.hair");

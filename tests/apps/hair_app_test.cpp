@@ -75,7 +75,8 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
   REQUIRE(start.x() > 0);
   const fs::path session = dir / "drawn.json", shot = dir / "drawn.png", empty = dir / "empty.png",
                  events = dir / "drawn_events.json";
-  const std::string size = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+  // Without the gravity prior, so that an empty style has no hair (the prior's hair is checked last).
+  const std::string size = " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) + " --gravity-prior 0";
   REQUIRE(run_under_xvfb(kApp + size + " --headless --screenshot " + empty.string() + " --save-session " +
                          (dir / "unused.json").string()) == 0);
 
@@ -133,6 +134,15 @@ TEST_CASE("apps: hair app — a stroke drawn with xdotool becomes a stream curve
 
   // Hair appeared where there was none.
   CHECK(hair_fraction(viewer::read_png(shot)) > hair_fraction(viewer::read_png(empty)) + 0.005);
+
+  // A new style's default, the gravity prior, grows falling hair before any stroke.
+  const fs::path prior = dir / "prior.png";
+  REQUIRE(run_under_xvfb(kApp + " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) +
+                         " --headless --screenshot " + prior.string() + " --save-session " +
+                         (dir / "prior.json").string()) == 0);
+  MESSAGE("hair before any stroke: " << hair_fraction(viewer::read_png(prior)) << " with the prior, "
+                                     << hair_fraction(viewer::read_png(empty)) << " without");
+  CHECK(hair_fraction(viewer::read_png(prior)) > hair_fraction(viewer::read_png(empty)) + 0.02);
 }
 
 TEST_CASE("apps: hair app — replaying a recorded event file reproduces the recorded session") {
