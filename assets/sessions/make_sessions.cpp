@@ -1,5 +1,6 @@
 // Generates the example sessions assets/sessions/{smooth,parting,ponytails}.json, which
-// recreate thesis Figs. 4.6–4.8 on the bundled head, and {curly_bob,wavy_long}.json, which add
+// recreate thesis Figs. 4.6–4.8 on the bundled head, half_up.json with Fig. 4.1's mix of
+// primitives, and {curly_bob,wavy_long}.json, which add
 // strand detail (§4.7) to the smooth style: strokes are drawn by projecting 3D
 // paths over the head with orbit-style cameras, interpreted exactly as the app would, and
 // recorded in the session. Deterministic; run by hand, outputs are committed:
@@ -200,6 +201,70 @@ void ponytails(Drawer& d) {
   }
 }
 
+// Fig. 4.1's mix of primitives (eleven stream curves, four dividing curves, one ponytail) as a
+// half-up style: four dividing curves run round the head above the ears and across the back,
+// the hair above them is drawn back into one ponytail behind the crown, the hair below falls.
+void half_up(Drawer& d) {
+  // The dividing curves, each drawn from the side it runs along.
+  for (int side : {-1, 1}) {
+    const double p = side * 0.55 * kPi;
+    std::vector<Eigen::Vector3d> line;
+    for (int i = 0; i <= 16; ++i) {
+      const double t = static_cast<double>(i) / 16, phi = side * (0.22 + 0.5 * t) * kPi, a = 1.05 + 0.05 * t;
+      line.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
+    }
+    d.add(StrokeAction::DividingCurve, d.facing(p), {d.project(d.facing(p), line)});
+  }
+  for (int side : {-1, 1}) {
+    const double p = side * 0.88 * kPi;
+    std::vector<Eigen::Vector3d> line;
+    for (int i = 0; i <= 16; ++i) {
+      const double t = static_cast<double>(i) / 16, phi = side * (0.74 + 0.24 * t) * kPi, a = 1.1 + 0.02 * t;
+      line.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
+    }
+    d.add(StrokeAction::DividingCurve, d.facing(p), {d.project(d.facing(p), line)});
+  }
+  // Above them: four curves from the front and the temples back to the tail.
+  for (int side : {-1, 1}) {
+    const double p = side * 0.45 * kPi;
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.5, side * 0.08 * kPi, 0.75, side * 0.9 * kPi, 0)});
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.85, side * 0.25 * kPi, 0.85, side * 0.85 * kPi, 0)});
+  }
+  // Below them: the sides and the back fall, the hairline is swept off the face.
+  for (int side : {-1, 1}) {
+    for (double phi : {0.5 * kPi, 0.8 * kPi}) {
+      const double p = side * phi;
+      d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 1.25, 1.6, 140)});
+    }
+    const double p = side * 0.3 * kPi;
+    d.add(StrokeAction::StreamCurve, d.facing(p),
+          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
+  }
+  d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 1.3, 1.6, 140)});
+  // The ponytail, from behind: its spine leaves the scalp behind the crown and falls.
+  const CameraMatrices back = look_at({0, 0.8, -5}, {0, 0.2, 0});
+  std::vector<Eigen::Vector3d> spine;
+  for (int i = 0; i <= 4; ++i) spine.push_back(d.on_head({0, std::cos(0.8 + 0.04 * i), -std::sin(0.8 + 0.04 * i)}));
+  const Eigen::Vector3d out = spine.back() + 0.25 * Eigen::Vector3d(0, 0, -1);
+  for (int i = 0; i <= 12; ++i) spine.push_back(out + Eigen::Vector3d(0, -0.12 * i, -0.03 * i));
+  const Eigen::Vector3d c1 = spine[6];
+  const double r = 0.25;
+  std::vector<Eigen::Vector3d> loop, pa, pb;
+  for (int k = 0; k <= 24; ++k) {
+    const double t = 2 * kPi * k / 24;
+    loop.push_back(c1 + r * Eigen::Vector3d(std::cos(t), 0.35 * std::sin(t), 0));
+  }
+  for (int i = 6; i <= 17; ++i) {
+    const double ri = r * (1.3 - 0.05 * (i - 6));
+    pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
+    pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
+  }
+  d.add(StrokeAction::Ponytail, back,
+        {d.project(back, spine), d.project(back, loop), d.project(back, pa), d.project(back, pb)});
+}
+
 StrandDetail with_seed(decltype(StrandDetail::shape) shape, std::uint32_t seed) {
   StrandDetail d;
   d.shape = std::move(shape);
@@ -267,7 +332,7 @@ int main(int argc, char** argv) {
     for (auto [name, unknowns, prior, draw] :
          {std::tuple{"smooth", 25000.0, 0.3, &smooth}, std::tuple{"parting", 25000.0, 0.3, &parting},
           std::tuple{"ponytails", 50000.0, 0.0, &ponytails}, std::tuple{"curly_bob", 25000.0, 0.3, &curly_bob},
-          std::tuple{"wavy_long", 25000.0, 0.3, &wavy_long}}) {
+          std::tuple{"wavy_long", 25000.0, 0.3, &wavy_long}, std::tuple{"half_up", 50000.0, 0.3, &half_up}}) {
       Drawer d = start(head, unknowns, prior);
       draw(d);
       save_session(dir / (std::string(name) + ".json"), d.doc.style());

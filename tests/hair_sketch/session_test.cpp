@@ -169,7 +169,7 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
           doctest::test_suite("slow")) {
   const fs::path dir = fs::path(LAPIS_SOURCE_DIR) / "assets" / "sessions";
   int found = 0;
-  for (const char* name : {"smooth", "parting", "ponytails", "curly_bob", "wavy_long"}) {
+  for (const char* name : {"smooth", "parting", "ponytails", "curly_bob", "wavy_long", "half_up"}) {
     CAPTURE(name);
     const fs::path session = dir / (std::string(name) + ".json");
     REQUIRE(fs::exists(session));
@@ -184,15 +184,19 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
     CHECK(grown.segments() == report["segments"].get<int>());
     CHECK(r.strands.count() - grown.count() == report["roots_without_hair"].get<int>());
     CHECK(r.penetrating_segments == report["penetrating_segments"].get<int>());
-    for (const auto& p : style.primitives)  // each tail gathers a fifth of the hair or more
+    // Each of the two ponytails gathers a fifth of the hair or more; the half-up tail gathers
+    // the hair above the dividing curves, a smaller share.
+    const int share = std::string(name) == "half_up" ? 20 : 5;
+    for (const auto& p : style.primitives)
       if (const auto* tail = std::get_if<Ponytail>(&p.shape)) {
-        CHECK(strands_through_first_section(r.strands, *tail) >= r.strands.count() / 5);
+        CHECK(strands_through_first_section(r.strands, *tail) >= r.strands.count() / share);
         const auto [entered, through] = strands_entering_tail(r.strands, *tail, r.grid.spacing);
         MESSAGE(std::string(name) << ": " << through << " of " << entered
                                   << " strands entering a tail pass through C1");
-        // The bundled ponytails pass 88%, short of 90% (the synthetic tail of style_test passes
-        // all): a regression below 85% fails.
+        // ponytails.json passes 88%, short of 90%, half_up.json 95% (the synthetic tail of
+        // style_test passes all): a regression below 85% fails.
         CHECK(through >= 0.85 * entered);
+        if (std::string(name) == "half_up") CHECK(through >= 0.9 * entered);
       }
     // The export is a .hair file that reads back under strict validation, strand for strand.
     const fs::path hair = temp_path(std::string(name) + ".hair");
@@ -202,7 +206,7 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
     CHECK(back.points == grown.points);
     ++found;
   }
-  CHECK(found == 5);
+  CHECK(found == 6);
 }
 
 TEST_CASE("hair_sketch: a saved session names its head relative to itself, and finds it again") {
