@@ -172,6 +172,7 @@ void HairSketchApp::extend_stroke(viewer::Viewer& v, const Eigen::Vector2d& p) {
 }
 
 void HairSketchApp::finish_stroke(viewer::Viewer& v) {
+  const double released = v.time();  // the edit's clock starts here: interpreting the stroke counts
   drawing_ = false;
   preview_.clear();
   RecordedStroke rec;
@@ -235,7 +236,7 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     apply_stroke(document_, rec, head_, grid_);
     if (document_.style().primitives.size() > before) selected_ = static_cast<int>(before);
     if (rec.action == StrokeAction::Ponytail) warn_if_tail_too_thin(v, document_.style().primitives.back());
-    last_edit_time_ = v.time();
+    last_edit_time_ = released;
     curves_dirty_ = true;
     request_regrowth();
   } catch (const StrokeRejected& e) {
@@ -426,23 +427,26 @@ void HairSketchApp::request_regrowth() {
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
-  worker_.submit(
-      [slot, head, settings, primitives, details, revision, epoch, spare = std::move(spare_strands_)]() mutable {
-        const auto start = std::chrono::steady_clock::now();
-        if (!slot->live || slot->epoch != epoch) {
-          slot->live.reset();  // free the old solver before building the new one
-          slot->live = std::make_unique<LiveHairstyle>(*head, settings);
-          slot->epoch = epoch;
-        }
-        Regrowth r;
-        r.revision = revision;
-        r.settings_epoch = epoch;
-        r.update = slot->live->update(primitives, details, std::move(spare));
-        r.grid = slot->live->grid();
-        r.field = std::make_shared<const Field>(slot->live->field());
-        r.worker_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        return r;
-      });
+  const auto submitted = std::chrono::steady_clock::now();
+  worker_.submit([slot, head, settings, primitives, details, revision, epoch, submitted,
+                  spare = std::move(spare_strands_)]() mutable {
+    const auto start = std::chrono::steady_clock::now();
+    if (!slot->live || slot->epoch != epoch) {
+      slot->live.reset();  // free the old solver before building the new one
+      slot->live = std::make_unique<LiveHairstyle>(*head, settings);
+      slot->epoch = epoch;
+    }
+    Regrowth r;
+    r.revision = revision;
+    r.settings_epoch = epoch;
+    r.update = slot->live->update(primitives, details, std::move(spare));
+    r.grid = slot->live->grid();
+    r.field = std::make_shared<const Field>(slot->live->field());
+    r.finished = std::chrono::steady_clock::now();
+    r.worker_ms = std::chrono::duration<double, std::milli>(r.finished - start).count();
+    r.queued_ms = std::chrono::duration<double, std::milli>(start - submitted).count();
+    return r;
+  });
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
@@ -496,10 +500,17 @@ EditStages HairSketchApp::stages(const Regrowth& r, double display_start, double
   if (!u.solves.empty()) e.style_solve_ms = u.solves.front().total_ms;
   e.avoidance_ms = u.avoidance_ms;
   if (u.solves.size() > 1) e.avoidance_solve_ms = u.solves[1].total_ms;
-  for (const auto& s : u.solves) e.iterations += s.iterations;
+  for (const auto& s : u.solves) {
+    e.iterations += s.iterations;
+    e.solves.push_back(s.detail + ": update " + std::to_string(s.update_ms) + " ms, solve " +
+                       std::to_string(s.solve_ms) + " ms");
+  }
   e.growth_ms = u.growth_ms, e.detail_ms = u.detail_ms, e.occlusion_ms = occlusion_ms_;
   e.display_ms = (now - display_start) * 1000.0;
   e.waiting_ms = e.total_ms - r.worker_ms - e.display_ms;
+  e.queued_ms = r.queued_ms;
+  e.handover_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r.finished).count() - e.display_ms;
   return e;
 }
 
@@ -518,7 +529,10 @@ void HairSketchApp::benchmark_fields(nlohmann::json& j) const {
                           {"occlusion_ms", e.occlusion_ms},
                           {"display_ms", e.display_ms},
                           {"draw_ms", e.draw_ms},
-                          {"waiting_ms", e.waiting_ms}});
+                          {"waiting_ms", e.waiting_ms},
+                          {"queued_ms", e.queued_ms},
+                          {"handover_ms", e.handover_ms},
+                          {"solves", e.solves}});
   }
   j["edit_to_strands_ms"] = totals;
   if (last_) {

@@ -4,6 +4,7 @@
 // LiveHairstyle on a worker thread, and the newest strands are drawn when they are ready.
 #pragma once
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -38,19 +39,24 @@ struct Regrowth {
   Grid grid;
   std::shared_ptr<const Field> field;  // for glyphs
   double worker_ms = 0;                // the whole job on the worker
+  double queued_ms = 0;                // from the request to the job's start
+  std::chrono::steady_clock::time_point finished;
 };
 
 // Where one edit's time went, from the stroke's release to its strands on screen (--benchmark).
 struct EditStages {
-  double total_ms = 0;            // release → the frame that shows the strands drawn
-  double style_solve_ms = 0;      // the field with the style's constraints
-  double avoidance_ms = 0;        // finding scalp avoidance's constraints (§4.6)
-  double avoidance_solve_ms = 0;  // and the second solve with them
-  int iterations = 0;             // multigrid iterations of both solves (0: direct)
+  double total_ms = 0;              // release → the frame that shows the strands drawn
+  double style_solve_ms = 0;        // the field with the style's constraints
+  double avoidance_ms = 0;          // finding scalp avoidance's constraints (§4.6)
+  double avoidance_solve_ms = 0;    // and the second solve with them
+  int iterations = 0;               // multigrid iterations of both solves (0: direct)
+  std::vector<std::string> solves;  // each solve's report: what ran, its update and solve times
   double growth_ms = 0, detail_ms = 0, occlusion_ms = 0;
-  double display_ms = 0;  // the strands decimated, coloured and lit (occlusion_ms of it) for the renderer
-  double draw_ms = 0;     // the rest of the frame that drew them first (upload and drawing)
-  double waiting_ms = 0;  // the rest: queued behind an older job, the frame that hands over
+  double display_ms = 0;   // the strands decimated, coloured and lit (occlusion_ms of it) for the renderer
+  double draw_ms = 0;      // the rest of the frame that drew them first (upload and drawing)
+  double waiting_ms = 0;   // the rest: queued behind an older job, the frame that hands over
+  double queued_ms = 0;    // of it: from the request to the job's start
+  double handover_ms = 0;  // of it: from the job's end to the frame that takes its strands
 };
 
 // How strands are drawn: ribbons (tapered, anti-aliased, self-shadowed: the look of the

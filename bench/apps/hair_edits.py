@@ -27,7 +27,7 @@ import tempfile
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 WIDTH, HEIGHT = 900, 700
 STAGES = ["style_solve_ms", "avoidance_ms", "avoidance_solve_ms", "growth_ms", "detail_ms", "occlusion_ms", "display_ms", "draw_ms",
-          "waiting_ms", "total_ms"]
+          "waiting_ms", "queued_ms", "handover_ms", "total_ms"]
 
 
 def events(strokes):

@@ -94,10 +94,14 @@ class GlRenderer final : public Renderer {
     stats_ = {};
     pixel_scale_ = 1.0f;
     draw_scene(scene, camera, width, height);
-    // Stored once the scene holds still for a second frame: storing resolves the MSAA buffer,
-    // which a frame of an orbit (a new picture every frame) would pay for nothing.
-    if (use_cache_ && signature == last_signature_) cache_.store(signature, width, height);
+    // Stored unless the camera moves: storing resolves the MSAA buffer, which a frame of an
+    // orbit (a new picture every frame) would pay for nothing. With the camera still, the
+    // frames that follow a change (the few drawn after any input, those while a worker runs)
+    // then cost a copy, not another full drawing, and a worker's result does not wait for one.
+    const std::uint64_t view = camera_signature(camera, width, height);
+    if (use_cache_ && (signature == last_signature_ || view == last_view_)) cache_.store(signature, width, height);
     last_signature_ = signature;
+    last_view_ = view;
   }
 
  private:
@@ -293,7 +297,7 @@ class GlRenderer final : public Renderer {
   float pixel_scale_ = 1.0f;  // widths and sizes in pixels are multiplied by it (supersampled pictures)
   std::unordered_map<std::string, GpuItem> meshes_, lines_, points_;
   FrameCache cache_;
-  std::uint64_t last_signature_ = 0;
+  std::uint64_t last_signature_ = 0, last_view_ = 0;
   RenderStats stats_;
 };
 

@@ -28,6 +28,13 @@ struct Hash {
 
 }  // namespace
 
+std::uint64_t camera_signature(const geometry::CameraMatrices& camera, int width, int height) {
+  Hash h;
+  h.add(width), h.add(height);
+  h.add_matrix(camera.view), h.add_matrix(camera.projection);
+  return h.h;
+}
+
 std::uint64_t scene_signature(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height) {
   Hash h;
   h.add(width), h.add(height);

@@ -86,5 +86,7 @@ struct Scene {
 // size, shading, drawing on top), the background, the camera and the framebuffer's size. Equal
 // signatures mean the same picture, so a renderer may reuse the last one (frame_cache.h).
 std::uint64_t scene_signature(const Scene& scene, const geometry::CameraMatrices& camera, int width, int height);
+// The part of it that is the view alone: the camera and the framebuffer's size.
+std::uint64_t camera_signature(const geometry::CameraMatrices& camera, int width, int height);
 
 }  // namespace lapis::viewer
