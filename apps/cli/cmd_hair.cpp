@@ -24,14 +24,15 @@ using namespace lapis::hair_field;
 
 constexpr const char* kUsage =
     "usage: lapis hair --session FILE.json [--head MESH] [--grid-unknowns N] [--roots N]\n"
-    "                  [--field-method auto|thesis|refactorize|multigrid]\n"
+    "                  [--field-method auto|thesis|refactorize|multigrid] [--gravity-prior S]\n"
     "                  --out-hair OUT.hair [--out-obj OUT.obj] [--out-field OUT.vtk] [--report OUT.json]\n"
     "  Replays a hairstyle session: its recorded strokes (if any) are interpreted again,\n"
     "  otherwise its stored primitives are used; the vector field is solved, strands grow\n"
     "  from the scalp and are written in Cem Yuksel's .hair format (and as OBJ polylines).\n"
     "  --head replaces the session's head mesh (its scalp is then the default cap);\n"
     "  --grid-unknowns, --roots and --field-method override the session's settings (auto picks\n"
-    "  by the grid's size; thesis: update/downdate of the Cholesky factor, 4.4.2). The report (printed and\n"
+    "  by the grid's size; thesis: update/downdate of the Cholesky factor, 4.4.2). --gravity-prior S\n"
+    "  lets hair fall where no curve steers it (0: the thesis' field). The report (printed and\n"
     "  saved) holds counts, timings and the field solver's decisions.\n";
 
 // The session format's names (session.h).
@@ -50,15 +51,18 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 int run(const std::vector<std::string>& argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const Args args(argv);
-  args.allow_only({"--session", "--head", "--grid-unknowns", "--roots", "--field-method", "--out-hair", "--out-obj",
-                   "--out-field", "--report"});
+  args.allow_only({"--session", "--head", "--grid-unknowns", "--roots", "--field-method", "--gravity-prior",
+                   "--out-hair", "--out-obj", "--out-field", "--report"});
   const std::filesystem::path session_path = args.get("--session");
   const std::string out_hair = args.get("--out-hair");
   // Flags are checked before any file is read.
   const std::optional<FieldMethod> method =
       args.has("--field-method") ? std::optional(field_method_named(args.get("--field-method"))) : std::nullopt;
+  const std::optional<double> prior =
+      args.has("--gravity-prior") ? std::optional(args.get_double("--gravity-prior", 0, 0, 10)) : std::nullopt;
   Hairstyle session = load_session(session_path);
   if (method) session.settings.field_method = *method;
+  if (prior) session.settings.gravity_prior.strength = *prior;
   if (args.has("--grid-unknowns"))
     session.settings.grid.target_unknowns = static_cast<double>(args.get_int("--grid-unknowns", 0, 8, 100'000'000));
   if (args.has("--roots")) session.settings.roots.count = static_cast<int>(args.get_int("--roots", 0, 0, 10'000'000));

@@ -70,6 +70,22 @@ struct Drawer {
     const Eigen::Vector3d eye(5 * std::sin(phi), 5 * elevation, 5 * std::cos(phi));
     return look_at(eye, {0, 0.2, 0});
   }
+  // A ponytail drawn from camera c along a 17-point spine: the cross section round its seventh
+  // point (drawn with radius 0.25, read as 0.155) and two profiles that narrow down the tail.
+  void add_ponytail(const CameraMatrices& c, const std::vector<Eigen::Vector3d>& spine) {
+    constexpr double kRadius = 0.25, kPi = std::numbers::pi;
+    std::vector<Eigen::Vector3d> loop, pa, pb;
+    for (int k = 0; k <= 24; ++k) {
+      const double t = 2 * kPi * k / 24;
+      loop.push_back(spine[6] + kRadius * Eigen::Vector3d(std::cos(t), 0.35 * std::sin(t), 0));
+    }
+    for (int i = 6; i <= 17; ++i) {
+      const double ri = kRadius * (1.3 - 0.05 * (i - 6));
+      pa.push_back(spine[static_cast<size_t>(i)] + Eigen::Vector3d(ri, 0, 0));
+      pb.push_back(spine[static_cast<size_t>(i)] - Eigen::Vector3d(ri, 0, 0));
+    }
+    add(StrokeAction::Ponytail, c, {project(c, spine), project(c, loop), project(c, pa), project(c, pb)});
+  }
   void add(StrokeAction a, const CameraMatrices& c, std::vector<Stroke> strokes, int target = -1) {
     RecordedStroke r;
     r.action = a;
@@ -184,20 +200,7 @@ void ponytails(Drawer& d) {
     }
     const Eigen::Vector3d out = spine.back() + 0.25 * Eigen::Vector3d(side * 0.8, 0, -0.6);
     for (int i = 0; i <= 12; ++i) spine.push_back(out + Eigen::Vector3d(side * 0.05 * i, -0.12 * i, -0.02 * i));
-    const Eigen::Vector3d c1 = spine[6];
-    const double r = 0.25;  // drawn; read as a 0.155 cross-section radius
-    std::vector<Eigen::Vector3d> loop, pa, pb;
-    for (int k = 0; k <= 24; ++k) {
-      const double t = 2 * kPi * k / 24;
-      loop.push_back(c1 + r * Eigen::Vector3d(std::cos(t), 0.35 * std::sin(t), 0));
-    }
-    for (int i = 6; i <= 17; ++i) {
-      const double ri = r * (1.3 - 0.05 * (i - 6));
-      pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
-      pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
-    }
-    d.add(StrokeAction::Ponytail, back,
-          {d.project(back, spine), d.project(back, loop), d.project(back, pa), d.project(back, pb)});
+    d.add_ponytail(back, spine);
   }
 }
 
@@ -205,25 +208,20 @@ void ponytails(Drawer& d) {
 // half-up style: four dividing curves run round the head above the ears and across the back,
 // the hair above them is drawn back into one ponytail behind the crown, the hair below falls.
 void half_up(Drawer& d) {
-  // The dividing curves, each drawn from the side it runs along.
-  for (int side : {-1, 1}) {
-    const double p = side * 0.55 * kPi;
+  // The dividing curves, each drawn from the side it runs along: from azimuth phi0 to phi1
+  // (in half turns) and polar angle a0 to a1, on the side's half of the head.
+  const auto dividing = [&](int side, double view, double phi0, double phi1, double a0, double a1) {
     std::vector<Eigen::Vector3d> line;
     for (int i = 0; i <= 16; ++i) {
-      const double t = static_cast<double>(i) / 16, phi = side * (0.22 + 0.5 * t) * kPi, a = 1.05 + 0.05 * t;
+      const double t = static_cast<double>(i) / 16, phi = side * (phi0 + (phi1 - phi0) * t) * kPi;
+      const double a = a0 + (a1 - a0) * t;
       line.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
     }
-    d.add(StrokeAction::DividingCurve, d.facing(p), {d.project(d.facing(p), line)});
-  }
-  for (int side : {-1, 1}) {
-    const double p = side * 0.88 * kPi;
-    std::vector<Eigen::Vector3d> line;
-    for (int i = 0; i <= 16; ++i) {
-      const double t = static_cast<double>(i) / 16, phi = side * (0.74 + 0.24 * t) * kPi, a = 1.1 + 0.02 * t;
-      line.push_back(d.on_head({std::sin(a) * std::sin(phi), std::cos(a), std::sin(a) * std::cos(phi)}));
-    }
-    d.add(StrokeAction::DividingCurve, d.facing(p), {d.project(d.facing(p), line)});
-  }
+    const CameraMatrices c = d.facing(side * view * kPi);
+    d.add(StrokeAction::DividingCurve, c, {d.project(c, line)});
+  };
+  for (int side : {-1, 1}) dividing(side, 0.55, 0.22, 0.72, 1.05, 1.1);  // above the ears
+  for (int side : {-1, 1}) dividing(side, 0.88, 0.74, 0.98, 1.1, 1.12);  // across the back
   // Above them: four curves from the front and the temples back to the tail.
   for (int side : {-1, 1}) {
     const double p = side * 0.45 * kPi;
@@ -249,20 +247,7 @@ void half_up(Drawer& d) {
   for (int i = 0; i <= 4; ++i) spine.push_back(d.on_head({0, std::cos(0.8 + 0.04 * i), -std::sin(0.8 + 0.04 * i)}));
   const Eigen::Vector3d out = spine.back() + 0.25 * Eigen::Vector3d(0, 0, -1);
   for (int i = 0; i <= 12; ++i) spine.push_back(out + Eigen::Vector3d(0, -0.12 * i, -0.03 * i));
-  const Eigen::Vector3d c1 = spine[6];
-  const double r = 0.25;
-  std::vector<Eigen::Vector3d> loop, pa, pb;
-  for (int k = 0; k <= 24; ++k) {
-    const double t = 2 * kPi * k / 24;
-    loop.push_back(c1 + r * Eigen::Vector3d(std::cos(t), 0.35 * std::sin(t), 0));
-  }
-  for (int i = 6; i <= 17; ++i) {
-    const double ri = r * (1.3 - 0.05 * (i - 6));
-    pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
-    pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
-  }
-  d.add(StrokeAction::Ponytail, back,
-        {d.project(back, spine), d.project(back, loop), d.project(back, pa), d.project(back, pb)});
+  d.add_ponytail(back, spine);
 }
 
 StrandDetail with_seed(decltype(StrandDetail::shape) shape, std::uint32_t seed) {

@@ -135,6 +135,14 @@ TEST_CASE("cli: lapis hair replays a bundled session into .hair, OBJ and a repor
   const auto m = read_cli_json(d / "m.json");
   for (const auto& s : m["solves"]) CHECK(s["method"] == "thesis-updown");
   for (const auto& s : report["solves"]) CHECK(s["method"] == "multigrid");
+
+  // --gravity-prior 0 turns the session's prior off: the thesis' field, other strands.
+  const Result thesis_field =
+      lapis_cli("hair --session " + (sessions / "parting.json").string() + " --gravity-prior 0 --out-hair " +
+                (d / "t.hair").string() + " --report " + (d / "t.json").string());
+  REQUIRE_MESSAGE(thesis_field.status == 0, thesis_field.output);
+  CHECK(settings["gravity_prior"].get<double>() > 0);
+  CHECK(read_cli_json(d / "t.json")["segments"] != report["segments"]);
 }
 
 TEST_CASE("cli: lapis hair fails with one line naming the cause") {
@@ -149,6 +157,9 @@ TEST_CASE("cli: lapis hair fails with one line naming the cause") {
   CHECK(method.status == 2);
   CHECK(method.output.find("--field-method must be auto, thesis, refactorize or multigrid, not 'fastest'") !=
         std::string::npos);
+  const Result prior = lapis_cli("hair --session x.json --gravity-prior -1 --out-hair /tmp/x.hair");
+  CHECK(prior.status == 2);
+  CHECK(prior.output.find("--gravity-prior") != std::string::npos);
   const Result help = lapis_cli("hair --help");
   CHECK(help.status == 0);
   CHECK(help.output.find("usage: lapis hair --session FILE.json") == 0);
