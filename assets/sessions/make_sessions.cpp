@@ -70,6 +70,13 @@ struct Drawer {
     const Eigen::Vector3d eye(5 * std::sin(phi), 5 * elevation, 5 * std::cos(phi));
     return look_at(eye, {0, 0.2, 0});
   }
+  // A stream curve drawn from the camera facing azimuth `view`: swept_aside / over_head.
+  void sweep(double view, double a0, double phi0, double a1, double phi1, double hang) {
+    add(StrokeAction::StreamCurve, facing(view), {swept_aside(facing(view), a0, phi0, a1, phi1, hang)});
+  }
+  void fall(double phi, double a0, double a1, double hang) {
+    add(StrokeAction::StreamCurve, facing(phi), {over_head(facing(phi), phi, a0, a1, hang)});
+  }
   // A ponytail drawn from camera c along a 17-point spine: the cross section round its seventh
   // point (drawn with radius 0.25, read as 0.155) and two profiles that narrow down the tail.
   void add_ponytail(const CameraMatrices& c, const std::vector<Eigen::Vector3d>& spine) {
@@ -110,25 +117,27 @@ Drawer start(const Head& head, double unknowns, double gravity_prior) {
 
 constexpr double kPi = std::numbers::pi;
 
+// The front hair on one side swept off the face to behind the ear: from the front of the
+// scalp, and from the hairline itself (over the brow's relief, hair there would fall on the
+// face). At §4.6's 25K unknowns a curve steers fewer of the roots around it than at 8K, so two
+// sweep the hairline, between the temple and the forehead.
+void sweep_fringe(Drawer& d, int side) {
+  const double p = side * 0.3 * kPi;
+  d.sweep(p, 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90);
+  d.sweep(p, 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90);
+  d.sweep(p, 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90);
+}
+
 // Fig. 4.6: a smooth style from ten stream curves, crown to shoulders all around but the face.
 void smooth(Drawer& d) {
   for (int k = 0; k < 10; ++k) {
     const double phi = 0.35 * kPi + 1.3 * kPi * k / 9;
-    d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.25, 1.45, 120)});
+    d.fall(phi, 0.25, 1.45, 120);
   }
-  for (int side : {-1, 1}) {  // the fringe swept to the sides, off the face
-    const double p = side * 0.3 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
-    // And from the hairline itself: over the brow's relief, hair there would fall on the face.
-    // At §4.6's 25K unknowns a curve steers fewer of the roots around it than at 8K, so two
-    // more sweep the hairline between the temple and the middle of the forehead.
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.62, side * 0.01 * kPi, 1.3, side * 0.52 * kPi, 90)});
+  for (int side : {-1, 1}) {
+    sweep_fringe(d, side);
+    // One more from the middle of the forehead.
+    d.sweep(side * 0.3 * kPi, 0.62, side * 0.01 * kPi, 1.3, side * 0.52 * kPi, 90);
   }
 }
 
@@ -142,22 +151,9 @@ void parting(Drawer& d) {
   }
   d.add(StrokeAction::DividingCurve, top, {d.project(top, line)});
   for (int side : {-1, 1})
-    for (double phi : {0.25 * kPi, 0.5 * kPi, 0.75 * kPi}) {
-      const double p = side * phi;
-      d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 0.3, 1.5, 110)});
-    }
-  d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 0.3, 1.5, 140)});
-  // The front hair swept off the face towards each side, behind the ears, from the hairline
-  // too (as in the smooth style).
-  for (int side : {-1, 1}) {
-    const double p = side * 0.3 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.25, side * 0.55 * kPi, 90)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.8, side * 0.04 * kPi, 1.35, side * 0.5 * kPi, 90)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
-  }
+    for (double phi : {0.25 * kPi, 0.5 * kPi, 0.75 * kPi}) d.fall(side * phi, 0.3, 1.5, 110);
+  d.fall(kPi, 0.3, 1.5, 140);
+  for (int side : {-1, 1}) sweep_fringe(d, side);
   // Tilt the parting's start: hair on the right side sweeps slightly back.
   const auto& dc = std::get<DividingCurve>(d.doc.style().primitives[0].shape);
   const Eigen::Vector3d foot = dc.points[2], x0 = dividing_side_axis(dc, d.head, 0.1);
@@ -173,21 +169,16 @@ void parting(Drawer& d) {
 // over the head and shoulders' box) must stay narrower than the cross-section (r 0.155), or no
 // strand passes through C1 (a 12K grid caught none; at 30K the cell is 0.163).
 void ponytails(Drawer& d) {
-  for (double phi : {0.6 * kPi, -0.6 * kPi})
-    d.add(StrokeAction::StreamCurve, d.facing(phi), {d.over_head(d.facing(phi), phi, 0.2, 1.0, 30)});
+  for (double phi : {0.6 * kPi, -0.6 * kPi}) d.fall(phi, 0.2, 1.0, 30);
   for (int side : {-1, 1}) {  // the front and top hair swept back over the temples to the tails
     const double p = side * 0.35 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.45, side * 0.06 * kPi, 1.1, side * 0.72 * kPi, 20)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.22, side * 0.12 * kPi, 0.95, side * 0.78 * kPi, 20)});
+    d.sweep(p, 0.45, side * 0.06 * kPi, 1.1, side * 0.72 * kPi, 20);
+    d.sweep(p, 0.22, side * 0.12 * kPi, 0.95, side * 0.78 * kPi, 20);
   }
   for (int side : {-1, 1}) {  // the back hair: from the crown and from the nape to the tails
     const double p = side * 0.85 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.3, side * 0.97 * kPi, 0.9, side * 0.74 * kPi, 0)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 1.75, side * 0.97 * kPi, 1.1, side * 0.74 * kPi, 0)});
+    d.sweep(p, 0.3, side * 0.97 * kPi, 0.9, side * 0.74 * kPi, 0);
+    d.sweep(p, 1.75, side * 0.97 * kPi, 1.1, side * 0.74 * kPi, 0);
   }
   const CameraMatrices back = look_at({0, 0.8, -5}, {0, 0.2, 0});
   for (int side : {-1, 1}) {
@@ -225,22 +216,19 @@ void half_up(Drawer& d) {
   // Above them: four curves from the front and the temples back to the tail.
   for (int side : {-1, 1}) {
     const double p = side * 0.45 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.5, side * 0.08 * kPi, 0.75, side * 0.9 * kPi, 0)});
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.85, side * 0.25 * kPi, 0.85, side * 0.85 * kPi, 0)});
+    d.sweep(p, 0.5, side * 0.08 * kPi, 0.75, side * 0.9 * kPi, 0);
+    d.sweep(p, 0.85, side * 0.25 * kPi, 0.85, side * 0.85 * kPi, 0);
   }
   // Below them: the sides and the back fall, the hairline is swept off the face.
   for (int side : {-1, 1}) {
     for (double phi : {0.5 * kPi, 0.8 * kPi}) {
       const double p = side * phi;
-      d.add(StrokeAction::StreamCurve, d.facing(p), {d.over_head(d.facing(p), p, 1.25, 1.6, 140)});
+      d.fall(p, 1.25, 1.6, 140);
     }
     const double p = side * 0.3 * kPi;
-    d.add(StrokeAction::StreamCurve, d.facing(p),
-          {d.swept_aside(d.facing(p), 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90)});
+    d.sweep(p, 0.95, side * 0.12 * kPi, 1.45, side * 0.5 * kPi, 90);
   }
-  d.add(StrokeAction::StreamCurve, d.facing(kPi), {d.over_head(d.facing(kPi), kPi, 1.3, 1.6, 140)});
+  d.fall(kPi, 1.3, 1.6, 140);
   // The ponytail, from behind: its spine leaves the scalp behind the crown and falls.
   const CameraMatrices back = look_at({0, 0.8, -5}, {0, 0.2, 0});
   std::vector<Eigen::Vector3d> spine;
