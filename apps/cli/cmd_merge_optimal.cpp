@@ -6,6 +6,7 @@
 
 #include "cli_io.h"
 #include "lapis/core/checked_number.h"
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/mesh_merge/optimal_boundary.h"
 #include "lapis/mesh_merge/regions_file.h"
 #include "merge_report.h"
@@ -55,22 +56,24 @@ nlohmann::json boundary_json(const mesh_merge::OptimalBoundary& b) {
             {"iterate", b.timings.iterate_ms}}}};
 }
 
-nlohmann::json merge_json(const geometry::TriMesh& source, const geometry::TriMesh& target,
-                          const mesh_merge::MergeResult& r) {
+nlohmann::json merge_json(const mesh_merge::BoundaryOptimizer& optimizer, const mesh_merge::MergeResult& r) {
+  const geometry::TriMesh &source = optimizer.source(), &target = optimizer.target();
   return {{"vertices", r.mesh.num_vertices()},
           {"faces", r.mesh.num_faces()},
           {"source_part_vertices", r.roi_vertices},
           {"boundary_refine_levels", r.refine_levels},
           {"timings_ms", {{"setup", r.timings.setup_ms}, {"solve", r.timings.solve_ms}, {"total", r.timings.total_ms}}},
           {"seam", seam_json(mesh_merge::seam_quality(target, r))},
-          {"detail", detail_json(mesh_merge::detail_preservation(source, r))}};
+          {"detail", detail_json(mesh_merge::detail_preservation(source, r))},
+          {"feature_distortion",
+           mesh_merge::feature_distortion(source, r, geometry::vertices_of_faces(source, optimizer.feature_faces()))}};
 }
 
 }  // namespace
 
 int run_optimal_merge(const Args& args) {
   args.allow_only({"--source", "--target", "--regions", "--out", "--mode", "--placement", "--max-iterations",
-                   "--smooth", "--report"});
+                   "--smooth", "--feature", "--report"});
   const std::string out = args.get("--out");
   const geometry::TriMesh source = read_valid_mesh(args.get("--source"));
   const geometry::TriMesh target = read_valid_mesh(args.get("--target"));
@@ -79,6 +82,9 @@ int run_optimal_merge(const Args& args) {
   options.max_iterations = static_cast<int>(args.get_int("--max-iterations", options.max_iterations, 0, 100000));
   mesh_merge::MergeOptions merge;
   merge.smooth_iterations = static_cast<int>(args.get_int("--smooth", merge.smooth_iterations, 0, 1000));
+  const std::string feature = args.get("--feature", "held");
+  if (feature != "held" && feature != "free") throw UsageError("--feature must be held or free, got '" + feature + "'");
+  merge.hold_feature = feature == "held";
 
   const mesh_merge::BoundaryOptimizer optimizer(source, target, regions, options);
   const mesh_merge::Placement2D placement =
@@ -94,11 +100,12 @@ int run_optimal_merge(const Args& args) {
                         {"degrees", placement.angle * 180 / std::numbers::pi},
                         {"u", placement.offset.x()},
                         {"v", placement.offset.y()}}},
+                      {"feature", feature},
                       {"fill_is_fan", optimizer.fill_is_fan()},
                       {"cut_vertices", optimizer.cut().size()},
                       {"boundary", boundary_json(b)},
-                      {"optimal_merge", merge_json(source, target, optimal)},
-                      {"user_boundary_merge", merge_json(source, target, user)}};
+                      {"optimal_merge", merge_json(optimizer, optimal)},
+                      {"user_boundary_merge", merge_json(optimizer, user)}};
   require_finite_numbers(j, "report");  // before the mesh is written: all outputs or none
   core::AtomicFileGroup outputs;
   geometry::write_mesh(out, optimal.mesh);

@@ -8,6 +8,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/mesh_merge/merge.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "lapis/mesh_merge/optimal_boundary.h"
@@ -119,7 +120,7 @@ py::tuple merge_loops(const py::handle& sV, const py::handle& sF, const py::hand
 }
 
 py::tuple merge_optimal(const py::handle& sV, const py::handle& sF, const py::handle& tV, const py::handle& tF,
-                        const py::dict& regions, int max_iterations, int smooth_iterations) {
+                        const py::dict& regions, int max_iterations, int smooth_iterations, bool hold_feature) {
   const TriMesh source{to_vertices(sV, "source_V"), to_faces(sF, "source_F")};
   const TriMesh target{to_vertices(tV, "target_V"), to_faces(tF, "target_F")};
   BoundaryRegions b;
@@ -134,6 +135,7 @@ py::tuple merge_optimal(const py::handle& sV, const py::handle& sF, const py::ha
   MergeOptions merge_options;
   merge_options.mode = MergeMode::OptimalBoundary;
   merge_options.smooth_iterations = smooth_iterations;
+  merge_options.hold_feature = hold_feature;
   MergeResult r;
   OptimalBoundary boundary;
   {
@@ -142,8 +144,10 @@ py::tuple merge_optimal(const py::handle& sV, const py::handle& sF, const py::ha
     boundary = optimizer.optimize(optimizer.suggested_placement());
     r = optimizer.merge(boundary, merge_options);
   }
+  const double feature = feature_distortion(source, r, geometry::vertices_of_faces(source, b.feature_faces));
   py::tuple out = result(source, target, std::move(r));
   py::dict rep = out[2];
+  rep["feature_distortion"] = feature;
   rep["boundary"] = to_numpy(std::move(boundary.loop));
   rep["energy"] = boundary.energy, rep["user_energy"] = boundary.user_energy;
   rep["iterations"] = boundary.history.size(), rep["stopped_by"] = boundary.stopped_by;
@@ -174,12 +178,14 @@ stays; configuration_dependent: §3.3.2's boundary conditions). features (indepe
 for a bad pair, mode or option.)");
   m.def("merge_optimal", &merge_optimal, "source_V"_a, "source_F"_a, "target_V"_a, "target_F"_a, "regions"_a,
         "max_iterations"_a = OptimalBoundaryOptions{}.max_iterations,
-        "smooth_iterations"_a = MergeOptions{}.smooth_iterations,
+        "smooth_iterations"_a = MergeOptions{}.smooth_iterations, "hold_feature"_a = MergeOptions{}.hold_feature,
         R"(Merging along the optimal boundary (thesis §3.4) of a band around a feature, from the suggested
 placement. regions: a dict of face index arrays 'roi_faces' (Ω0, absent: every source face),
 'feature_faces' (Ωf) and 'target_faces' (Ω1, absent: every target face), as read_regions()
-gives. Returns (V, F, report) as merge() does, the report with the boundary loop, its energy,
-the user boundary's energy and how the iteration stopped.)");
+gives. hold_feature: Ωf moves by one similarity (§3.5's shared gradient); False: it bends with
+the rest, as §3.4.1 merges. Returns (V, F, report) as merge() does, the report with the boundary
+loop, its energy, the user boundary's energy, how the iteration stopped and feature_distortion
+(Ωf's largest distance from a similar copy of itself, over its size).)");
   m.def(
       "read_pairs", [](const std::filesystem::path& path) { return pairs_list(read_pairs_file(path)); }, "path"_a,
       "A pairs file of `lapis merge` as merge()'s pairs: a list of (k, 2) int32 key arrays.");

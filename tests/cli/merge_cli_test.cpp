@@ -180,6 +180,24 @@ TEST_CASE("cli: lapis merge --mode optimal finds a cheaper boundary, merges alon
   CHECK(c["boundary"]["stopped_by"] == "iteration cap");
   CHECK(c["boundary"]["iterations"].size() == 2);
 
+  // The feature held (default) keeps its shape along either boundary; --feature free lets it
+  // bend as §3.4.1 merges, which the user's boundary through the ripples does.
+  CHECK(j["feature"] == "held");
+  const Run free =
+      lapis_merge(common + " --feature free --out " + (d / "f.obj").string() + " --report " + (d / "f.json").string());
+  REQUIRE_MESSAGE(free.status == 0, free.output);
+  std::ifstream free_in(d / "f.json");
+  const nlohmann::json f = nlohmann::json::parse(free_in);
+  CHECK(f["feature"] == "free");
+  const double held_user = j["user_boundary_merge"]["feature_distortion"].get<double>(),
+               free_user = f["user_boundary_merge"]["feature_distortion"].get<double>();
+  MESSAGE("feature distortion along the user's boundary: " << held_user << " held, " << free_user << " free");
+  CHECK(held_user < 0.2 * free_user);
+  CHECK(j["optimal_merge"]["feature_distortion"].get<double>() < 0.2 * free_user);
+  const Run wrong = lapis_merge(common + " --feature fixed --out " + (d / "w.obj").string());
+  CHECK(wrong.status == 2);
+  CHECK(wrong.output.find("--feature must be held or free") != std::string::npos);
+
   // A given placement that leaves the plate is refused, and nothing is written.
   const Run off = lapis_merge(common + " --placement 1,0,50,0 --out " + (d / "off.obj").string());
   CHECK(off.status == 1);

@@ -6,24 +6,10 @@
 
 #include <Eigen/Geometry>
 
-#include "lapis/geometry/polar.h"
 #include "merge_fixtures.h"
 
 namespace lapis::mesh_merge {
 namespace {
-
-// Largest distance of the merged feature from the best similar copy of the source feature,
-// over the feature's diameter.
-double feature_distortion(const TriMesh& source, const MergeResult& r, const std::vector<int>& feature) {
-  Eigen::MatrixX3d from(static_cast<Eigen::Index>(feature.size()), 3), to(from.rows(), 3);
-  for (Eigen::Index i = 0; i < from.rows(); ++i)
-    from.row(i) = source.V.row(feature[i]), to.row(i) = r.mesh.V.row(r.source_map[feature[i]]);
-  const geometry::Similarity3 T = geometry::fit_similarity(from, to);
-  double worst = 0;
-  for (Eigen::Index i = 0; i < from.rows(); ++i)
-    worst = std::max(worst, (T(from.row(i).transpose()) - to.row(i).transpose()).norm());
-  return worst / (to.colwise().maxCoeff() - to.colwise().minCoeff()).norm();
-}
 
 struct EllipseCase {
   TriMesh source = test::dome(4), target = test::body();

@@ -1,5 +1,8 @@
 #include <doctest/doctest.h>
 
+#include <Eigen/Geometry>
+
+#include "lapis/geometry/polar.h"
 #include "lapis/mesh_merge/metrics.h"
 #include "merge_fixtures.h"
 
@@ -60,4 +63,37 @@ TEST_CASE("mesh_merge: seam metrics see a hole, a moved target vertex and distor
   const DetailPreservation d1 = detail_preservation(src, bumped);
   CHECK(d1.laplacian_residual > 2 * d0.laplacian_residual);
   CHECK(d1.mean_distance > d0.mean_distance);
+}
+
+TEST_CASE("mesh_merge: feature distortion is zero for a similar copy and measures a moved vertex") {
+  const TriMesh src = test::dome();
+  geometry::Similarity3 G;
+  G.s = 2.5, G.R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  G.t = Eigen::Vector3d(4, -1, 2);
+  MergeResult r;
+  r.mesh = src;
+  for (int v = 0; v < src.num_vertices(); ++v) r.mesh.V.row(v) = G(src.V.row(v).transpose()).transpose();
+  r.source_map.resize(static_cast<size_t>(src.num_vertices()));
+  std::vector<int> part;
+  for (int v = 0; v < src.num_vertices(); ++v) {
+    r.source_map[v] = v;
+    if (src.V(v, 2) > 0.5) part.push_back(v);
+  }
+  REQUIRE(part.size() > 20);
+  CHECK(feature_distortion(src, r, part) < 1e-12);
+  // One vertex pushed off the similar copy by a tenth of the part's diagonal: the fit spreads
+  // some of it over the others, so the largest distance stays between half and all of it.
+  const double diagonal = bbox_diagonal(r.mesh.V(part, Eigen::all));
+  r.mesh.V.row(part[part.size() / 2]) += Eigen::RowVector3d(0, 0, 0.1 * diagonal);
+  const double moved = feature_distortion(src, r, part);
+  CHECK(moved > 0.05);
+  CHECK(moved < 0.11);
+  CHECK_THROWS_WITH_AS(feature_distortion(src, r, {part[0], part[1]}),
+                       doctest::Contains("mesh_merge::feature_distortion(): a part needs at least 3 vertices"),
+                       InvalidArgument);
+  r.source_map[part[3]] = -1;
+  CHECK_THROWS_WITH_AS(
+      feature_distortion(src, r, part),
+      doctest::Contains(("vertex " + std::to_string(part[3]) + " is not a merged source vertex").c_str()),
+      InvalidArgument);
 }

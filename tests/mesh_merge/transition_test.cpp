@@ -93,43 +93,55 @@ TEST_CASE("mesh_merge: a transition band is an annulus parameterized one-to-one 
   }
 }
 
+// On both boundary conditions: §3.3.1's (the source scaled to the target's loop) and §3.3.2's
+// (the source as placed, slightly too small on top of the body).
 TEST_CASE("mesh_merge: transition overlap points map a band onto the other at (u, 1 - v)") {
-  const TriMesh src = test::dome(4), tgt = test::body();
-  MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt), transition_options());
-  // Through the public pieces: the source band's loop lands on the target band's rim.
-  const geometry::Connectivity sc(r.source_rest), tc(tgt);
-  const auto corr = correspond_boundaries(r.source_rest, sc, tgt, tc, test::dome_on_body(src, tgt));
-  const std::vector<double> tu = arc_length_params(tgt.V, corr[0].target_loop);
-  const TransitionBand t = transition_band(tgt, tc, corr[0].target_loop, tu, 0.35, true, "target");
-  const TransitionBand s =
-      transition_band(r.source_rest, sc, corr[0].source_loop, arc_length_params(r.source_rest.V, corr[0].source_loop),
-                      0.35, false, "source");
-  const std::vector<BandPoint> on_t = overlap_points(s, t);
-  REQUIRE(on_t.size() == s.vertices.size());
-  std::vector<char> rim(static_cast<size_t>(tgt.num_vertices()), 0);
-  for (int v : t.rim) rim[v] = 1;
-  for (size_t k = 0; k < s.vertices.size(); ++k) {
-    double sum = 0;
-    for (int j = 0; j < 3; ++j) {
-      sum += on_t[k].weights[j];
-      CHECK(on_t[k].weights[j] >= 0);
+  for (const bool dependent : {false, true}) {
+    CAPTURE(dependent);
+    TriMesh src = test::dome(4);
+    if (dependent) {
+      src.V *= 0.9;
+      src.V.col(2).array() += 1.85;
     }
-    CHECK(sum == doctest::Approx(1.0));
-    // Mapping back through the weights reproduces (u, 1 − v).
-    // (A vertex on t's cut has two parameter points; take the one on p's side of the square.)
-    const Eigen::Vector2d p = s.at(s.vertices[k]);
-    Eigen::Vector2d q = Eigen::Vector2d::Zero();
-    for (int j = 0; j < 3; ++j) {
-      Eigen::Vector2d c = t.at(on_t[k].vertices[j]);
-      for (size_t i = 0; i < t.param_vertex.size(); ++i)
-        if (t.param_vertex[i] == on_t[k].vertices[j] && std::abs(t.uv(i, 0) - p.x()) < std::abs(c.x() - p.x()))
-          c = t.uv.row(i).transpose();
-      q += on_t[k].weights[j] * c;
+    const TriMesh tgt = test::body();
+    MergeOptions o = transition_options();
+    o.transition.configuration_dependent = dependent;
+    MergeResult r = merge(src, tgt, test::dome_on_body(src, tgt), o);
+    // Through the public pieces: the source band's loop lands on the target band's rim.
+    const geometry::Connectivity sc(r.source_rest), tc(tgt);
+    const auto corr = correspond_boundaries(r.source_rest, sc, tgt, tc, test::dome_on_body(src, tgt));
+    const std::vector<double> tu = arc_length_params(tgt.V, corr[0].target_loop);
+    const TransitionBand t = transition_band(tgt, tc, corr[0].target_loop, tu, 0.35, true, "target");
+    const TransitionBand s =
+        transition_band(r.source_rest, sc, corr[0].source_loop, arc_length_params(r.source_rest.V, corr[0].source_loop),
+                        0.35, false, "source");
+    const std::vector<BandPoint> on_t = overlap_points(s, t);
+    REQUIRE(on_t.size() == s.vertices.size());
+    std::vector<char> rim(static_cast<size_t>(tgt.num_vertices()), 0);
+    for (int v : t.rim) rim[v] = 1;
+    for (size_t k = 0; k < s.vertices.size(); ++k) {
+      double sum = 0;
+      for (int j = 0; j < 3; ++j) {
+        sum += on_t[k].weights[j];
+        CHECK(on_t[k].weights[j] >= 0);
+      }
+      CHECK(sum == doctest::Approx(1.0));
+      // Mapping back through the weights reproduces (u, 1 − v).
+      // (A vertex on t's cut has two parameter points; take the one on p's side of the square.)
+      const Eigen::Vector2d p = s.at(s.vertices[k]);
+      Eigen::Vector2d q = Eigen::Vector2d::Zero();
+      for (int j = 0; j < 3; ++j) {
+        Eigen::Vector2d c = t.at(on_t[k].vertices[j]);
+        for (size_t i = 0; i < t.param_vertex.size(); ++i)
+          if (t.param_vertex[i] == on_t[k].vertices[j] && std::abs(t.uv(i, 0) - p.x()) < std::abs(c.x() - p.x()))
+            c = t.uv.row(i).transpose();
+        q += on_t[k].weights[j] * c;
+      }
+      CHECK((q - Eigen::Vector2d(p.x(), 1 - p.y())).norm() < 1e-9);
+      if (std::find(s.loop.begin(), s.loop.end(), s.vertices[k]) != s.loop.end())
+        for (int j = 0; j < 3; ++j)
+          if (on_t[k].weights[j] > 1e-9) CHECK(rim[on_t[k].vertices[j]]);
     }
-    CHECK((q - Eigen::Vector2d(p.x(), 1 - p.y())).norm() < 1e-9);
-    if (std::find(s.loop.begin(), s.loop.end(), s.vertices[k]) != s.loop.end())
-      for (int j = 0; j < 3; ++j)
-        if (on_t[k].weights[j] > 1e-9) CHECK(rim[on_t[k].vertices[j]]);
   }
 }
 

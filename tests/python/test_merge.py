@@ -47,6 +47,8 @@ def test_optimal_boundary_equals_the_cli(tmp_path, cli):
     W, G = lapis.read_mesh(str(tmp_path / "out.obj"))
     assert np.array_equal(V, W) and np.array_equal(F, G)
     assert report["energy"] <= report["user_energy"] and report["boundary"].size > 0
+    _, _, free = lapis.merge_optimal(sV, sF, tV, tF, regions, hold_feature=False)
+    assert 0 <= report["feature_distortion"] <= free["feature_distortion"]
 
 
 def test_pairs_as_plain_lists_and_errors():

@@ -64,6 +64,16 @@ std::vector<int> remove_unreferenced_vertices(TriMesh& mesh) {
   return map;
 }
 
+std::vector<int> vertices_of_faces(const TriMesh& mesh, const std::vector<int>& faces) {
+  std::vector<int> out;
+  for (int f : faces)
+    if (f >= 0 && f < mesh.num_faces())
+      for (int j = 0; j < 3; ++j) out.push_back(mesh.F(f, j));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 TriMesh with_faces(const TriMesh& mesh, const std::vector<int>& faces) {
   TriMesh out;
   out.V = mesh.V;

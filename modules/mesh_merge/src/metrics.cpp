@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lapis/core/error.h"
 #include "lapis/geometry/laplacian.h"
 #include "lapis/geometry/normals.h"
 #include "lapis/geometry/polar.h"
@@ -154,6 +155,23 @@ DetailPreservation detail_preservation(const TriMesh& source, const MergeResult&
   d.mean_distance = sum / double(from.rows()) / diag;
   d.max_distance /= diag;
   return d;
+}
+
+double feature_distortion(const TriMesh& source, const MergeResult& r, const std::vector<int>& vertices) {
+  const char* fn = "mesh_merge::feature_distortion(): ";
+  if (vertices.size() < 3) throw InvalidArgument(std::string(fn) + "a part needs at least 3 vertices");
+  Eigen::MatrixX3d from(static_cast<Eigen::Index>(vertices.size()), 3), to(from.rows(), 3);
+  for (Eigen::Index i = 0; i < from.rows(); ++i) {
+    const int v = vertices[static_cast<size_t>(i)];
+    if (v < 0 || v >= source.num_vertices() || static_cast<size_t>(v) >= r.source_map.size() || r.source_map[v] < 0)
+      throw InvalidArgument(std::string(fn) + "vertex " + std::to_string(v) + " is not a merged source vertex");
+    from.row(i) = source.V.row(v), to.row(i) = r.mesh.V.row(r.source_map[v]);
+  }
+  const geometry::Similarity3 s = geometry::fit_similarity(from, to);
+  double worst = 0;
+  for (Eigen::Index i = 0; i < from.rows(); ++i)
+    worst = std::max(worst, (s(from.row(i).transpose()) - to.row(i).transpose()).norm());
+  return worst / std::max(bbox_diagonal(to), 1e-300);
 }
 
 }  // namespace lapis::mesh_merge

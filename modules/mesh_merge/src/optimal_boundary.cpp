@@ -94,8 +94,11 @@ Eigen::Vector2d Placement2D::operator()(const Eigen::Vector2d& uv) const {
 BoundaryOptimizer::BoundaryOptimizer(TriMesh source, TriMesh target, BoundaryRegions regions,
                                      OptimalBoundaryOptions options)
     : source_(std::move(source)), target_(std::move(target)), options_(options) {
-  if (options_.max_iterations < 0 || !(options_.relative_tolerance >= 0) || options_.max_exact_fill < 3)
-    detail::fail_optimal("options out of range (max_iterations >= 0, relative_tolerance >= 0, max_exact_fill >= 3)");
+  if (options_.max_iterations < 0 || !(options_.relative_tolerance >= 0) || options_.max_exact_fill < 3 ||
+      options_.feature_clearance < 0)
+    detail::fail_optimal(
+        "options out of range (max_iterations >= 0, relative_tolerance >= 0, max_exact_fill >= 3, "
+        "feature_clearance >= 0)");
   const std::vector<int> roi = checked_faces(std::move(regions.roi_faces), source_.num_faces(), "Ω0", true);
   feature_faces_ = checked_faces(std::move(regions.feature_faces), source_.num_faces(), "Ωf", false);
   target_faces_ = checked_faces(std::move(regions.target_faces), target_.num_faces(), "Ω1", true);
@@ -112,6 +115,7 @@ BoundaryOptimizer::BoundaryOptimizer(TriMesh source, TriMesh target, BoundaryReg
   parameterize_target();
   t0 = std::chrono::steady_clock::now();
   cut_band(band);
+  keep_clear_of_feature(band);
   timings_.cut_ms = ms_since(t0);
 }
 
@@ -222,6 +226,31 @@ void BoundaryOptimizer::cut_band(const TriMesh& band) {
   }
   cut_band_.F = open.faces;
   cut_conn_ = std::make_shared<const Connectivity>(cut_band_);
+}
+
+// The band vertices fewer than feature_clearance edges from ∂Ωf, which the boundary step may
+// not use, and a check that a closed path around Ωf remains: some cut vertex still reaches its
+// twin through the cut-open band's other vertices.
+void BoundaryOptimizer::keep_clear_of_feature(const TriMesh& band) {
+  const int nv = source_.num_vertices(), clearance = options_.feature_clearance;
+  too_near_.assign(static_cast<size_t>(nv), 0);
+  if (clearance == 0) return;
+  const geometry::ShortestPaths steps =
+      geometry::dijkstra(Connectivity(band), inner_, [](int, int, int) { return 1.0; });
+  for (int v = 0; v < nv; ++v) too_near_[v] = steps.distance[v] < clearance;
+  const Connectivity& conn = *cut_conn_;
+  std::vector<int> component(static_cast<size_t>(cut_band_.num_vertices()));
+  std::iota(component.begin(), component.end(), 0);
+  auto root = [&](int v) {
+    while (component[v] != v) v = component[v] = component[component[v]];
+    return v;
+  };
+  for (const auto& e : conn.edges())
+    if (!too_near_[origin_[e[0]]] && !too_near_[origin_[e[1]]]) component[root(e[0])] = root(e[1]);
+  for (size_t k = 0; k < cut_.size(); ++k)
+    if (!too_near_[cut_[k]] && root(cut_[k]) == root(nv + static_cast<int>(k))) return;
+  detail::fail_optimal("Ω0 leaves no closed path around Ωf at least " + std::to_string(clearance) +
+                       " edge(s) from it (feature_clearance); paint a wider rough region or lower the clearance");
 }
 
 }  // namespace lapis::mesh_merge

@@ -83,8 +83,10 @@ std::vector<int> BoundaryOptimizer::cheapest_loop(const Vertices& image, const g
   const geometry::Connectivity& conn = *cut_conn_;
   const Eigen::Matrix3d M = T.linear();
   std::vector<double> edge(static_cast<size_t>(conn.num_edges()));
-  for (int e = 0; e < conn.num_edges(); ++e)
-    edge[e] = edge_cost(source_.V, image, M, origin_[conn.edges()[e][0]], origin_[conn.edges()[e][1]]);
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    const int a = origin_[conn.edges()[e][0]], b = origin_[conn.edges()[e][1]];
+    edge[e] = too_near_[a] || too_near_[b] ? kInf : edge_cost(source_.V, image, M, a, b);
+  }
   const geometry::EdgeCost by_edge = [&edge](int e, int, int) { return edge[e]; };
   const int nv = source_.num_vertices(), m = static_cast<int>(cut_.size());
   double best = kInf;

@@ -170,6 +170,24 @@ SourcePart cut_source_part(const TriMesh& source, const std::vector<int>& inside
   return p;
 }
 
+// Ωf's vertices in the part, without those on the part's boundary (an optimal loop may run
+// along ∂Ωf), which their constraints hold already: §3.5's features do not touch the boundary.
+std::vector<int> feature_in_part(const TriMesh& source, const std::vector<int>& feature_faces, const SourcePart& part) {
+  std::vector<int> part_of(static_cast<size_t>(source.num_vertices()), -1);
+  for (size_t v = 0; v < part.source_of.size(); ++v)
+    if (part.source_of[v] >= 0) part_of[part.source_of[v]] = static_cast<int>(v);
+  std::vector<char> skip(static_cast<size_t>(part.mesh.num_vertices()), 0);
+  for (int v : part.loop) skip[v] = 1;
+  std::vector<int> held;
+  for (int f : feature_faces)
+    for (int j = 0; j < 3; ++j) {
+      const int v = part_of[source.F(f, j)];
+      if (v >= 0 && !skip[v]) skip[v] = 1, held.push_back(v);
+    }
+  std::sort(held.begin(), held.end());
+  return held;
+}
+
 }  // namespace
 
 MergeResult BoundaryOptimizer::merge(const OptimalBoundary& b, const MergeOptions& options,
@@ -198,6 +216,10 @@ MergeResult BoundaryOptimizer::merge(const OptimalBoundary& b, const MergeOption
   add_region_handles(part.mesh, cons, sel, tf);
   mesh_deform::ImplicitLaplacianDeformer deformer(part.mesh, options.implicit);
   deformer.set_selection(std::move(sel));
+  if (options.hold_feature) {
+    std::vector<int> held = feature_in_part(source_, feature_faces_, part);
+    if (held.size() >= 4) deformer.set_shared_gradients({std::move(held)});  // a gradient needs 4 vertices
+  }
   deformer.precompute();
   r.source_boundary = part.loop;
   r.roi_vertices = part.mesh.num_vertices();

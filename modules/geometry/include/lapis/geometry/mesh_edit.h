@@ -17,6 +17,9 @@ TriMesh remove_faces(const TriMesh& mesh, const std::vector<int>& faces, std::ve
 // region as a mesh of its own, for its connectivity and boundary loops.
 TriMesh with_faces(const TriMesh& mesh, const std::vector<int>& faces);
 
+// The corners of the listed faces, ascending, each once; faces out of range are skipped.
+std::vector<int> vertices_of_faces(const TriMesh& mesh, const std::vector<int>& faces);
+
 // Drops vertices that no face uses; returns the old-to-new map (-1 for dropped ones).
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
 

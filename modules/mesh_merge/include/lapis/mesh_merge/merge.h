@@ -87,6 +87,13 @@ struct MergeOptions {
   // rather than being completely fixed like in configuration-dependent merging" — the result
   // stays independent of the source's placement. Features may not touch the merging boundary.
   std::vector<std::vector<int>> features;
+  // OptimalBoundary mode (BoundaryOptimizer::merge()): Ωf, "the features that the user really
+  // wants to paste" (§3.4.1), is held as §3.5 holds a fixed feature: its vertices share one
+  // deformation gradient, so it moves by one similarity and only the rest of the part inside
+  // the boundary bends. An optimal boundary runs nearer Ωf than ∂Ω0 does, so with plain §2.4
+  // editing (false, §3.4.1 as written) less of the band is left to absorb the bend and Ωf
+  // itself bends more than along the user's boundary (docs/decisions.md).
+  bool hold_feature = true;
   // Transition mode (§3.3.3). Seam smoothing and boundary refinement are not applied in that
   // mode: the transition band replaces the smoothing, which "filters out geometry details".
   TransitionOptions transition;

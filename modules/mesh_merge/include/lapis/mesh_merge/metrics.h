@@ -52,6 +52,13 @@ SeamQuality seam_quality(const TriMesh& target, const MergeResult& r);
 // source  the source as given to merge(); r its result.
 DetailPreservation detail_preservation(const TriMesh& source, const MergeResult& r);
 
+// How well a part of the source kept its shape through the merge: the largest distance of its
+// merged vertices from the best similar copy (Umeyama) of the part as given, over the merged
+// part's bounding-box diagonal. 0 for a part moved by one similarity. vertices: source vertices
+// as given, each kept by the merge (r.source_map >= 0), at least 3; throws InvalidArgument
+// "mesh_merge::feature_distortion(): ..." otherwise.
+double feature_distortion(const TriMesh& source, const MergeResult& r, const std::vector<int>& vertices);
+
 // Angles (degrees) between the normals of the two faces of each interior edge of mesh, for the
 // listed faces' edges only when faces is non-empty.
 std::vector<double> dihedral_deviation_deg(const TriMesh& mesh, const std::vector<int>& faces = {});

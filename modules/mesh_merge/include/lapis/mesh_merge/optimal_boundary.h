@@ -55,6 +55,11 @@ struct OptimalBoundaryOptions {
   double relative_tolerance = 1e-6;  // stop when |E_k − E_k−1| <= this · E_k
   int max_exact_fill = 1000;         // ∂Ωf corners above which the fill is a centroid fan (O(k³) program)
   bool prune = true;                 // stop each Dijkstra beyond the cheapest loop found so far (exact)
+  // The boundary keeps at least this many edges from ∂Ωf: its vertices lie this many edge steps
+  // or more from Ωf. §3.4.1 keeps ∂Ω "within the region Ω0 \ Ωfeature" so that it does not cut
+  // into the feature; a boundary running on ∂Ωf (0 allows it) puts the feature's own border onto
+  // the target, and Eq. 3.1's length weight draws it there (docs/decisions.md).
+  int feature_clearance = 1;
 };
 
 struct BoundaryIteration;
@@ -99,7 +104,8 @@ class BoundaryOptimizer {
   // Throws InvalidArgument "mesh_merge::optimal_boundary(): ..." for a face index out of range, a
   // feature face outside Ω0, an empty feature, a feature that is not connected or has more than
   // one boundary loop, a band that is not an annulus between ∂Ω0 and ∂Ωf (Ωf touching ∂Ω0
-  // included), and an Ω1 that is not a disk.
+  // included), a band too narrow for a closed path options.feature_clearance edges from Ωf,
+  // and an Ω1 that is not a disk.
   BoundaryOptimizer(TriMesh source, TriMesh target, BoundaryRegions regions, OptimalBoundaryOptions options = {});
 
   // The band's parameterization at the band's own 3D scale, turned so that the uv axes point the
@@ -117,7 +123,8 @@ class BoundaryOptimizer {
   // the source cut along it (the faces it encloses with Ωf), its short boundary refined
   // (§2.5), each boundary vertex moved to its image with the deformation gradient T.linear()
   // (positions alone leave Eq. 2.8 a near-null space when the boundary is nearly planar), the
-  // rest by implicit Laplacian editing (options.implicit, Eq. 2.11 by default); on the target,
+  // rest by implicit Laplacian editing (options.implicit, Eq. 2.11 by default) with Ωf moved by
+  // one similarity (§3.5's shared gradient, options.hold_feature); on the target,
   // the Ω1 faces under the boundary's image in uv removed; the gap bridged and smoothed as in
   // §3.3.1 (options' smoothing, which leaves Ωf alone). Result fields as for Merger::merge() (source_map: -1 for
   // source vertices outside the boundary). Throws InvalidArgument
@@ -150,6 +157,7 @@ class BoundaryOptimizer {
   void parameterize_band(const TriMesh& band);
   void parameterize_target();
   void cut_band(const TriMesh& band);
+  void keep_clear_of_feature(const TriMesh& band);
   std::vector<int> faces_inside(const std::vector<int>& loop) const;
   std::vector<int> faces_under(const Eigen::MatrixX2d& polygon) const;  // Ω1-local face indices
   bool hole_reaches_border(const std::vector<int>& region_faces) const;
@@ -167,6 +175,7 @@ class BoundaryOptimizer {
   TriMesh cut_band_;         // the band cut open: vertex nv + k is cut_[k]'s twin
   std::vector<int> origin_;  // cut_band_ vertex -> source vertex
   std::shared_ptr<const geometry::Connectivity> cut_conn_;
+  std::vector<char> too_near_;         // per source vertex: closer to Ωf than feature_clearance
   TriMesh target_region_;              // Ω1 alone, compact
   std::vector<int> target_vertex_;     // its vertices' target indices
   Eigen::MatrixX2d target_region_uv_;  // its parameterization
