@@ -6,6 +6,7 @@
 #include "bundled_meshes.h"
 #include "lapis/core/asset_path.h"
 #include "lapis/geometry/io.h"
+#include "lapis/geometry/mesh_edit.h"
 #include "lapis/mesh_merge/regions_file.h"
 #include "lapis/viewer/app_main.h"
 #include "merge_app.h"
@@ -55,9 +56,9 @@ std::unique_ptr<lapis::viewer::ViewerApp> make_app(const std::vector<std::string
     const mesh_merge::BoundaryRegions r =
         mesh_merge::read_regions_file(args.get("--regions"), *meshes.source, *meshes.target);
     setup.options.mode = mesh_merge::MergeMode::OptimalBoundary;
-    setup.optimal.rough = merge_app::vertices_of(*meshes.source, r.roi_faces);
-    setup.optimal.feature = merge_app::vertices_of(*meshes.source, r.feature_faces);
-    setup.optimal.target = merge_app::vertices_of(*meshes.target, r.target_faces);
+    setup.optimal.rough = geometry::vertices_of_faces(*meshes.source, r.roi_faces);
+    setup.optimal.feature = geometry::vertices_of_faces(*meshes.source, r.feature_faces);
+    setup.optimal.target = geometry::vertices_of_faces(*meshes.target, r.target_faces);
   }
   return std::make_unique<merge_app::MergeApp>(std::move(setup), meshes.source_name, meshes.target_name, paths);
 }

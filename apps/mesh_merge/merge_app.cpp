@@ -253,11 +253,26 @@ bool MergeApp::handle_key(viewer::Viewer& v, const viewer::InputEvent& e) {
       break;
     case GLFW_KEY_D: {  // the mode switch of the panel, from the keyboard (and replays)
       MergeSetup next = setup();
-      const bool dependent = next.options.mode == mesh_merge::MergeMode::Dependent;
-      next.options.mode = dependent ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
+      auto& o = next.options;
+      if (o.mode == mesh_merge::MergeMode::Transition) {  // the bands' boundary condition, §3.3.2 or §3.3.1
+        o.transition.configuration_dependent = !o.transition.configuration_dependent;
+        commit(v, std::move(next), "transition boundary");
+        break;
+      }
+      const bool dependent = o.mode == mesh_merge::MergeMode::Dependent;
+      o.mode = dependent ? mesh_merge::MergeMode::Independent : mesh_merge::MergeMode::Dependent;
       commit(v, std::move(next), "mode");
       break;
     }
+    case GLFW_KEY_R:  // optimal mode: the region tool 5 paints, in turn
+      if (!optimal_mode()) return false;
+      optimal_region_ = (optimal_region_ + 1) % 3, tool_ = Tool::Paint;
+      v.flash(std::string("painting the ") + optimal_region_name(optimal_region_));
+      break;
+    case GLFW_KEY_A:  // independent mode: the region painted on the source becomes a fixed feature (§3.5)
+      if (setup().options.mode != mesh_merge::MergeMode::Independent) return false;
+      add_painted_feature(v);
+      break;
     case GLFW_KEY_T: {  // transition regions (§3.3.3) on / off, as the panel's radio button does
       MergeSetup next = setup();
       auto& o = next.options;

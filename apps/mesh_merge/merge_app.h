@@ -39,8 +39,9 @@ const char* tool_name(Tool t);
 // has a key.
 double first_band_width(const mesh_merge::MergeSetup& s);
 
-// The vertices of the listed faces, sorted (a region file's faces as the brush's vertex set).
-std::vector<int> vertices_of(const geometry::TriMesh& mesh, const std::vector<int>& faces);
+// "rough region (source)", "feature (source)" or "target region": the regions of the optimal
+// mode, in the order of MergeApp's region choice.
+const char* optimal_region_name(int region);
 
 // The undoable state: the setup and a revision number that stays with it through undo and
 // redo, so a merge result can be matched to the setup it was computed for.
@@ -73,6 +74,7 @@ struct MergeOutcome {
   bool reused = false;                                  // the Merger was kept from an earlier job
   double job_ms = 0;                                    // precompute + merge + metrics, what the user waits
   std::optional<mesh_merge::OptimalBoundary> boundary;  // OptimalBoundary mode: the boundary merged along
+  double feature_distortion = 0;                        // OptimalBoundary mode: Ωf's, metrics.h
 };
 
 // What a merge of the same setup with one more edit would cost: the job without the Merger's
@@ -136,6 +138,7 @@ class MergeApp final : public viewer::ViewerApp {
   void press_paint(viewer::Viewer& v, double x, double y, bool erase);
   void drag_paint(viewer::Viewer& v, double x, double y);
   void cut_painted(viewer::Viewer& v);
+  void add_painted_feature(viewer::Viewer& v);  // §3.5: the region painted on the source, as a fixed feature
   int pair_of_source_loop(int loop) const;
   int pair_of_target_loop(int loop) const;
 

@@ -50,7 +50,7 @@ bool MergeApp::export_all(viewer::Viewer& v) {
       cmd = "lapis merge --mode optimal --source " + source + " --target " + target + " --regions " + regions +
             " --placement " + shortest(q.scale) + "," + shortest(q.angle * 180 / 3.141592653589793) + "," +
             shortest(q.offset.x()) + "," + shortest(q.offset.y()) + " --out " + merged + " --smooth " +
-            std::to_string(s.options.smooth_iterations);
+            std::to_string(s.options.smooth_iterations) + (s.options.hold_feature ? "" : " --feature free");
     } else {
       mesh_merge::write_pairs_file(pairs, mesh_merge::loop_pairs(s));
       cmd = "lapis merge --source " + source + " --target " + target + " --pairs " + pairs + " --out " + merged +

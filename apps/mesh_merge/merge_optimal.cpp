@@ -19,15 +19,7 @@ const char* kRegionNames[] = {"rough region (source)", "feature (source)", "targ
 
 }  // namespace
 
-std::vector<int> vertices_of(const geometry::TriMesh& mesh, const std::vector<int>& faces) {
-  std::vector<int> out;
-  for (int f : faces)
-    if (f >= 0 && f < mesh.num_faces())
-      for (int j = 0; j < 3; ++j) out.push_back(mesh.F(f, j));
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
+const char* optimal_region_name(int region) { return kRegionNames[std::clamp(region, 0, 2)]; }
 
 bool MergeApp::optimal_mode() const { return setup().options.mode == mesh_merge::MergeMode::OptimalBoundary; }
 
@@ -82,13 +74,20 @@ mesh_merge::Placement2D MergeApp::current_placement() {
 
 std::string MergeApp::edit_optimal(MergeSetup& next) {
   ImGui::Separator();
-  ImGui::TextUnformatted("regions (tool 5 paints the chosen one):");
+  ImGui::TextUnformatted("regions (tool 5 paints the chosen one, R the next):");
   for (int r = 0; r < 3; ++r)
     if (ImGui::RadioButton(kRegionNames[r], optimal_region_ == r)) optimal_region_ = r, tool_ = Tool::Paint;
   ImGui::Text("painted: rough %zu, feature %zu, target %zu vertices", next.optimal.rough.size(),
               next.optimal.feature.size(), next.optimal.target.size());
   ImGui::TextDisabled("empty rough / target region: the whole mesh");
   std::string edit;
+  bool hold = next.options.hold_feature;
+  if (ImGui::Checkbox("hold the feature's shape (3.5)", &hold))
+    next.options.hold_feature = hold, edit = hold ? "hold feature" : "free feature";
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "The feature shares one deformation gradient (thesis 3.5), so it moves by one similarity and only the band "
+        "around it bends. Off: it bends with the rest, as thesis 3.4.1 merges.");
   if (ImGui::SmallButton("clear region")) region_of(next, optimal_region_).clear(), edit = "clear region";
   ImGui::SameLine();
   if (ImGui::SmallButton("suggest placement")) next.optimal.placement.reset(), edit = "suggest placement";
@@ -187,6 +186,8 @@ void MergeApp::run_optimal(MergeOutcome& out, const MergeSetup& s,
   out.result = opt->merge(*out.boundary, s.options);
   out.quality = mesh_merge::seam_quality(*s.target, out.result);
   out.detail = mesh_merge::detail_preservation(opt->source(), out.result);
+  out.feature_distortion = mesh_merge::feature_distortion(
+      opt->source(), out.result, geometry::vertices_of_faces(opt->source(), opt->feature_faces()));
 }
 
 }  // namespace lapis::merge_app

@@ -22,7 +22,8 @@ const char* kTransitionTooltip =
     "interpolated across the band instead of smoothing the seam. Configuration-independent.";
 const char* kOptimalTooltip =
     "The optimal merging boundary (thesis 3.4): paint a rough region around the feature to merge and the feature "
-    "itself on the source, and a region on the target (tool 5); place the band in the placement view; M searches "
+    "itself on the source, and a region on the target (tool 5; R picks the region); place the band in the placement "
+    "view; M searches "
     "the boundary whose image changes least (Eq. 3.1) and merges along it.";
 
 }  // namespace
@@ -159,7 +160,7 @@ std::string MergeApp::edit_mode_options(MergeSetup& next) {
         "the rest of the source bends. Paint a region on the source with tool 5, then add it.");
     ImGui::SameLine();
     ImGui::BeginDisabled(!painted_on_source_ || painted_.size() < 4);  // a gradient needs 4 vertices
-    if (ImGui::SmallButton("add painted"))
+    if (ImGui::SmallButton("add painted (A)"))
       next.options.features.push_back(painted_), painted_.clear(), edit = "add feature";
     ImGui::EndDisabled();
     ImGui::SameLine();
@@ -288,6 +289,9 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
     ImGui::Text("boundary energy %.3g (rough border %.3g)", b.energy, b.user_energy);
     ImGui::Text("  %zu vertices (rough border %zu), %zu iterations: %s", b.loop.size(), b.user_loop.size(),
                 b.history.size(), b.stopped_by.c_str());
+    ImGui::Text("feature distortion %.2g (%s)", shown_->feature_distortion,
+                setup().options.hold_feature ? "held" : "free");
+    tooltip("the feature's largest distance from a similar copy of itself, over its size: 0 when it moved rigidly");
   }
 
   ImGui::Text("seam boundary edges %d, degenerate faces %d", q.seam_boundary_edges, q.degenerate_faces);

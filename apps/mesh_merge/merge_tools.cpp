@@ -72,6 +72,15 @@ void MergeApp::drag_paint(viewer::Viewer& v, double x, double y) {
   scene_dirty_ = true;
 }
 
+void MergeApp::add_painted_feature(viewer::Viewer& v) {
+  if (!painted_on_source_ || painted_.size() < 4)  // a shared gradient needs 4 vertices
+    return v.flash("paint a fixed feature on the source first (tool 5, at least 4 vertices)");
+  MergeSetup next = setup();
+  next.options.features.push_back(painted_);
+  painted_.clear();
+  commit(v, std::move(next), "add feature");
+}
+
 void MergeApp::cut_painted(viewer::Viewer& v) {
   if (optimal_mode()) return v.flash("the optimal-boundary mode paints regions; it cuts along the boundary it finds");
   if (painted_.empty()) return v.flash("paint a region first (tool 5: left-drag paints, Shift erases)");

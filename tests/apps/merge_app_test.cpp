@@ -14,6 +14,7 @@
 #include "first_view.h"  // lapis-merge's camera angles and panel width
 #include "lapis/geometry/bvh.h"
 #include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/dijkstra.h"
 #include "lapis/geometry/io.h"
 #include "lapis/geometry/procedural.h"
 #include "lapis/mesh_merge/merge_setup.h"
@@ -103,7 +104,7 @@ struct DefaultScene {
   }
 };
 
-constexpr int kM = 77, kT = 84;  // GLFW key codes: merge, transition regions
+constexpr int kM = 77, kT = 84, kD = 68;  // GLFW key codes: merge, transition regions, dependent
 
 // tests/apps/data/merge_events.json (pair two loops, set a key, merge) followed by presses of
 // the given (key, modifiers), 20 frames apart, written to `path`.
@@ -737,4 +738,128 @@ TEST_CASE("apps: merge app — a key half the loop away is flagged FLIPPED; K su
   CHECK(e.pairs[0].keys[0].source == s.key.source);
   CHECK(e.pairs[0].keys[0].target == s.key.target);
   check_watertight_seam(e);
+}
+
+// §3.3.3 on §3.3.2's boundary condition from the keyboard: T, then D turns the bands'
+// boundary condition dependent. The source stays where it was placed beyond its ROI and band.
+TEST_CASE(
+    "apps: merge app — transition regions on the dependent boundary (T, D) keep the placement, equal to lapis merge") {
+  const fs::path dir = scratch_dir(), events = dir / "transition_dependent.json", prefix = dir / "transition_dependent";
+  write_recorded_session_then_keys(events, {{kT, 0}, {kD, 0}, {kM, 0}});
+  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " +
+                         prefix.string()) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
+  CHECK(e.command.find("--transition-boundary dependent") != std::string::npos);
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "transition_dependent_cli.obj");
+  // The source vertex farthest from its rim along the surface is far outside the ROI: the
+  // merged mesh has it where it was placed, bit for bit (§3.3.1's condition would move it).
+  const geometry::Connectivity sc(e.source);
+  const geometry::ShortestPaths d = geometry::dijkstra(e.source, sc.boundary_loops().at(0));
+  const int far = static_cast<int>(std::max_element(d.distance.begin(), d.distance.end()) - d.distance.begin());
+  bool kept = false;
+  for (int v = 0; v < e.merged.num_vertices() && !kept; ++v) kept = e.merged.V.row(v) == e.source.V.row(far);
+  CHECK(kept);
+}
+
+// §3.5 from the window: tool 5 paints the dome's top, A makes it a fixed feature, and the export
+// carries it to lapis merge --features.
+TEST_CASE("apps: merge app — a region painted on the source and added with A merges as a fixed feature") {
+  const fs::path dir = scratch_dir(), prefix = dir / "feature";
+  const DefaultScene scene;
+  // The dome's top: the vertex farthest from its rim along the surface.
+  const geometry::ShortestPaths d = geometry::dijkstra(scene.source, scene.sloop);
+  const int apex = static_cast<int>(std::max_element(d.distance.begin(), d.distance.end()) - d.distance.begin());
+  const Eigen::Vector3d top = geometry::project(scene.camera, scene.source.V.row(apex).transpose());
+  std::string actions =
+      scene.pair_and_key() + "mark; xdotool key --window $w 5; wait_handled 2 0; mark; xdotool mousemove --window $w " +
+      std::to_string(std::lround(top.x()) - 12) + " " + std::to_string(std::lround(top.y())) + " sleep 0.1 mousedown 1";
+  for (int k = 1; k <= 6; ++k)
+    actions += " mousemove --window $w " + std::to_string(std::lround(top.x()) - 12 + 4 * k) + " " +
+               std::to_string(std::lround(top.y())) + " sleep 0.05";
+  actions +=
+      " mouseup 1; wait_handled 0 2; mark; xdotool key --window $w a; wait_handled 2 0;"
+      " mark; xdotool key --window $w m; wait_handled 2 0; mark; xdotool key --window $w ctrl+e; wait_handled 4 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
+  const Exported e = read_exports(prefix);
+  CHECK(e.command.find("--features " + prefix.string() + "_features.json") != std::string::npos);
+  const std::vector<std::vector<int>> features = mesh_merge::read_features_file(prefix.string() + "_features.json");
+  REQUIRE(features.size() == 1);
+  CHECK(features[0].size() >= 4);
+  CHECK(std::find(features[0].begin(), features[0].end(), apex) != features[0].end());
+  check_watertight_seam(e);
+  check_equals_cli(e, dir / "feature_cli.obj");
+}
+
+// The optimal mode's other regions and gestures: R picks the target region, then the rough one,
+// and a stroke grows each; in the placement view the wheel scales the band and a right-drag
+// turns it. The export reproduces all of it.
+TEST_CASE("apps: merge app — R paints the target and rough regions; the wheel scales and a right-drag turns the band") {
+  const fs::path dir = scratch_dir(), prefix = dir / "regions", regions = dir / "given_regions.json";
+  const fs::path bump = kSource / "assets/merge/bump.obj", plate = kSource / "assets/merge/plate.obj";
+  const geometry::TriMesh source = geometry::read_mesh(bump), target = geometry::read_mesh(plate);
+  // The bundled regions with a target disk of radius 1.2 on the plate (the bundled one is all of it).
+  nlohmann::json given = nlohmann::json::parse(text_of(kSource / "assets/merge/bump_regions.json"));
+  std::vector<int> disk;
+  for (int f = 0; f < target.num_faces(); ++f) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int j = 0; j < 3; ++j) c += target.V.row(target.F(f, j)).transpose() / 3;
+    if (c.head<2>().norm() < 1.2) disk.push_back(f);
+  }
+  given["target"] = {{"faces", disk}};
+  std::ofstream(regions) << given.dump();
+  const geometry::CameraMatrices cam = first_view(source, target);
+  auto stroke = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    const Eigen::Vector3d a = geometry::project(cam, from), b = geometry::project(cam, to);
+    std::string s = "mark; xdotool mousemove --window $w " + pixel(a) + " sleep 0.1 mousedown 1";
+    for (int k = 1; k <= 6; ++k) s += " mousemove --window $w " + pixel(a + (b - a) * k / 6.0) + " sleep 0.05";
+    return s + " mouseup 1; wait_handled 0 2;";
+  };
+  // R: feature -> target region, a stroke on the plate outward from the disk; R: -> rough
+  // region, a stroke on the bump outward from it.
+  std::string actions = "mark; xdotool key --window $w r; wait_handled 2 0; " +
+                        stroke(Eigen::Vector3d(0, -1.1, 0), Eigen::Vector3d(0, -1.45, 0)) +
+                        " mark; xdotool key --window $w r; wait_handled 2 0; " +
+                        stroke(Eigen::Vector3d(0, -0.8, 0), Eigen::Vector3d(0, -0.98, 0));
+  // The placement view's canvas (MergeApp::draw_placement_window): scroll up once, then turn.
+  const Eigen::Vector2i canvas(170, kHeight - 330 + 27 + 130);
+  const std::string at = std::to_string(canvas.x()) + " " + std::to_string(canvas.y());
+  actions += " mark; xdotool mousemove --window $w " + at + " sleep 0.1 click 4 sleep 0.1 mousedown 3";
+  for (int k = 1; k <= 5; ++k)
+    actions += " mousemove --window $w " + std::to_string(canvas.x() + 6 * k) + " " + std::to_string(canvas.y()) +
+               " sleep 0.05";
+  actions +=
+      " mouseup 3; wait_handled 0 2; mark; xdotool key --window $w m; wait_handled 2 0;"
+      " mark; xdotool key --window $w ctrl+e; wait_handled 4 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--source " + bump.string() + " --target " + plate.string() + " --regions " +
+                                             regions.string() + " --export " + prefix.string(),
+                                         actions)) == 0);
+  const nlohmann::json exported = nlohmann::json::parse(text_of(prefix.string() + "_regions.json"));
+  // Regions are exported as faces of the painted vertices: compare face counts.
+  const size_t target_given = disk.size(), rough_given = given["rough"]["faces"].size();
+  MESSAGE("target faces " << target_given << " -> " << exported["target"]["faces"].size() << ", rough faces "
+                          << rough_given << " -> " << exported["rough"]["faces"].size());
+  CHECK(exported["target"]["faces"].size() > target_given + 10);
+  CHECK(exported["rough"]["faces"].size() > rough_given + 5);
+  const std::string command = text_of(prefix.string() + "_command.txt");
+  Exported e;
+  e.merged = geometry::read_mesh(prefix.string() + ".obj");
+  e.command = command.substr(0, command.find('\n'));
+  check_equals_cli(e, dir / "regions_cli.obj");
+  CHECK(geometry::Connectivity(e.merged).boundary_loops().size() == 1);
+  // The placement against the suggested one for the same regions: scaled by the wheel's 1.1,
+  // turned by the drag (0.01 rad per pixel).
+  REQUIRE(run(kCli + " merge --mode optimal --source " + bump.string() + " --target " + plate.string() + " --regions " +
+              prefix.string() + "_regions.json --out " + (dir / "suggested.obj").string() + " > " +
+              (dir / "suggested.json").string()) == 0);
+  const nlohmann::json suggested = nlohmann::json::parse(text_of(dir / "suggested.json"))["placement"];
+  std::vector<double> p;
+  std::stringstream words(command.substr(command.find("--placement ") + 12));
+  for (std::string part; p.size() < 4 && std::getline(words, part, ',');) p.push_back(std::stod(part));
+  REQUIRE(p.size() == 4);
+  MESSAGE("placement scale " << p[0] << ", " << p[1] << " deg; suggested " << suggested["scale"] << ", "
+                             << suggested["degrees"]);
+  CHECK(p[0] == doctest::Approx(1.1 * suggested["scale"].get<double>()).epsilon(1e-6));
+  CHECK(p[1] - suggested["degrees"].get<double>() > 5);
 }
