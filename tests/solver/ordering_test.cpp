@@ -85,6 +85,42 @@ TEST_CASE("solver: skeleton nested dissection orders a wide stencil about as wel
   CHECK((A * X - B).norm() / B.norm() <= 1e-10);
 }
 
+// A shared gradient's anchors (thesis §3.5) couple a few unknowns to a whole region. Dissected
+// with the rest they land on both sides of a separator, and the region joins it.
+TEST_CASE("solver: skeleton nested dissection numbers dense unknowns last and keeps the factor small") {
+  SparseMatrix edges;
+  SparseMatrix A = wide_stencil_matrix(grid_laplacian_2d(70, &edges));
+  const int n = static_cast<int>(A.rows());
+  // 32 anchors spread over the grid, each coupled to the middle half of it.
+  std::vector<int> anchors;
+  for (int k = 0; k < 32; ++k) anchors.push_back((k * 151 + 7) % n);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (int a : anchors)
+    for (int v = n / 4; v < 3 * n / 4; ++v)
+      if (v != a)
+        t.emplace_back(std::max(a, v), std::min(a, v), 1e-3), t.emplace_back(std::min(a, v), std::max(a, v), 1e-3);
+  SparseMatrix C(n, n);
+  C.setFromTriplets(t.begin(), t.end());
+  A += C;
+  for (int a : anchors) A.coeffRef(a, a) += 10.0;  // still diagonally dominant: positive definite
+  A.makeCompressed();
+  const std::vector<int> perm = skeleton_nested_dissection(A, edges, {.leaf_size = 200});
+  REQUIRE(is_permutation_of_n(perm, n));
+  std::vector<int> tail(perm.end() - 32, perm.end()), sorted = anchors;
+  std::sort(tail.begin(), tail.end());
+  std::sort(sorted.begin(), sorted.end());
+  CHECK(tail == sorted);
+  Cholesky given, own;
+  given.analyze(A, perm);
+  given.factorize(A);
+  own.compute(A);
+  CAPTURE(given.report().nnz_L);
+  CAPTURE(own.report().nnz_L);
+  CHECK(given.report().nnz_L <= 1.25 * own.report().nnz_L);
+  const DenseMatrix B = DenseMatrix::Ones(n, 1);
+  CHECK((A * given.solve(B) - B).norm() / B.norm() <= 1e-10);
+}
+
 TEST_CASE("solver: A's lower triangle alone orders, factorizes and solves as the whole of A") {
   // What LeastSquares now hands over: its normal matrix without the upper triangle.
   SparseMatrix edges;

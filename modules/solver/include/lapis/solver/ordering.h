@@ -27,6 +27,8 @@ struct SkeletonDissectionOptions {
 // `skeleton`: each part is bisected on the skeleton (METIS'
 // vertex separator through cholmod_bisect), the separator is widened by the vertices of one
 // side that A couples to the other (the side that needs fewer), and the two sides recurse.
+// Dense unknowns, coupled to more than max(16, 10 √n) others (AMD's rule), stay out of the
+// dissection and are numbered last.
 // skeleton  n by n, its pattern read (values and diagonal ignored, symmetric); any sparse
 // graph in which A's couplings are short paths — the mesh's edges for a stencil matrix.
 // The ordering is valid whatever the skeleton; it only decides the fill. Throws
