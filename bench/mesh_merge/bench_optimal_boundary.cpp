@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
   std::vector<Case> cases = {{"band 2.5K", 5}, {"band 10K", 6}, {"band 40K", 7}, {"lion face on bunny", 0}};
   if (large) cases.insert(cases.begin() + 3, {"band 160K", 8});
   bench::Table table({"case", "band V", "M", "iters", "it ms 1t", "it ms 2t", "unpruned 1t", "unpruned 2t", "fill ms",
-                      "lscm ms", "map ms", "optimize ms", "merge ms", "E/E_user", "seam ok"});
+                      "lscm ms", "map ms", "optimize ms", "merge ms", "free ms", "factor nnz", "free nnz", "E/E_user",
+                      "seam ok"});
   nlohmann::json results = nlohmann::json::array();
   const int max_threads = omp_get_max_threads();
   for (const Case& c : cases) {
@@ -130,6 +131,9 @@ int main(int argc, char** argv) {
     const Run one_unpruned = run(slow, p, 1), two_unpruned = run(slow, p, std::min(2, max_threads));
     omp_set_num_threads(max_threads);
     const MergeResult m = opt.merge(two.boundary);
+    MergeOptions free;  // Ωf bending with the rest, as §3.4.1 merges
+    free.hold_feature = false;
+    const MergeResult f = opt.merge(two.boundary, free);
     const bool seam_ok = seam_quality(in.target, m).valid();
     int band = 0;
     for (int v = 0; v < in.source.num_vertices(); ++v) band += !std::isnan(opt.source_uv()(v, 0));
@@ -140,6 +144,8 @@ int main(int argc, char** argv) {
                bench::fmt(two.ms_per_iteration), bench::fmt(one_unpruned.ms_per_iteration),
                bench::fmt(two_unpruned.ms_per_iteration), bench::fmt(t.fill_ms), bench::fmt(t.lscm_ms),
                bench::fmt(two.boundary.timings.map_ms), bench::fmt(optimize_ms), bench::fmt(m.timings.total_ms),
+               bench::fmt(f.timings.total_ms), std::to_string(m.solver.first_factor_nnz + m.solver.second_factor_nnz),
+               std::to_string(f.solver.first_factor_nnz + f.solver.second_factor_nnz),
                bench::fmt(two.boundary.energy / two.boundary.user_energy, 3), seam_ok ? "yes" : "NO"});
     results.push_back({{"case", c.name},
                        {"band_vertices", band},
@@ -160,6 +166,9 @@ int main(int argc, char** argv) {
                        {"iterate_ms_2_threads", two.boundary.timings.iterate_ms},
                        {"optimize_total_ms", optimize_ms},
                        {"merge_ms", m.timings.total_ms},
+                       {"merge_feature_free_ms", f.timings.total_ms},
+                       {"merge_factor_nnz", {m.solver.first_factor_nnz, m.solver.second_factor_nnz}},
+                       {"merge_feature_free_factor_nnz", {f.solver.first_factor_nnz, f.solver.second_factor_nnz}},
                        {"energy", two.boundary.energy},
                        {"user_energy", two.boundary.user_energy},
                        {"seam_valid", seam_ok}});

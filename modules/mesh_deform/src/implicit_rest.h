@@ -54,8 +54,9 @@ GradientStencils gradient_stencils(const Stencil& s, const Vertices& P, const st
 // map from the rest group about its centroid to the deformed one, M_F = Σ_j ṽ_j g_jᵀ with
 // g_j = (Σ p pᵀ)⁻¹ (p_j − c). Fitted on at most kSharedAnchors of the group's vertices, spread
 // by farthest-point sampling, so each of the group's rows holds that many unknowns (the
-// normal matrix a dense block of their size) however large the group.
-constexpr int kSharedAnchors = 128;
+// normal matrix a dense block of their size) however large the group. 32 fit a near-similar
+// motion as well as 128 did, for a fifth of the normal matrices' time (docs/decisions.md).
+constexpr int kSharedAnchors = 32;
 void share_gradients(GradientStencils& G, const Vertices& P, const std::vector<std::vector<int>>& groups,
                      const std::vector<char>& active);
 

@@ -118,7 +118,7 @@ class ImplicitLaplacianDeformer final : public Deformer {
 
   // Thesis §3.5: each group of vertices (a feature) shares one deformation gradient, implicitly
   // defined over the group as a 1-ring's is over the 1-ring (the least-squares linear map of the
-  // rest group onto the deformed one, fitted on at most 128 of its vertices spread over it), so
+  // rest group onto the deformed one, fitted on at most 32 of its vertices spread over it), so
   // every Laplacian coordinate of the feature is transformed alike and the feature moves by one
   // transformation (after §2.4.4's shear removal, a similarity) instead of bending with its
   // surroundings: Eq. 2.10/2.11 also holds the group's edges to that transformation (weight
