@@ -313,9 +313,8 @@ TEST_CASE("mesh_merge: real meshes: optimal boundaries of one mesh's part on ano
     CHECK(seam_quality(tgt, optimal).valid());
     CHECK(seam_quality(tgt, user).valid());
     // Each merged source part, aligned to its original, lies closer to it along the optimal loop
-    // (0.0023 / 0.0013 / 1.1e-5 / 0.0013 against 0.012 / 0.0020 / 2.1e-5 / 0.0037 of its
-    // diagonal). The feature alone, which both parts hold, bends more along the optimal loop in
-    // the first three cases (docs/mesh_merge.md, limits): it lies nearer the seam.
+    // (0.0071 / 0.0022 / 1.6e-5 / 0.0034 against 0.011 / 0.0024 / 2.1e-5 / 0.0038 of its
+    // diagonal).
     const DetailPreservation dp = detail_preservation(src, optimal), du = detail_preservation(src, user);
     MESSAGE("  detail: max distance " << dp.max_distance << " against " << du.max_distance << " along ∂Ω0");
     CHECK(dp.max_distance <= du.max_distance);
