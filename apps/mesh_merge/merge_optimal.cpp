@@ -74,7 +74,7 @@ mesh_merge::Placement2D MergeApp::current_placement() {
 
 std::string MergeApp::edit_optimal(MergeSetup& next) {
   ImGui::Separator();
-  ImGui::TextUnformatted("regions (tool 5 paints the chosen one, R the next):");
+  ImGui::TextUnformatted("regions (tool 5 paints the chosen one; R):");
   for (int r = 0; r < 3; ++r)
     if (ImGui::RadioButton(kRegionNames[r], optimal_region_ == r)) optimal_region_ = r, tool_ = Tool::Paint;
   ImGui::Text("painted: rough %zu, feature %zu, target %zu vertices", next.optimal.rough.size(),
