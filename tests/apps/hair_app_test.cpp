@@ -156,6 +156,19 @@ TEST_CASE("apps: hair app — replaying a recorded event file reproduces the rec
   REQUIRE(!expected.primitives.empty());
   for (size_t i = 0; i < expected.primitives.size(); ++i)
     CHECK(hair_sketch::same_primitive(replayed.primitives[i], expected.primitives[i]));
+  // Recorded with press positions taken from the events: each press lies where the pointer's
+  // last move put it, not further along the drag (which made a stroke start late and jump back).
+  const viewer::EventLog log = viewer::EventLog::load(data / "hair_stroke_events.json");
+  Eigen::Vector2d pointer(-1, -1);
+  int presses = 0;
+  for (const auto& e : log.events) {
+    if (e.type == viewer::EventType::MouseMove) pointer = {e.x, e.y};
+    if (e.type == viewer::EventType::MouseButton && e.action == 1) {
+      ++presses;
+      CHECK((Eigen::Vector2d(e.x, e.y) - pointer).norm() == 0);
+    }
+  }
+  CHECK(presses == 1);
 }
 
 namespace {
