@@ -93,6 +93,31 @@ struct DefaultScene {
   std::string pair_and_key() const {
     return pair_and_key_clicks(front_pixel(source, sloop), front_pixel(target, tloop));
   }
+  // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
+  // of the dome.
+  int far_handle() const {
+    double zmin = 1e300, zmax = -1e300;
+    for (int v = 0; v < source.num_vertices(); ++v)
+      zmin = std::min(zmin, source.V(v, 2)), zmax = std::max(zmax, source.V(v, 2));
+    const Eigen::Vector3d eye = geometry::eye_position(camera);
+    int handle = -1;
+    for (int v = 0; v < source.num_vertices(); ++v)
+      if (source.V(v, 2) > 0.5 * (zmin + zmax) &&
+          (handle < 0 || (source.V.row(v).transpose() - eye).norm() < (source.V.row(handle).transpose() - eye).norm()))
+        handle = v;
+    return handle;
+  }
+  // The dome's top: the vertex farthest from its rim along the surface.
+  int apex() const {
+    const geometry::ShortestPaths d = geometry::dijkstra(source, sloop);
+    return static_cast<int>(std::max_element(d.distance.begin(), d.distance.end()) - d.distance.begin());
+  }
+  // Tool 3, then a click on source vertex v.
+  std::string click_handle(int v) const {
+    const Eigen::Vector3d h = geometry::project(camera, source.V.row(v).transpose());
+    return "mark; xdotool key --window $w 3; wait_handled 2 0; mark; xdotool mousemove --window $w " + pixel(h) +
+           " sleep 0.1 click 1; wait_handled 0 2; ";
+  }
   // The pixel of the loop vertex nearest the eye (in front, so visible) of `loop`.
   Eigen::Vector2i front_pixel(const geometry::TriMesh& m, const std::vector<int>& loop) const {
     const Eigen::Vector3d eye = geometry::eye_position(camera);
@@ -104,7 +129,7 @@ struct DefaultScene {
   }
 };
 
-constexpr int kM = 77, kT = 84, kD = 68;  // GLFW key codes: merge, transition regions, dependent
+constexpr int kM = 77, kT = 84;  // GLFW key codes: merge, transition regions
 
 // tests/apps/data/merge_events.json (pair two loops, set a key, merge) followed by presses of
 // the given (key, modifiers), 20 frames apart, written to `path`.
@@ -510,24 +535,9 @@ TEST_CASE("apps: merge app — paint & cut with x-ray cuts all round the trunk, 
 TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and exports what lapis merge needs") {
   const fs::path dir = scratch_dir(), prefix = dir / "dependent";
   const DefaultScene scene;
-  // A handle far from the rim: the source vertex nearest the eye among the upper half (in z)
-  // of the dome, clicked with tool 3.
-  double zmin = 1e300, zmax = -1e300;
-  for (int v = 0; v < scene.source.num_vertices(); ++v)
-    zmin = std::min(zmin, scene.source.V(v, 2)), zmax = std::max(zmax, scene.source.V(v, 2));
-  const Eigen::Vector3d eye = geometry::eye_position(scene.camera);
-  int handle = -1;
-  for (int v = 0; v < scene.source.num_vertices(); ++v)
-    if (scene.source.V(v, 2) > 0.5 * (zmin + zmax) &&
-        (handle < 0 ||
-         (scene.source.V.row(v).transpose() - eye).norm() < (scene.source.V.row(handle).transpose() - eye).norm()))
-      handle = v;
-  const Eigen::Vector3d h = geometry::project(scene.camera, scene.source.V.row(handle).transpose());
-  const std::string actions =
-      scene.pair_and_key() + "mark; xdotool key --window $w 3; wait_handled 2 0; mark; xdotool mousemove --window $w " +
-      pixel(h) +
-      " sleep 0.1 click 1; wait_handled 0 2; mark; xdotool key --window $w d; wait_handled 2 0; "
-      "mark; xdotool key --window $w m; wait_handled 2 0;";
+  const std::string actions = scene.pair_and_key() + scene.click_handle(scene.far_handle()) +
+                              "mark; xdotool key --window $w d; wait_handled 2 0; "
+                              "mark; xdotool key --window $w m; wait_handled 2 0;";
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
@@ -741,26 +751,29 @@ TEST_CASE("apps: merge app — a key half the loop away is flagged FLIPPED; K su
 }
 
 // §3.3.3 on §3.3.2's boundary condition from the keyboard: T, then D turns the bands'
-// boundary condition dependent. The source stays where it was placed beyond its ROI and band.
-TEST_CASE(
-    "apps: merge app — transition regions on the dependent boundary (T, D) keep the placement, equal to lapis merge") {
-  const fs::path dir = scratch_dir(), events = dir / "transition_dependent.json", prefix = dir / "transition_dependent";
-  write_recorded_session_then_keys(events, {{kT, 0}, {kD, 0}, {kM, 0}});
-  REQUIRE(run_under_xvfb(kApp + " --headless --replay " + events.string() + " --exit-after-replay --export " +
-                         prefix.string()) == 0);
+// boundary condition dependent, where the handles clicked with tool 3 stay where they were placed.
+TEST_CASE("apps: merge app — transition regions on the dependent boundary (T, D) keep a handle, equal to lapis merge") {
+  const fs::path dir = scratch_dir(), prefix = dir / "transition_dependent";
+  const DefaultScene scene;
+  // The top: a handle in the source's transition band is refused.
+  const std::string actions = scene.pair_and_key() + scene.click_handle(scene.apex()) +
+                              "mark; xdotool key --window $w t; wait_handled 2 0; "
+                              "mark; xdotool key --window $w d; wait_handled 2 0; "
+                              "mark; xdotool key --window $w m; wait_handled 2 0;";
+  REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
-  CHECK(e.command.find("--transition-boundary dependent") != std::string::npos);
+  CHECK(e.command.find("--transition-boundary dependent --handles " + prefix.string() + "_handles.json") !=
+        std::string::npos);
+  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
+  REQUIRE(handles.size() == 1);
+  // The handle's placed position is in the merged mesh bit for bit (§3.3.1's condition would
+  // move it with the rest of the source).
+  bool kept = false;
+  for (int v = 0; v < e.merged.num_vertices() && !kept; ++v) kept = e.merged.V.row(v) == e.source.V.row(handles[0]);
+  CHECK(kept);
   check_watertight_seam(e);
   check_equals_cli(e, dir / "transition_dependent_cli.obj");
-  // The source vertex farthest from its rim along the surface is far outside the ROI: the
-  // merged mesh has it where it was placed, bit for bit (§3.3.1's condition would move it).
-  const geometry::Connectivity sc(e.source);
-  const geometry::ShortestPaths d = geometry::dijkstra(e.source, sc.boundary_loops().at(0));
-  const int far = static_cast<int>(std::max_element(d.distance.begin(), d.distance.end()) - d.distance.begin());
-  bool kept = false;
-  for (int v = 0; v < e.merged.num_vertices() && !kept; ++v) kept = e.merged.V.row(v) == e.source.V.row(far);
-  CHECK(kept);
 }
 
 // §3.5 from the window: tool 5 paints the dome's top, A makes it a fixed feature, and the export
@@ -768,9 +781,7 @@ TEST_CASE(
 TEST_CASE("apps: merge app — a region painted on the source and added with A merges as a fixed feature") {
   const fs::path dir = scratch_dir(), prefix = dir / "feature";
   const DefaultScene scene;
-  // The dome's top: the vertex farthest from its rim along the surface.
-  const geometry::ShortestPaths d = geometry::dijkstra(scene.source, scene.sloop);
-  const int apex = static_cast<int>(std::max_element(d.distance.begin(), d.distance.end()) - d.distance.begin());
+  const int apex = scene.apex();
   const Eigen::Vector3d top = geometry::project(scene.camera, scene.source.V.row(apex).transpose());
   std::string actions =
       scene.pair_and_key() + "mark; xdotool key --window $w 5; wait_handled 2 0; mark; xdotool mousemove --window $w " +
