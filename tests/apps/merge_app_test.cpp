@@ -198,6 +198,15 @@ void check_watertight_seam(const Exported& e) {
   CHECK(geometry::validate(e.merged).ok());
 }
 
+// The export's one handle: the merged mesh has a vertex at its placed position, bit for bit.
+void check_one_handle_kept(const Exported& e, const fs::path& prefix) {
+  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
+  REQUIRE(handles.size() == 1);
+  bool kept = false;
+  for (int v = 0; v < e.merged.num_vertices() && !kept; ++v) kept = e.merged.V.row(v) == e.source.V.row(handles[0]);
+  CHECK(kept);
+}
+
 // Runs the exported `lapis merge` command with another --out and compares (1e-9).
 void check_equals_cli(const Exported& e, const fs::path& out) {
   REQUIRE(e.command.rfind("lapis merge ", 0) == 0);
@@ -541,13 +550,8 @@ TEST_CASE("apps: merge app — dependent mode keeps a picked handle fixed and ex
   REQUIRE(run_under_xvfb(xdotool_session("--export " + prefix.string(), actions)) == 0);
   const Exported e = read_exports(prefix);
   CHECK(e.command.find("--mode dependent --handles " + prefix.string() + "_handles.json") != std::string::npos);
-  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
-  REQUIRE(handles.size() == 1);
-  // Dependent merging keeps the placement and the handles exactly: the merged mesh has a vertex
-  // at the handle's placed position, bit for bit.
-  bool found = false;
-  for (int v = 0; v < e.merged.num_vertices() && !found; ++v) found = e.merged.V.row(v) == e.source.V.row(handles[0]);
-  CHECK(found);
+  // Dependent merging keeps the placement and the handles exactly.
+  check_one_handle_kept(e, prefix);
   check_watertight_seam(e);
   check_equals_cli(e, dir / "dependent_cli.obj");
 }
@@ -765,13 +769,8 @@ TEST_CASE("apps: merge app — transition regions on the dependent boundary (T, 
   CHECK(e.command.find("--mode transition --source-width ") != std::string::npos);
   CHECK(e.command.find("--transition-boundary dependent --handles " + prefix.string() + "_handles.json") !=
         std::string::npos);
-  const std::vector<int> handles = mesh_merge::read_handles_file(prefix.string() + "_handles.json");
-  REQUIRE(handles.size() == 1);
-  // The handle's placed position is in the merged mesh bit for bit (§3.3.1's condition would
-  // move it with the rest of the source).
-  bool kept = false;
-  for (int v = 0; v < e.merged.num_vertices() && !kept; ++v) kept = e.merged.V.row(v) == e.source.V.row(handles[0]);
-  CHECK(kept);
+  // §3.3.1's condition would move the handle with the rest of the source.
+  check_one_handle_kept(e, prefix);
   check_watertight_seam(e);
   check_equals_cli(e, dir / "transition_dependent_cli.obj");
 }

@@ -114,8 +114,9 @@ BoundaryOptimizer::BoundaryOptimizer(TriMesh source, TriMesh target, BoundaryReg
   parameterize_band(band);
   parameterize_target();
   t0 = std::chrono::steady_clock::now();
-  cut_band(band);
-  keep_clear_of_feature(band);
+  const Connectivity band_conn(band);  // the cut and the clearance walk the same band
+  cut_band(band, band_conn);
+  keep_clear_of_feature(band_conn);
   timings_.cut_ms = ms_since(t0);
 }
 
@@ -201,8 +202,7 @@ void BoundaryOptimizer::parameterize_target() {
 // §3.4.3: "the shortest path from a vertex on ∂Ω0 to a vertex on ∂Ωfeature", as straight and
 // short as possible: Dijkstra by edge length from all of ∂Ω0 at once, never along either border,
 // to the nearest vertex of ∂Ωf. Then every cut vertex gets a twin on the path's other side.
-void BoundaryOptimizer::cut_band(const TriMesh& band) {
-  const Connectivity conn(band);
+void BoundaryOptimizer::cut_band(const TriMesh& band, const Connectivity& conn) {
   const auto length = geometry::edge_length_cost(band);
   const geometry::ShortestPaths paths = geometry::dijkstra(
       conn, outer_, [&](int e, int a, int b) { return conn.is_boundary_edge(e) ? kInf : length(e, a, b); });
@@ -231,12 +231,11 @@ void BoundaryOptimizer::cut_band(const TriMesh& band) {
 // The band vertices fewer than feature_clearance edges from ∂Ωf, which the boundary step may
 // not use, and a check that a closed path around Ωf remains: some cut vertex still reaches its
 // twin through the cut-open band's other vertices.
-void BoundaryOptimizer::keep_clear_of_feature(const TriMesh& band) {
+void BoundaryOptimizer::keep_clear_of_feature(const Connectivity& band) {
   const int nv = source_.num_vertices(), clearance = options_.feature_clearance;
   too_near_.assign(static_cast<size_t>(nv), 0);
   if (clearance == 0) return;
-  const geometry::ShortestPaths steps =
-      geometry::dijkstra(Connectivity(band), inner_, [](int, int, int) { return 1.0; });
+  const geometry::ShortestPaths steps = geometry::dijkstra(band, inner_, [](int, int, int) { return 1.0; });
   for (int v = 0; v < nv; ++v) too_near_[v] = steps.distance[v] < clearance;
   const Connectivity& conn = *cut_conn_;
   std::vector<int> component(static_cast<size_t>(cut_band_.num_vertices()));

@@ -156,8 +156,8 @@ class BoundaryOptimizer {
   void find_loops();
   void parameterize_band(const TriMesh& band);
   void parameterize_target();
-  void cut_band(const TriMesh& band);
-  void keep_clear_of_feature(const TriMesh& band);
+  void cut_band(const TriMesh& band, const geometry::Connectivity& conn);
+  void keep_clear_of_feature(const geometry::Connectivity& band);
   std::vector<int> faces_inside(const std::vector<int>& loop) const;
   std::vector<int> faces_under(const Eigen::MatrixX2d& polygon) const;  // Ω1-local face indices
   bool hole_reaches_border(const std::vector<int>& region_faces) const;
