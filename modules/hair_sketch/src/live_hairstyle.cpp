@@ -20,7 +20,11 @@ LiveHairstyle::LiveHairstyle(const Head& head, const HairstyleSettings& settings
       settings_(settings),
       field_(head, hairstyle_grid(head, settings), settings.field_method, settings.field, settings.field_detail,
              settings.gravity_prior),
-      roots_(sample_roots(head, settings.roots)) {}
+      roots_(sample_roots(head, settings.roots)) {
+  if (settings.scalp_avoidance)
+    avoided_ = std::make_unique<StyleField>(head, field_.grid(), settings.field_method, settings.field,
+                                            settings.field_detail, settings.gravity_prior);
+}
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives, Strands reuse) {
   return update(primitives, {}, std::move(reuse));
@@ -50,21 +54,22 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   if (out.regrown) {
     out.solves.push_back(field_.update(primitives));
     // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
-    if (settings_.scalp_avoidance && !field_.constraints().empty()) {
+    avoided_used_ = settings_.scalp_avoidance && !field_.constraints().empty();
+    if (avoided_used_) {
       const auto t = std::chrono::steady_clock::now();
       if (!avoidance_) avoidance_ = std::make_unique<ScalpAvoidance>(field_.grid(), *head_);
       const std::vector<hair_field::Constraint> avoid = avoidance_->constraints(field_.field());
       out.avoidance_ms = ms_since(t);
-      out.solves.push_back(field_.update(primitives, avoid));
+      out.solves.push_back(avoided_->update(primitives, avoid));
     }
   }
   out.solve_ms = ms_since(t0);
-  out.constraints = field_.constraints().size();
+  out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
   if (out.regrown) {
     grown_valid_ = false;  // until the growth below completes
     grower_.set_options(settings_.growth);
-    grower_.grow(SampledField(field_.grid(), field_.field()), roots_, grown_);
+    grower_.grow(SampledField(field_.grid(), field()), roots_, grown_);
     last_primitives_ = primitives;
     grown_valid_ = true;
   }

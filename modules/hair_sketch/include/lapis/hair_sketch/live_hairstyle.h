@@ -34,7 +34,8 @@ struct LiveUpdate {
 class LiveHairstyle {
  public:
   // Builds the grid, the solver and the roots for `settings`. The head must outlive this.
-  // Throws ResourceLimit when the grid's solver would not fit in memory.
+  // Throws ResourceLimit when the grid's solvers (two with scalp avoidance) would not fit in
+  // memory.
   LiveHairstyle(const Head& head, const HairstyleSettings& settings);
 
   // Brings the field and the strands up to date with `primitives`. `reuse`: strands of an
@@ -48,13 +49,19 @@ class LiveHairstyle {
 
   const HairstyleSettings& settings() const { return settings_; }
   const hair_field::Grid& grid() const { return field_.grid(); }
-  const hair_field::Field& field() const { return field_.field(); }
+  // The field the strands grew in: the avoidance solve's where it ran, else the style's.
+  const hair_field::Field& field() const { return avoided_used_ ? avoided_->field() : field_.field(); }
   const std::vector<Eigen::Vector3d>& roots() const { return roots_; }
 
  private:
   const Head* head_;
   HairstyleSettings settings_;
-  StyleField field_;
+  StyleField field_;  // the primitives' constraints only
+  // The primitives' constraints and scalp avoidance's (§4.6), in a solver of its own: the
+  // avoidance's near-head nodes are the same from edit to edit, so each solver only sees the
+  // edit's diff. One solver would drop and re-add all of them twice per edit.
+  std::unique_ptr<StyleField> avoided_;
+  bool avoided_used_ = false;  // the last update's field is avoided_'s
   std::vector<Eigen::Vector3d> roots_;
   StrandGrower grower_;
   // The strands as grown for last_primitives_, before detail.
