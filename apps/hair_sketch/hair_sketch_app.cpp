@@ -18,6 +18,13 @@
 #include "primitive_geometry.h"
 
 namespace lapis::hair_app {
+namespace {
+
+// How long an edit's curves wait for its strands (scene_held_since_): about twice a regrowth
+// at the default grid.
+constexpr double kSceneHoldSeconds = 0.4;
+
+}  // namespace
 
 const char* tool_name(Tool t) {
   switch (t) {
@@ -236,9 +243,8 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
     apply_stroke(document_, rec, head_, grid_);
     if (document_.style().primitives.size() > before) selected_ = static_cast<int>(before);
     if (rec.action == StrokeAction::Ponytail) warn_if_tail_too_thin(v, document_.style().primitives.back());
-    last_edit_time_ = released;
-    curves_dirty_ = true;
-    request_regrowth();
+    begin_edit(released);
+    return;  // the stroke stays on screen until its strands arrive (on_frame)
   } catch (const StrokeRejected& e) {
     // "hair_sketch::stream_curve_from_stroke(): stroke must start on the scalp" → the reason.
     std::string why = e.what();
@@ -292,9 +298,19 @@ void HairSketchApp::execute(viewer::Viewer& v, Command command) {
     v.flash(e.what(), viewer::Tone::Error);
     return;
   }
-  last_edit_time_ = v.time();
+  begin_edit(v.time());
+}
+
+void HairSketchApp::begin_edit(double time) {
+  last_edit_time_ = time;
   curves_dirty_ = true;
+  scene_held_since_ = time;
   request_regrowth();
+}
+
+void HairSketchApp::end_scene_hold(viewer::Viewer& v) {
+  scene_held_since_ = -1;
+  update_preview_item(v);
 }
 
 void HairSketchApp::undo(viewer::Viewer& v) {
@@ -302,18 +318,14 @@ void HairSketchApp::undo(viewer::Viewer& v) {
   document_.undo();
   selected_ = std::min(selected_, static_cast<int>(document_.style().primitives.size()) - 1);
   head_dirty_ = true;  // the selected detail's region may have changed
-  last_edit_time_ = v.time();
-  curves_dirty_ = true;
-  request_regrowth();
+  begin_edit(v.time());
 }
 
 void HairSketchApp::redo(viewer::Viewer& v) {
   if (!document_.can_redo()) return v.flash("nothing to redo");
   document_.redo();
   head_dirty_ = true;
-  last_edit_time_ = v.time();
-  curves_dirty_ = true;
-  request_regrowth();
+  begin_edit(v.time());
 }
 
 void HairSketchApp::delete_selected(viewer::Viewer& v) {
@@ -488,8 +500,12 @@ void HairSketchApp::on_frame(viewer::Viewer& v) {
     update_strand_item(v, last_->update.strands);
   receive_regrowth(v);
   request_regrowth();  // no-op unless the document or settings moved on
-  if (head_dirty_) update_head_item(v);
-  if (curves_dirty_) update_curve_items(v);
+  // A slow regrowth (a big grid) does not hide the edit's curves for long.
+  if (scene_held_since_ >= 0 && (!busy() || v.time() - scene_held_since_ > kSceneHoldSeconds)) end_scene_hold(v);
+  if (scene_held_since_ < 0) {
+    if (head_dirty_) update_head_item(v);
+    if (curves_dirty_) update_curve_items(v);
+  }
   autosave_if_due(v);
 }
 

@@ -101,6 +101,8 @@ class HairSketchApp final : public viewer::ViewerApp {
   bool handle_key(viewer::Viewer& v, const viewer::InputEvent& e);
   void execute(viewer::Viewer& v, Command command);
   void undo(viewer::Viewer& v);
+  void begin_edit(double time);  // after a document change: regrow, the scene held meanwhile
+  void end_scene_hold(viewer::Viewer& v);
   void redo(viewer::Viewer& v);
   void delete_selected(viewer::Viewer& v);
   void set_details(viewer::Viewer& v, std::vector<StrandDetail> details, const std::string& name);
@@ -177,6 +179,10 @@ class HairSketchApp final : public viewer::ViewerApp {
   Strands spare_strands_;  // replaced on screen; the next regrowth writes into them
   std::string engine_error_;
   double last_edit_time_ = 0;
+  // While an edit's strands are on their way, the scene keeps its last picture (the stroke as
+  // drawn, the old curves): redrawing it costs a software-GL frame that competes with the
+  // solve for the cores. The curves and the strands then change in one frame.
+  double scene_held_since_ = -1;
   double last_autosave_ = 0;
   std::vector<EditStages> edits_;          // edit → strands on screen, by stage, for --benchmark
   long edit_drawn_in_frame_ = -1;          // the frame that first draws the last edit's strands
