@@ -156,6 +156,47 @@ TEST_CASE("hair_sketch: a ponytail pulls strands from its annulus through the fi
   CHECK(through >= 0.9 * entered);
 }
 
+TEST_CASE(
+    "hair_sketch: a ponytail's centripetal constraints surround the spine even when its annulus is thinner than a "
+    "cell") {
+  // Thesis §4.5: the constraints lie between R1 = 1.3 r and R2 = 1.9 r on C1's plane. At r = 0.8
+  // spacings that annulus is half a cell wide; the nodes inside it leave gaps that strands slip
+  // through, and the nodes nearest it close the ring.
+  const Grid g = small_grid(25000);
+  const double r = 0.8 * g.spacing;
+  Ponytail pt;
+  const Eigen::Vector3d mid(g.dims[0] / 2, g.dims[1] / 2, g.dims[2] / 2);
+  const Eigen::Vector3d c = g.origin + g.spacing * (mid + Eigen::Vector3d(0.13, 0.21, 0.37));  // off the lattice
+  const Eigen::Vector3d t = Eigen::Vector3d(0.3, -0.8, -0.5).normalized();
+  for (int i = -4; i <= 8; ++i) pt.spine.push_back(c + 0.1 * i * t);
+  Eigen::Vector3d u, w;
+  u = t.cross(Eigen::Vector3d::UnitX()).normalized(), w = t.cross(u);
+  for (int k = 0; k < 12; ++k) {
+    const double a = 2 * 3.14159265358979 * k / 12;
+    pt.cross_section.push_back(c + r * (std::cos(a) * u + std::sin(a) * w));
+  }
+  for (int i = 0; i <= 4; ++i) {
+    pt.profile_a.push_back(c + 0.1 * i * t + r * u);
+    pt.profile_b.push_back(c + 0.1 * i * t - r * u);
+  }
+  const Ponytail::Section sec = pt.first_section();
+  std::vector<double> angles;
+  for (const auto& k : pt.constraints(g)) {
+    if (std::abs(k.direction.norm() - pt.tightness) > 1e-9) continue;  // longitudinal, spine
+    const Eigen::Vector3d q = g.position(k.node) - sec.center;
+    const Eigen::Vector3d radial = q - q.dot(sec.normal) * sec.normal;
+    CHECK(radial.norm() >= pt.inner_ratio * sec.radius - 1e-12);      // never inside R1
+    CHECK(k.direction.normalized().dot(-radial.normalized()) > 0.9);  // toward the spine
+    angles.push_back(std::atan2(radial.dot(w), radial.dot(u)));
+  }
+  REQUIRE(angles.size() >= 6);
+  std::sort(angles.begin(), angles.end());
+  double gap = angles.front() + 2 * 3.14159265358979 - angles.back();
+  for (size_t i = 1; i < angles.size(); ++i) gap = std::max(gap, angles[i] - angles[i - 1]);
+  MESSAGE(angles.size() << " centripetal nodes, largest angular gap " << gap * 180 / 3.14159265358979 << " degrees");
+  CHECK(gap < 3.14159265358979 / 4);
+}
+
 TEST_CASE("hair_sketch: scalp avoidance removes at least 90% of penetrating segments") {
   const Head& head = bundled_head();
   // 36K unknowns over the head and shoulders' box: the spacing 20K gave over the head alone.

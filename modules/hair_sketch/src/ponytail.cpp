@@ -68,6 +68,43 @@ double interpolate(const std::vector<std::pair<double, double>>& r, double s) {
   return a.second + t * (b.second - a.second);
 }
 
+// Points sampling the annulus r1..r2 on C1's plane, at most half a spacing apart.
+double annulus_radii(double r1, double r2, double d) { return std::max(2.0, std::ceil((r2 - r1) / (0.5 * d)) + 1); }
+double annulus_ring_points(double rho, double d) {
+  return std::max(8.0, std::ceil(2 * std::numbers::pi * rho / (0.5 * d)));
+}
+
+// The nodes nearest those points, each pointing at the spine within C1's plane with magnitude
+// `magnitude` (off-plane nodes do not point back against the tail).
+void centripetal_ring(const Grid& grid, const Ponytail::Section& c1, double r1, double r2, double magnitude,
+                      std::vector<Constraint>& out) {
+  const double d = grid.spacing;
+  Eigen::Vector3d u, v;
+  detail::orthonormal_frame(c1.normal, u, v);
+  std::vector<Constraint> nearest;
+  const int radii = static_cast<int>(annulus_radii(r1, r2, d));  // bounded by kMaxRingPoints
+  for (int a = 0; a < radii; ++a) {
+    const double rho = r1 + (r2 - r1) * a / (radii - 1);
+    const int n = static_cast<int>(annulus_ring_points(rho, d));
+    for (int k = 0; k < n; ++k) {
+      const double phi = 2 * std::numbers::pi * k / n;
+      detail::constrain_nearest(grid, c1.center + rho * (std::cos(phi) * u + std::sin(phi) * v),
+                                Eigen::Vector3d::Zero(), nearest);
+    }
+  }
+  std::vector<int> nodes;
+  for (const auto& c : nearest) nodes.push_back(c.node);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  for (const int node : nodes) {
+    const Eigen::Vector3d q = grid.position(node) - c1.center;
+    const Eigen::Vector3d radial = q - q.dot(c1.normal) * c1.normal;
+    // Not inside the annulus' inner circle: nodes between C1 and R1 pointing inward made a
+    // sink there, where strands stopped (a tail of the bundled half_up session).
+    if (radial.norm() >= r1) out.push_back({node, -magnitude * radial.normalized()});
+  }
+}
+
 }  // namespace
 
 Ponytail::Section Ponytail::first_section() const {
@@ -105,6 +142,8 @@ std::vector<Constraint> Ponytail::constraints(const Grid& grid) const {
   // a ring of 2 pi r / d points. The spine's resampling bounds the number of rings.
   double points = 0;
   for (double s = s1; s <= s2 + 1e-9; s += d) points += ring_points(s == s1 ? c1.radius : radius(s));
+  points += annulus_radii(inner_ratio * c1.radius, outer_ratio * c1.radius, d) *
+            annulus_ring_points(outer_ratio * c1.radius, d);
   if (!(points <= kMaxRingPoints))
     throw ResourceLimit("hair_sketch::Ponytail::constraints(): the cross sections need " + format_number(points) +
                         " points at grid spacing " + format_number(d) + ", at most " + format_number(kMaxRingPoints) +
@@ -145,6 +184,9 @@ std::vector<Constraint> Ponytail::constraints(const Grid& grid) const {
         const double rho = (q - h * c1.normal).norm();
         if (std::abs(h) <= 0.5 * d && rho >= r1 && rho <= r2) out.push_back({node, -tightness * q.normalized()});
       }
+  // An annulus thinner than a cell holds few nodes, with gaps between them that strands slip
+  // through: the nodes nearest points of the annulus close the ring.
+  centripetal_ring(grid, c1, r1, r2, tightness, out);
   return out;
 }
 

@@ -3,7 +3,8 @@
 // (C1 first, near the scalp; C2 last). Three kinds of constraints: longitudinal directions
 // of the surface of revolution near the cross sections, spine tangents from C2 on, and
 // centripetal constraints toward C1's centre in the annulus 1.3 r – 1.9 r on C1's plane,
-// of magnitude = tightness.
+// of magnitude = tightness. Where that annulus is thinner than a cell, the nodes nearest it
+// are constrained too, so the ring has no gaps (docs/decisions.md).
 #pragma once
 
 #include <vector>
