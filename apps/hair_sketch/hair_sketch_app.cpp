@@ -254,18 +254,19 @@ void HairSketchApp::finish_stroke(viewer::Viewer& v) {
   update_preview_item(v);
 }
 
-// A cross-section narrower than a grid cell has no grid node inside C1 and its centripetal
-// annulus (1.3 r–1.9 r, thesis §4.5) is thinner than a cell: the field cannot gather strands
-// into it, so the tail would silently stay empty. Say so, and what to change.
+// A cross-section narrower than a grid cell has no grid node inside C1. Without the gravity
+// prior, the thesis' field then gathers few strands into it, and the tail would stay nearly
+// empty. Say so, and what to change.
 void HairSketchApp::warn_if_tail_too_thin(viewer::Viewer& v, const StylePrimitive& p) {
   const auto* tail = std::get_if<Ponytail>(&p.shape);
   if (!tail) return;
   const double r = tail->first_section().radius;
-  if (r >= grid_.spacing) return;
-  char text[200];
+  // With the gravity prior, the hair above the tail falls into it however thin it is.
+  if (r >= grid_.spacing || document_.style().settings.gravity_prior.strength > 0) return;
+  char text[240];
   std::snprintf(text, sizeof text,
-                "ponytail cross-section radius %.3f is below the grid spacing %.3f: few strands will "
-                "reach it; draw it wider or raise the grid unknowns",
+                "ponytail cross-section radius %.3f is below the grid spacing %.3f: with the gravity prior off, "
+                "few strands will reach it; turn the prior on, draw it wider or raise the grid unknowns",
                 r, grid_.spacing);
   v.flash(text, viewer::Tone::Warning);
 }

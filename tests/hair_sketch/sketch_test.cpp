@@ -338,3 +338,54 @@ TEST_CASE("hair_sketch: a ponytail's strokes are each read with the camera they 
   CHECK(made.cross_section == expected.cross_section);
   CHECK(doc.style().primitives[0].viewpoint == lapis::geometry::eye_position(back));
 }
+
+TEST_CASE("hair_sketch: a ponytail sketched from behind on a new style makes a tail, also narrower than a cell") {
+  // Drawn alone, from behind; the loop reads as a section of radius 0.08, under half of the 25K
+  // grid's spacing. With the gravity prior of a new style in the app (0.3), the hair above C1
+  // falls to it; without it (the thesis' field) nothing says where that hair goes, and most of
+  // it rises above the crown (docs/hair_sketch.md).
+  const Head& head = bundled_head();
+  const CameraMatrices back = look_at({0, 0.3, -5}, {0, 0.0, -0.8});
+  std::vector<Eigen::Vector3d> spine;
+  for (int i = 0; i <= 10; ++i) spine.push_back(on_head({0, std::cos(0.9 + 0.05 * i), -std::sin(0.9 + 0.05 * i)}));
+  const Eigen::Vector3d start = spine.back(), down(0, -1, -0.15);
+  for (int i = 1; i <= 12; ++i) spine.push_back(start + 0.08 * i * down.normalized() + Eigen::Vector3d(0, 0, -0.1));
+  const double r = 0.12;
+  std::vector<Eigen::Vector3d> loop, pa, pb;
+  for (int k = 0; k <= 24; ++k) {
+    const double phi = 2 * M_PI * k / 24;
+    loop.push_back(spine[13] + r * Eigen::Vector3d(std::cos(phi), 0.3 * std::sin(phi), 0));
+  }
+  for (int i = 12; i <= 22; ++i) {
+    const double ri = r * (1.0 - 0.05 * (i - 12));
+    pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
+    pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
+  }
+  Hairstyle style;
+  style.settings.grid.target_unknowns = 25000;
+  style.settings.roots.count = 2000;
+  style.settings.gravity_prior.strength = 0.3;
+  const Grid grid = hairstyle_grid(head, style.settings);
+  Document doc(style);
+  apply_stroke(
+      doc,
+      recorded(StrokeAction::Ponytail, back,
+               {project_path(back, spine), project_path(back, loop), project_path(back, pa), project_path(back, pb)}),
+      head, grid);
+  const auto& tail = std::get<Ponytail>(doc.style().primitives.at(0).shape);
+  REQUIRE(tail.first_section().radius < 0.5 * grid.spacing);
+  const HairstyleResult res = build_hairstyle(doc.style(), head);
+  int rising = 0;  // strands reaching a tenth of the head's height above its top
+  for (int s = 0; s < res.strands.count(); ++s)
+    for (int i = res.strands.offsets[s]; i < res.strands.offsets[s + 1]; ++i)
+      if (res.strands.points[i].y() > head.box.max().y() + 0.1 * head.box.sizes().y()) {
+        ++rising;
+        break;
+      }
+  const auto [entered, through] = strands_entering_tail(res.strands, tail, res.grid.spacing);
+  MESSAGE(rising << " strands rise above the head; " << through << " of " << entered
+                 << " strands entering the tail pass through C1, of " << res.strands.count());
+  CHECK(rising == 0);
+  CHECK(through >= 0.9 * entered);
+  CHECK(through >= res.strands.count() / 10);  // a tail, not a few strands
+}
