@@ -175,3 +175,49 @@ TEST_CASE("geometry: bridging a jagged cut does not fold the strip against the s
     CHECK(folded_edges_from(m, first) == 0);
   }
 }
+
+namespace {
+
+double total_area(const TriMesh& m) {
+  double a = 0;
+  for (int f = 0; f < m.num_faces(); ++f)
+    a += 0.5 * (m.V.row(m.F(f, 1)) - m.V.row(m.F(f, 0))).cross(m.V.row(m.F(f, 2)) - m.V.row(m.F(f, 0))).norm();
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("geometry: splitting edges keeps the surface, its winding and every index") {
+  const TriMesh grid = make_plane_grid(3, 3);
+  const Connectivity conn(grid);
+  // One, two and three split edges per face: every edge of the middle vertex's faces.
+  std::vector<std::pair<int, int>> edges;
+  const int mid = 5;  // an interior vertex of the 4×4 lattice
+  for (int f : conn.vertex_faces(mid))
+    for (int k = 0; k < 3; ++k) edges.emplace_back(grid.F(f, k), grid.F(f, (k + 1) % 3));
+  TriMesh m = grid;
+  const int added = split_edges(m, edges);
+  CHECK(added == 12);  // six spokes and six rim edges of the hexagonal fan, each once
+  CHECK(m.V.topRows(grid.num_vertices()) == grid.V);
+  for (int i = 0; i < added; ++i) {  // each new vertex halves one listed edge
+    const Eigen::RowVector3d p = m.V.row(grid.num_vertices() + i);
+    CHECK(std::any_of(edges.begin(), edges.end(), [&](const auto& e) {
+      return (p - 0.5 * (grid.V.row(e.first) + grid.V.row(e.second))).norm() < 1e-15;
+    }));
+  }
+  CHECK(total_area(m) == doctest::Approx(total_area(grid)).epsilon(1e-12));
+  CHECK(validate(m).ok());  // manifold and consistently wound
+  const Connectivity after(m);
+  CHECK(after.boundary_loops().size() == 1);
+  for (int f = 0; f < m.num_faces(); ++f) {  // no normal flipped: the grid lies in z = 0, facing +z
+    const Eigen::Vector3d n = (m.V.row(m.F(f, 1)) - m.V.row(m.F(f, 0))).cross(m.V.row(m.F(f, 2)) - m.V.row(m.F(f, 0)));
+    CHECK(n.z() > 0);
+  }
+  // A pair that is not an edge is refused, and the mesh is left as it was.
+  TriMesh same = grid;
+  CHECK_THROWS_WITH_AS(split_edges(same, {{0, 15}}), doctest::Contains("(0, 15) is not an edge"),
+                       lapis::InvalidArgument);
+  CHECK(same.F == grid.F);
+  CHECK(same.V == grid.V);
+  CHECK_THROWS_AS(split_edges(same, {{0, 99}}), lapis::InvalidArgument);
+}

@@ -20,6 +20,13 @@ TriMesh with_faces(const TriMesh& mesh, const std::vector<int>& faces);
 // The corners of the listed faces, ascending, each once; faces out of range are skipped.
 std::vector<int> vertices_of_faces(const TriMesh& mesh, const std::vector<int>& faces);
 
+// Splits each listed edge (vertex pairs in either order, repeats ignored) at its midpoint; a
+// face with one, two or three split edges becomes two, three or four triangles of its winding.
+// New vertices are appended in the order of `edges`, so existing indices stay valid. Returns the
+// number of vertices added. Throws InvalidArgument, leaving the mesh as it was, for a pair that
+// is not an edge of the mesh.
+int split_edges(TriMesh& mesh, const std::vector<std::pair<int, int>>& edges);
+
 // Drops vertices that no face uses; returns the old-to-new map (-1 for dropped ones).
 std::vector<int> remove_unreferenced_vertices(TriMesh& mesh);
 
