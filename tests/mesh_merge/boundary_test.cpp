@@ -1,7 +1,9 @@
 #include <doctest/doctest.h>
 
+#include "lapis/geometry/procedural.h"
 #include "lapis/mesh_merge/constraints.h"
 #include "lapis/mesh_merge/refine.h"
+#include "lapis/mesh_merge/transition.h"
 #include "merge_fixtures.h"
 
 using namespace lapis;
@@ -91,4 +93,26 @@ TEST_CASE("mesh_merge: boundary refinement splits boundary edges and keeps indic
   CHECK(refine_short_boundary(r, 100.0, 2) == 2);
   TriMesh q = test::dome(2);
   CHECK(refine_short_boundary(q, 0.0, 2) == 0);
+}
+
+TEST_CASE("mesh_merge: a loop's ring is made an annulus where the mesh reaches back to the loop") {
+  // A 2×1 strip of quads: every vertex is on the loop, and the diagonals join loop vertices
+  // across the mesh, so no band next to the loop is an annulus.
+  TriMesh m = geometry::make_plane_grid(2, 1);
+  const TriMesh before = m;
+  std::vector<int> loop = geometry::Connectivity(m).boundary_loops().at(0);
+  CHECK_FALSE(band_is_annulus(m, geometry::Connectivity(m), loop, 0.01, "target"));
+  const int added = separate_loop_neighbourhoods(m, {loop});
+  CHECK(added > 0);
+  CHECK(m.V.topRows(before.num_vertices()) == before.V);  // indices kept
+  const geometry::Connectivity conn(m);
+  REQUIRE(conn.boundary_loops().size() == 1);
+  CHECK(conn.boundary_loops()[0].size() == loop.size());  // the loop itself unchanged
+  CHECK(geometry::validate(m).ok());
+  CHECK(band_is_annulus(m, conn, loop, 0.01, "target"));
+  // Nothing to separate: the mesh is left alone.
+  TriMesh dome = test::dome(2);
+  const TriMesh dome_before = dome;
+  CHECK(separate_loop_neighbourhoods(dome, geometry::Connectivity(dome).boundary_loops()) == 0);
+  CHECK(dome.F == dome_before.F);
 }

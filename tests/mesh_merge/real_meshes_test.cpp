@@ -212,10 +212,13 @@ TEST_CASE("mesh_merge: real meshes: the suggested transition width gives bands t
   o.transition.source_width = o.transition.target_width = w;
   CHECK_NOTHROW(merge(s.cut.above, s.cut.below, s.pairs, o));
 
-  // Where even one ring of faces next to the target loop is not an annulus (the loop passes
-  // within one triangle of itself), no width works, and the suggestion says why.
-  const SelfCut bunny = self_cut("bunny00", 0.5);
-  CHECK_THROWS_WITH_AS(suggested_transition_width(bunny.cut.above, bunny.cut.below, bunny.pairs),
+  // Where no width works (a target of one triangle: every band covers it), the suggestion
+  // says why.
+  TriMesh triangle;
+  triangle.V = s.cut.below.V.topRows(3);
+  triangle.F = geometry::Faces{{0, 1, 2}};
+  const int key = s.pairs[0].keys[0].source;
+  CHECK_THROWS_WITH_AS(suggested_transition_width(s.cut.above, triangle, {LoopPair{{{key, 0}}}}),
                        doctest::Contains("no transition width down to"), InvalidArgument);
 }
 
@@ -337,5 +340,37 @@ TEST_CASE("mesh_merge: real meshes: optimal boundaries of one mesh's part on ano
     CHECK(held_user < 0.005);
     const std::set<int> near(opt.inner_loop().begin(), opt.inner_loop().end());
     for (int v : b.loop) CHECK(near.count(v) == 0);
+  }
+}
+
+TEST_CASE("mesh_merge: real meshes: transition regions next to a target loop within one triangle of itself" *
+          doctest::test_suite("slow")) {
+  // One ring of faces next to these loops is not an annulus: the loop reaches back to itself
+  // within a triangle. No band width was accepted until the edges there are split.
+  for (const auto& [name, fraction] :
+       {std::pair<std::string, double>{"cactus", 0.3}, {"double-torus-example", 0.7}, {"bunny00", 0.5}}) {
+    CAPTURE(name);
+    const SelfCut s = self_cut(name, fraction);
+    MergeOptions o;
+    o.mode = MergeMode::Transition;
+    o.transition.source_width = o.transition.target_width =
+        suggested_transition_width(s.cut.above, s.cut.below, s.pairs);
+    for (TransitionKeep keep : {TransitionKeep::Source, TransitionKeep::Target}) {
+      CAPTURE(static_cast<int>(keep));
+      o.transition.keep = keep;
+      const MergeResult r = merge(s.cut.above, s.cut.below, s.pairs, o);
+      const SeamQuality q = seam_quality(s.cut.below, r);
+      const auto [largest, mean] = source_drift(s.cut.above, r);
+      MESSAGE("width " << o.transition.target_width << ": folds " << q.folded_seam_edges << ", smallest strip angle "
+                       << q.min_strip_angle_deg << ", drift mean " << mean << ", largest " << largest);
+      CHECK(q.valid());
+      CHECK(geometry::validate(r.mesh).ok());
+      CHECK(geometry::connected_components(r.mesh).count == 1);
+      CHECK(q.max_target_displacement == 0.0);
+      CHECK(mean < 5e-3);  // the part stays where it was cut off
+      CHECK(largest < 0.03);
+      CHECK(r.target_map.size() == static_cast<size_t>(s.cut.below.num_vertices()));
+      CHECK(r.source_map.size() == static_cast<size_t>(s.cut.above.num_vertices()));
+    }
   }
 }

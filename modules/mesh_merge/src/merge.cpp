@@ -232,7 +232,7 @@ std::vector<int> loop_through(const Connectivity& conn, int v, int n, const char
 }  // namespace
 
 double suggested_transition_width(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs) {
-  const Connectivity sconn(source), tconn(target);
+  Connectivity sconn(source), tconn(target);
   std::vector<std::vector<int>> source_loops, target_loops;
   double source_perimeter = 0, target_perimeter = 0;
   for (const LoopPair& p : pairs) {
@@ -245,20 +245,34 @@ double suggested_transition_width(const TriMesh& source, const TriMesh& target, 
   if (target_loops.empty() || !(source_perimeter > 0) || !(target_perimeter > 0)) return 0.0;
   // Widths are in target units; the merge scales the source so that its loops' perimeter is
   // the target's (TransitionOptions), and so does the check of its bands here.
-  TriMesh scaled = source;
+  TriMesh scaled = source, refined = target;
   scaled.V *= target_perimeter / source_perimeter;
   // A fifth of the loops' mean diameter (perimeter / π), shrunk until every band is an annulus
   // whose rim lies inside its mesh: the largest band the merge accepts, within 2⁻⁸ of that start.
   constexpr double kShrink = 0.75;
   constexpr int kTries = 20;
-  double width = 0.2 * target_perimeter / std::numbers::pi / static_cast<double>(target_loops.size());
+  const double start = 0.2 * target_perimeter / std::numbers::pi / static_cast<double>(target_loops.size());
   std::string why;
-  for (int k = 0; k < kTries; ++k, width *= kShrink) {
-    bool all = true;
-    for (size_t p = 0; p < target_loops.size() && all; ++p)
-      all = band_is_annulus(target, tconn, target_loops[p], width, "target", &why) &&
-            band_is_annulus(scaled, sconn, source_loops[p], width, "source", &why);
-    if (all) return width;
+  double width = start;
+  const auto largest = [&] {
+    width = start;
+    for (int k = 0; k < kTries; ++k, width *= kShrink) {
+      bool all = true;
+      for (size_t p = 0; p < target_loops.size() && all; ++p)
+        all = band_is_annulus(refined, tconn, target_loops[p], width, "target", &why) &&
+              band_is_annulus(scaled, sconn, source_loops[p], width, "source", &why);
+      if (all) return width;
+    }
+    return 0.0;
+  };
+  if (const double w = largest(); w > 0) return w;
+  // Where a mesh reaches back to its loop within a triangle, no band is an annulus until the
+  // edges there are split, as the merge then splits them (refine.h).
+  const int added =
+      separate_loop_neighbourhoods(scaled, source_loops) + separate_loop_neighbourhoods(refined, target_loops);
+  if (added > 0) {
+    sconn = Connectivity(scaled), tconn = Connectivity(refined);
+    if (const double w = largest(); w > 0) return w;
   }
   throw InvalidArgument(std::string(kSuggest) + ": no transition width down to " + format_number(width / kShrink) +
                         " gives annular bands next to every merging loop: " + why);

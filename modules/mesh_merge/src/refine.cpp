@@ -1,8 +1,11 @@
 #include "lapis/mesh_merge/refine.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "lapis/geometry/connectivity.h"
+#include "lapis/geometry/mesh_edit.h"
 
 namespace lapis::mesh_merge {
 
@@ -44,6 +47,76 @@ int refine_short_boundary(geometry::TriMesh& mesh, double min_ratio, int max_lev
     ++levels;
   }
   return levels;
+}
+
+namespace {
+
+// Whether the positions (on a cycle of n) form one run of consecutive positions.
+bool one_run(std::vector<int> positions, int n) {
+  if (positions.size() <= 1 || static_cast<int>(positions.size()) >= n) return true;
+  std::sort(positions.begin(), positions.end());
+  int gaps = positions.front() + n - positions.back() > 1;
+  for (size_t i = 1; i < positions.size(); ++i) gaps += positions[i] - positions[i - 1] > 1;
+  return gaps <= 1;
+}
+
+// The edges whose split separates a pinch next to a merging loop: edges off the loops between
+// two loop vertices (of one loop, not neighbours on it, or of two loops, the mesh's other
+// boundary loops included), and the edges from the loops to a vertex whose loop neighbours are
+// on two loops or are not one run of one loop.
+std::vector<std::pair<int, int>> pinching_edges(const geometry::TriMesh& mesh,
+                                                const std::vector<std::vector<int>>& merging) {
+  const geometry::Connectivity conn(mesh);
+  std::vector<std::vector<int>> loops = merging;
+  std::vector<int> loop_of(static_cast<size_t>(mesh.num_vertices()), -1), position(loop_of.size(), -1);
+  const auto add = [&](const std::vector<int>& loop) {
+    for (int v : loop)
+      if (loop_of[v] >= 0) return;  // a merging loop again
+    for (size_t i = 0; i < loop.size(); ++i)
+      loop_of[loop[i]] = static_cast<int>(loops.size()), position[loop[i]] = static_cast<int>(i);
+    loops.push_back(loop);
+  };
+  loops.clear();
+  for (const auto& loop : merging) add(loop);
+  const int merging_count = static_cast<int>(loops.size());
+  for (const auto& loop : conn.boundary_loops()) add(loop);
+  const auto is_merging = [&](int v) { return loop_of[v] >= 0 && loop_of[v] < merging_count; };
+  std::vector<std::pair<int, int>> out;
+  for (int e = 0; e < conn.num_edges(); ++e) {
+    const auto [a, b] = conn.edges()[e];
+    if (conn.is_boundary_edge(e) || loop_of[a] < 0 || loop_of[b] < 0 || !(is_merging(a) || is_merging(b))) continue;
+    const int n = static_cast<int>(loops[loop_of[a]].size()), d = std::abs(position[a] - position[b]);
+    if (loop_of[a] != loop_of[b] || (d != 1 && d != n - 1)) out.emplace_back(a, b);
+  }
+  for (int c = 0; c < mesh.num_vertices(); ++c) {
+    if (loop_of[c] >= 0) continue;
+    int loop = -1;
+    bool pinched = false, merging_near = false;
+    std::vector<int> positions;
+    for (const int w : conn.vertex_neighbors(c)) {
+      if (loop_of[w] < 0) continue;
+      if (loop >= 0 && loop_of[w] != loop) pinched = true;
+      loop = loop_of[w];
+      merging_near |= is_merging(w);
+      positions.push_back(position[w]);
+    }
+    if (!merging_near || (!pinched && one_run(positions, static_cast<int>(loops[loop].size())))) continue;
+    for (const int w : conn.vertex_neighbors(c))
+      if (loop_of[w] >= 0) out.emplace_back(w, c);
+  }
+  return out;
+}
+
+}  // namespace
+
+int separate_loop_neighbourhoods(geometry::TriMesh& mesh, const std::vector<std::vector<int>>& loops, int max_rounds) {
+  int added = 0;
+  for (int round = 0; round < max_rounds; ++round) {
+    const std::vector<std::pair<int, int>> edges = pinching_edges(mesh, loops);
+    if (edges.empty()) break;
+    added += geometry::split_edges(mesh, edges);
+  }
+  return added;
 }
 
 }  // namespace lapis::mesh_merge

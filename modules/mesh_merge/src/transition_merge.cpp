@@ -8,6 +8,7 @@
 #include "lapis/geometry/polar.h"
 #include "lapis/mesh_deform/implicit_laplacian.h"
 #include "lapis/mesh_merge/constraints.h"
+#include "lapis/mesh_merge/refine.h"
 #include "lapis/mesh_merge/transition.h"
 #include "lapis/mesh_merge/zip.h"
 #include "lapis/solver/least_squares.h"
@@ -291,9 +292,8 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
     const TransitionBand& gone = keep_source ? b.target : b.source;
     removed.insert(removed.end(), gone.faces.begin(), gone.faces.end());
   }
-  const TriMesh rest_of_other = keep_source
-                                    ? geometry::remove_faces(TriMesh{Xt, target.F}, removed, &cut_map)
-                                    : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
+  TriMesh rest_of_other = keep_source ? geometry::remove_faces(TriMesh{Xt, target.F}, removed, &cut_map)
+                                      : geometry::remove_faces(TriMesh{r.source_deformed, src.F}, removed, &cut_map);
   const Vertices kept = keep_source ? kept_band_spread(r.source_deformed, Xt, bands, true)
                                     : kept_band_spread(Xt, r.source_deformed, bands, false);
   for (size_t p = 0; p < bands.size(); ++p) {
@@ -306,8 +306,19 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
       seams[p].target_loop = b.target.loop;
     }
   }
-  ZipResult z = keep_source ? zip_seams(rest_of_other, TriMesh{kept, src.F}, seams)
-                            : zip_seams(TriMesh{kept, target.F}, rest_of_other, seams);
+  ZipResult z;
+  try {
+    z = keep_source ? zip_seams(rest_of_other, TriMesh{kept, src.F}, seams)
+                    : zip_seams(TriMesh{kept, target.F}, rest_of_other, seams);
+  } catch (const InvalidArgument&) {
+    if (!keep_source) throw;
+    // The zip removes the target's ring next to each rim, which pinches where the rim passes
+    // within a triangle of itself: split the edges there (refine.h) and zip again.
+    std::vector<std::vector<int>> rims;
+    for (const auto& seam : seams) rims.push_back(seam.target_loop);
+    if (separate_loop_neighbourhoods(rest_of_other, rims) == 0) throw;
+    z = zip_seams(rest_of_other, TriMesh{kept, src.F}, seams);
+  }
   r.target_map.assign(static_cast<size_t>(nt), -1);
   r.source_map.assign(static_cast<size_t>(ns), -1);
   for (int v = 0; v < nt; ++v) {
@@ -357,6 +368,18 @@ void blend_kept_band(const TriMesh& src, const Connectivity& sconn, const TriMes
   reconstruct_band(z.mesh, r.transition_vertices, wanted);
 }
 
+// Splits the edges where `mesh` reaches back to one of `loops` within a triangle (refine.h),
+// when a band of `width` next to one of them is not an annulus; transition_band() then says
+// what still fails.
+void separate_where_pinched(TriMesh& mesh, const std::vector<std::vector<int>>& loops, double width) {
+  const Connectivity conn(mesh);
+  for (const auto& loop : loops)
+    if (!band_is_annulus(mesh, conn, loop, width, "")) {
+      separate_loop_neighbourhoods(mesh, loops);
+      return;
+    }
+}
+
 std::vector<int> every_vertex(int n) {
   std::vector<int> all(static_cast<size_t>(n));
   for (int v = 0; v < n; ++v) all[v] = v;
@@ -386,18 +409,25 @@ std::vector<int> dependent_roi_with_bands(const TriMesh& src, const Connectivity
 
 }  // namespace
 
-MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, const std::vector<LoopPair>& pairs,
-                                  const MergeOptions& o) {
+MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target_given,
+                                  const std::vector<LoopPair>& pairs, const MergeOptions& o) {
   auto t0 = std::chrono::steady_clock::now();
   MergeResult r;
-  const Connectivity tconn(target);
   const std::vector<BoundaryCorrespondence> corr =
-      correspond_boundaries(source, Connectivity(source), target, tconn, pairs);
+      correspond_boundaries(source, Connectivity(source), target_given, Connectivity(target_given), pairs);
   const bool dependent = o.transition.configuration_dependent;
   // §3.3.2 keeps the user's placement; §3.3.1 may bring the source to the target's scale.
-  TriMesh src = dependent ? source : source_at_target_scale(source, target, corr);
+  TriMesh src = dependent ? source : source_at_target_scale(source, target_given, corr);
   if (dependent) flip_loop_ears(src, corr);
-  const Connectivity sconn(src);
+  // Where a mesh reaches back to its loop within a triangle, no band is an annulus: the edges
+  // there are split. The loops keep their vertices, so the correspondences hold.
+  TriMesh target = target_given;
+  std::vector<std::vector<int>> source_loops, target_loops;
+  for (const BoundaryCorrespondence& c : corr)
+    source_loops.push_back(c.source_loop), target_loops.push_back(c.target_loop);
+  separate_where_pinched(src, source_loops, o.transition.source_width);
+  separate_where_pinched(target, target_loops, o.transition.target_width);
+  const Connectivity sconn(src), tconn(target);
   const int ns = src.num_vertices(), nt = target.num_vertices();
   const std::vector<PairBands> bands = make_bands(src, sconn, target, tconn, corr, o.transition);
   // "With the same boundary condition as before" (§3.3.3): the source loop onto the target
@@ -420,18 +450,21 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target, 
   t0 = std::chrono::steady_clock::now();
   blend_kept_band(src, sconn, target, tconn, Xt, bands, keep_source, z, r);
   // The kept band was reconstructed to blend into the seam, and the source is deformed
-  // anyway: both may move to unfold the seam, the target outside its band may not.
-  std::vector<char> is_source(static_cast<size_t>(z.mesh.num_vertices()), 0);
-  for (int v : r.source_map)
-    if (v >= 0) is_source[v] = 1;
+  // anyway: both may move to unfold the seam. Of the rest, only the ring next to the seam may,
+  // and only where a strip folds; those vertices are listed as smoothed, as the zip's
+  // smoothing lists the target's seam band.
   std::vector<int> movable = r.transition_vertices;
-  for (int v : seam_band(z.mesh, z.seam_vertices, 1))
-    if (is_source[v]) movable.push_back(v);
+  for (int v : seam_band(z.mesh, z.seam_vertices, 1)) movable.push_back(v);
+  const Vertices before = z.mesh.V;
   unfold_seam(z.mesh, z.strip_faces, movable);
+  for (int v = 0; v < z.mesh.num_vertices(); ++v)
+    if (z.mesh.V.row(v) != before.row(v)) r.smoothed.push_back(v);
   r.timings.smooth_ms = ms_since(t0);  // the band replaces the seam smoothing
   r.mesh = std::move(z.mesh);
   r.strip_faces = std::move(z.strip_faces);
   r.seam_vertices = std::move(z.seam_vertices);
+  r.target_map.resize(static_cast<size_t>(target_given.num_vertices()));  // the meshes as given
+  r.source_map.resize(static_cast<size_t>(source.num_vertices()));
   return r;
 }
 

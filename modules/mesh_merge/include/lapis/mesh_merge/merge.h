@@ -174,7 +174,8 @@ class Merger {
 // A transition width (target units, for both meshes) for Transition mode when the user gave
 // none: a fifth of the mean diameter (perimeter / π) of the target loops the pairs name, shrunk
 // by factors of 0.75 until the band of every named loop, on the target and on the source (at
-// the target's scale), is an annulus transition_band() accepts. Returns 0 for pairs without
+// the target's scale), is an annulus transition_band() accepts; where none is, the same after
+// separate_loop_neighbourhoods() (refine.h), as the merge then does. Returns 0 for pairs without
 // keys. Throws InvalidArgument "mesh_merge::suggested_transition_width(): ..." for a first key
 // out of range or off every boundary loop, and, naming the cause, when 20 sizes down to 0.4% of
 // the start all fail.
