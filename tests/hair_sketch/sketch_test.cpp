@@ -235,27 +235,38 @@ TEST_CASE("hair_sketch: a tilt stroke beside a dividing curve sets alpha at its 
       doctest::Contains("from the parting"), StrokeRejected);
 }
 
+namespace {
+
+// A ponytail's four curves as drawn from behind: the spine from the crown down the back of the
+// head and off it, a flat loop of radius r around it (its C1), and profiles narrowing along it.
+struct BackPonytail {
+  std::vector<Eigen::Vector3d> spine, loop, pa, pb;
+  double r = 0.12;
+  BackPonytail() {
+    for (int i = 0; i <= 10; ++i) spine.push_back(on_head({0, std::cos(0.9 + 0.05 * i), -std::sin(0.9 + 0.05 * i)}));
+    const Eigen::Vector3d start = spine.back(), down(0, -1, -0.15);
+    for (int i = 1; i <= 12; ++i) spine.push_back(start + 0.08 * i * down.normalized() + Eigen::Vector3d(0, 0, -0.1));
+    for (int k = 0; k <= 24; ++k) {
+      const double phi = 2 * M_PI * k / 24;
+      loop.push_back(spine[13] + r * Eigen::Vector3d(std::cos(phi), 0.3 * std::sin(phi), 0));
+    }
+    for (int i = 12; i <= 22; ++i) {
+      const double ri = r * (1.0 - 0.05 * (i - 12));
+      pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
+      pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
+    }
+  }
+};
+
+}  // namespace
+
 TEST_CASE("hair_sketch: four strokes make a ponytail whose cross sections lie between the profiles") {
   const Head& head = bundled_head();
   const SketchOptions o = options();
   const CameraMatrices back = look_at({0, 0.3, -5}, {0, 0.0, -0.8});
-  // Spine: from the crown down the back of the head, leaving it.
-  std::vector<Eigen::Vector3d> spine;
-  for (int i = 0; i <= 10; ++i) spine.push_back(on_head({0, std::cos(0.9 + 0.05 * i), -std::sin(0.9 + 0.05 * i)}));
-  const Eigen::Vector3d start = spine.back(), down(0, -1, -0.15);
-  for (int i = 1; i <= 12; ++i) spine.push_back(start + 0.08 * i * down.normalized() + Eigen::Vector3d(0, 0, -0.1));
-  const double r = 0.12;
+  const BackPonytail drawn;
+  const auto& [spine, loop, pa, pb, r] = drawn;
   const Eigen::Vector3d c1 = spine[13];
-  std::vector<Eigen::Vector3d> loop, pa, pb;
-  for (int k = 0; k <= 24; ++k) {
-    const double phi = 2 * M_PI * k / 24;
-    loop.push_back(c1 + r * Eigen::Vector3d(std::cos(phi), 0.3 * std::sin(phi), 0));
-  }
-  for (int i = 12; i <= 22; ++i) {
-    const double ri = r * (1.0 - 0.05 * (i - 12));
-    pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
-    pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
-  }
   const Ponytail t = ponytail_from_strokes(
       {project_path(back, spine), project_path(back, loop), project_path(back, pa), project_path(back, pb)}, back, head,
       o);
@@ -346,21 +357,8 @@ TEST_CASE("hair_sketch: a ponytail sketched from behind on a new style makes a t
   // it rises above the crown (docs/hair_sketch.md).
   const Head& head = bundled_head();
   const CameraMatrices back = look_at({0, 0.3, -5}, {0, 0.0, -0.8});
-  std::vector<Eigen::Vector3d> spine;
-  for (int i = 0; i <= 10; ++i) spine.push_back(on_head({0, std::cos(0.9 + 0.05 * i), -std::sin(0.9 + 0.05 * i)}));
-  const Eigen::Vector3d start = spine.back(), down(0, -1, -0.15);
-  for (int i = 1; i <= 12; ++i) spine.push_back(start + 0.08 * i * down.normalized() + Eigen::Vector3d(0, 0, -0.1));
-  const double r = 0.12;
-  std::vector<Eigen::Vector3d> loop, pa, pb;
-  for (int k = 0; k <= 24; ++k) {
-    const double phi = 2 * M_PI * k / 24;
-    loop.push_back(spine[13] + r * Eigen::Vector3d(std::cos(phi), 0.3 * std::sin(phi), 0));
-  }
-  for (int i = 12; i <= 22; ++i) {
-    const double ri = r * (1.0 - 0.05 * (i - 12));
-    pa.push_back(spine[i] + Eigen::Vector3d(ri, 0, 0));
-    pb.push_back(spine[i] - Eigen::Vector3d(ri, 0, 0));
-  }
+  const BackPonytail drawn;
+  const auto& [spine, loop, pa, pb, r] = drawn;
   Hairstyle style;
   style.settings.grid.target_unknowns = 25000;
   style.settings.roots.count = 2000;
