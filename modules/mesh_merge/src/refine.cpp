@@ -67,7 +67,7 @@ bool one_run(std::vector<int> positions, int n) {
 std::vector<std::pair<int, int>> pinching_edges(const geometry::TriMesh& mesh,
                                                 const std::vector<std::vector<int>>& merging) {
   const geometry::Connectivity conn(mesh);
-  std::vector<std::vector<int>> loops = merging;
+  std::vector<std::vector<int>> loops;  // the merging loops first, then the mesh's other borders
   std::vector<int> loop_of(static_cast<size_t>(mesh.num_vertices()), -1), position(loop_of.size(), -1);
   const auto add = [&](const std::vector<int>& loop) {
     for (int v : loop)
@@ -76,7 +76,6 @@ std::vector<std::pair<int, int>> pinching_edges(const geometry::TriMesh& mesh,
       loop_of[loop[i]] = static_cast<int>(loops.size()), position[loop[i]] = static_cast<int>(i);
     loops.push_back(loop);
   };
-  loops.clear();
   for (const auto& loop : merging) add(loop);
   const int merging_count = static_cast<int>(loops.size());
   for (const auto& loop : conn.boundary_loops()) add(loop);
