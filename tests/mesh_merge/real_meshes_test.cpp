@@ -113,6 +113,10 @@ SelfCut self_cut(const std::string& name, double fraction) {
   return s;
 }
 
+// Plane cuts (mesh, height) whose target loop passes within one triangle of itself.
+const std::pair<const char*, double> kLoopsNearThemselves[] = {
+    {"cactus", 0.3}, {"double-torus-example", 0.7}, {"bunny00", 0.5}};
+
 // The target's band next to the loop is not an annulus here: removing it (the thesis' zip)
 // leaves several inner loops or cuts a piece off, which zip_seams() reported as an error.
 void check_zipped_without_band(const TriMesh& source, const SelfCut& s, MergeMode mode) {
@@ -135,8 +139,7 @@ void check_zipped_without_band(const TriMesh& source, const SelfCut& s, MergeMod
 
 TEST_CASE("mesh_merge: real meshes: a target loop within one triangle of itself is zipped without cutting the target" *
           doctest::test_suite("slow")) {
-  for (const auto& [name, fraction] :
-       {std::pair<std::string, double>{"cactus", 0.3}, {"double-torus-example", 0.7}, {"bunny00", 0.5}}) {
+  for (const auto& [name, fraction] : kLoopsNearThemselves) {
     CAPTURE(name);
     const SelfCut s = self_cut(name, fraction);
     for (MergeMode mode : {MergeMode::Independent, MergeMode::Dependent})
@@ -347,8 +350,7 @@ TEST_CASE("mesh_merge: real meshes: transition regions next to a target loop wit
           doctest::test_suite("slow")) {
   // One ring of faces next to these loops is not an annulus: the loop reaches back to itself
   // within a triangle. No band width was accepted until the edges there are split.
-  for (const auto& [name, fraction] :
-       {std::pair<std::string, double>{"cactus", 0.3}, {"double-torus-example", 0.7}, {"bunny00", 0.5}}) {
+  for (const auto& [name, fraction] : kLoopsNearThemselves) {
     CAPTURE(name);
     const SelfCut s = self_cut(name, fraction);
     MergeOptions o;
