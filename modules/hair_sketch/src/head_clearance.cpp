@@ -1,23 +1,30 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
-#include "lapis/hair_sketch/strand_detail.h"
+#include "lapis/hair_sketch/head_clearance.h"
 
 namespace lapis::hair_sketch {
 namespace {
 
-// Signed distance to the head: the closest point's distance, negative inside. The side comes
-// from the closest face's normal; where the closest point is on an edge or a vertex, where a
-// single face's normal can point the wrong way, from the inside test.
-double signed_distance(const Head& head, const Eigen::Vector3d& p) {
-  const geometry::ClosestPoint c = head.bvh->closest_point(p);
-  bool inside = false;
-  if (c.barycentric.minCoeff() > 1e-6)
-    inside = (p - c.point).dot(head.face_normals.row(c.face).transpose()) < 0;
-  else
-    inside = head.inside(p);
+// The closest point's distance, negative inside. The side comes from `side` where the caller
+// knows it (+1 outside, −1 inside, 0 not known), else from the closest face's normal; where
+// the closest point is on an edge or a vertex, where a single face's normal can point the
+// wrong way, from the inside test (three ray casts).
+double signed_distance(const Head& head, const Eigen::Vector3d& p, const geometry::ClosestPoint& c, int side = 0) {
+  bool inside = side < 0;
+  if (side == 0) {
+    if (c.barycentric.minCoeff() > 1e-6)
+      inside = (p - c.point).dot(head.face_normals.row(c.face).transpose()) < 0;
+    else
+      inside = head.inside(p);
+  }
   return inside ? -c.distance : c.distance;
+}
+
+double signed_distance(const Head& head, const Eigen::Vector3d& p) {
+  return signed_distance(head, p, head.bvh->closest_point(p));
 }
 
 // Trilinear interpolation of the 8 corner values at weights w.
@@ -51,10 +58,12 @@ HeadClearance::HeadClearance(const Head& head, const hair_field::Grid& grid)
     const double box_distance = head.box.exteriorDistance(p);
     distance_[i] = static_cast<float>(box_distance > far ? box_distance : signed_distance(head, p));
   }
-  // Refine the cells the surface may pass through: a corner within a cell diagonal of it.
+  // Refine the cells the surface may pass through: every point of a cell is within half its
+  // diagonal of a corner, so a cell the surface crosses has a corner that close to the surface.
+  // (The cells beyond hold no surface; their coarse values keep the right side.)
   block_of_cell_.assign(distance_.size(), -1);
   std::vector<int> refined;
-  const double near = std::sqrt(3.0) * grid.spacing;
+  const double near = std::sqrt(3.0) / 2 * grid.spacing * (1 + 1e-6);  // float-rounded distances
   for (int k = 0; k + 1 < grid.dims[2]; ++k)
     for (int j = 0; j + 1 < grid.dims[1]; ++j)
       for (int i = 0; i + 1 < grid.dims[0]; ++i) {
@@ -66,18 +75,70 @@ HeadClearance::HeadClearance(const Head& head, const hair_field::Grid& grid)
         block_of_cell_[grid.index(i, j, k)] = static_cast<int>(refined.size());
         refined.push_back(grid.index(i, j, k));
       }
+  // Neighbouring blocks share their faces' samples: each point of the fine lattice is computed
+  // once (a 4×4×4 block has 125 samples, 64 of them its own).
+  const std::int64_t fine_x = std::int64_t{kRefinement} * (grid.dims[0] - 1) + 1,
+                     fine_y = std::int64_t{kRefinement} * (grid.dims[1] - 1) + 1;
+  auto key = [&](int cell, int x, int y, int z) {
+    const std::array<int, 3> c = grid.coords(cell);
+    return (kRefinement * c[0] + x) +
+           fine_x * ((kRefinement * c[1] + y) + fine_y * std::int64_t{kRefinement * c[2] + z});
+  };
+  std::vector<std::int64_t> keys;
+  keys.reserve(refined.size() * kBlockSize);
+  for (int cell : refined)
+    for (int z = 0; z <= kRefinement; ++z)
+      for (int y = 0; y <= kRefinement; ++y)
+        for (int x = 0; x <= kRefinement; ++x) keys.push_back(key(cell, x, y, z));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<float> values(keys.size());
+  const auto samples = static_cast<std::ptrdiff_t>(keys.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::ptrdiff_t u = 0; u < samples; ++u) {
+    const std::int64_t k = keys[u];
+    const Eigen::Vector3i f(static_cast<int>(k % fine_x), static_cast<int>(k / fine_x % fine_y),
+                            static_cast<int>(k / (fine_x * fine_y)));
+    values[u] = static_cast<float>(fine_sample(head, f));
+  }
   blocks_.resize(refined.size() * kBlockSize);
   const auto cells = static_cast<std::ptrdiff_t>(refined.size());
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(static)
   for (std::ptrdiff_t b = 0; b < cells; ++b) {
-    const Eigen::Vector3d corner = grid.position(refined[b]);
     int s = 0;
     for (int z = 0; z <= kRefinement; ++z)
       for (int y = 0; y <= kRefinement; ++y)
         for (int x = 0; x <= kRefinement; ++x)
           blocks_[b * kBlockSize + s++] =
-              static_cast<float>(signed_distance(head, corner + grid.spacing / kRefinement * Eigen::Vector3d(x, y, z)));
+              values[std::lower_bound(keys.begin(), keys.end(), key(refined[b], x, y, z)) - keys.begin()];
   }
+}
+
+double HeadClearance::fine_sample(const Head& head, const Eigen::Vector3i& fine) const {
+  // The cell holding the sample has exact signed distances at its corners, and the distance is
+  // 1-Lipschitz: at weights w within the cell the distance is within e = Σ wᵢ |x − cᵢ| of the
+  // corners' trilinear value. Where that value is farther than e from zero, it gives the side
+  // without the inside test's ray casts.
+  std::array<int, 3> c;
+  Eigen::Vector3d w;
+  for (int a = 0; a < 3; ++a) {
+    c[a] = std::min(fine[a] / kRefinement, grid_.dims[a] - 2);
+    w[a] = static_cast<double>(fine[a] - kRefinement * c[a]) / kRefinement;
+  }
+  const Eigen::Vector3d corner = grid_.position(grid_.index(c[0], c[1], c[2]));
+  const Eigen::Vector3d p = corner + grid_.spacing * w;
+  std::array<double, 8> v;
+  double error = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3i o(k & 1, k >> 1 & 1, k >> 2 & 1);
+    v[k] = distance_[grid_.index(c[0] + o.x(), c[1] + o.y(), c[2] + o.z())];
+    const double weight = (o.x() ? w.x() : 1 - w.x()) * (o.y() ? w.y() : 1 - w.y()) * (o.z() ? w.z() : 1 - w.z());
+    error += weight * (p - (corner + grid_.spacing * o.cast<double>())).norm();
+  }
+  const double value = trilinear(v, w);
+  const double margin = error + 1e-6 * grid_.spacing;  // the corners are rounded to float
+  const int side = value > margin ? 1 : value < -margin ? -1 : 0;
+  return signed_distance(head, p, head.bvh->closest_point(p), side);
 }
 
 double HeadClearance::coarse(const Eigen::Vector3d& q) const {
@@ -114,6 +175,30 @@ double HeadClearance::operator()(const Eigen::Vector3f& p) const {
   for (int k = 0; k < 8; ++k)
     v[k] = samples[(s[0] + (k & 1)) + r * ((s[1] + (k >> 1 & 1)) + r * (s[2] + (k >> 2 & 1)))];
   return trilinear(v, fw);
+}
+
+}  // namespace lapis::hair_sketch
+
+namespace lapis::hair_sketch {
+
+Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance) const {
+  // Central differences over half a fine cell: the sampled distance is trilinear per fine
+  // cell, so its gradient is smooth enough at that scale and still follows the scalp.
+  const float h = static_cast<float>(grid_.spacing / kRefinement / 2);
+  Eigen::Vector3f x = p;
+  double d = (*this)(x);
+  for (int newton = 0; newton < 4 && d < clearance; ++newton) {
+    Eigen::Vector3f g;
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3f e = Eigen::Vector3f::Unit(a) * h;
+      g[a] = static_cast<float>(((*this)(x + e) - (*this)(x - e)) / (2 * h));
+    }
+    const float g2 = g.squaredNorm();
+    if (!(g2 > 1e-4f)) break;  // a ridge of the distance deep inside: no direction out
+    x += static_cast<float>(clearance - d) / g2 * g;
+    d = (*this)(x);
+  }
+  return x;
 }
 
 }  // namespace lapis::hair_sketch

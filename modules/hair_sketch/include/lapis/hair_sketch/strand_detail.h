@@ -20,6 +20,7 @@
 #include "lapis/hair_field/grid.h"
 #include "lapis/hair_sketch/growth.h"
 #include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/head_clearance.h"
 #include "lapis/hair_sketch/sketch.h"
 
 namespace lapis::hair_sketch {
@@ -78,26 +79,6 @@ bool same_detail(const StrandDetail& a, const StrandDetail& b);
 // Throws InvalidArgument (naming fn and the field) for parameters out of their domain:
 // non-finite values, negative radii or lengths, a cut line with fewer than two points.
 void check_detail(const StrandDetail& d, int head_vertices, const std::string& fn);
-
-// The head's signed distance (negative inside), read by trilinear interpolation: the cheap
-// test that keeps detail offsets out of the head. Two levels: the field's grid everywhere, and,
-// in the grid cells the surface passes near, a block of finer samples (a curl's radius is a
-// fraction of the grid spacing, so the coarse samples alone blur the scalp by more than that).
-class HeadClearance {
- public:
-  static constexpr int kRefinement = 4;  // fine samples per coarse cell and axis
-  HeadClearance(const Head& head, const hair_field::Grid& grid);
-  double operator()(const Eigen::Vector3f& p) const;  // +spacing outside the grid
-  int refined_cells() const { return static_cast<int>(blocks_.size() / kBlockSize); }
-
- private:
-  static constexpr int kBlockSize = (kRefinement + 1) * (kRefinement + 1) * (kRefinement + 1);
-  double coarse(const Eigen::Vector3d& q) const;  // at grid coordinates
-  hair_field::Grid grid_;
-  std::vector<float> distance_;     // per node
-  std::vector<int> block_of_cell_;  // per cell (indexed like its lowest node), -1: not refined
-  std::vector<float> blocks_;       // kBlockSize samples per refined cell
-};
 
 // What detail needs besides the strands, made once per head and root set: the head vertex
 // nearest each strand's root (regions), the head centre (the side a wave swings to is across
