@@ -226,6 +226,66 @@ TEST_CASE("hair_sketch: growth is deterministic and independent of the thread co
   for (int i = 0; i < one.count(); ++i) CHECK_FALSE(bundled_head().inside(one.points[one.offsets[i]].cast<double>()));
 }
 
+TEST_CASE("hair_sketch: growth given the head's clearance keeps every strand out of the head") {
+  const Head& head = bundled_head();
+  const Grid g = small_grid(6000);
+  const HeadClearance clearance(head, g);
+  StreamCurve curve;  // no avoidance: hair runs into the head
+  curve.points = {{0, 1.3, 0}, {0, 0.8, -1.2}, {0, -1.0, -1.3}};
+  const Field f = solve_exact(g, ConstraintSet::from(curve.constraints(g)));
+  const SampledField bare(g, f), kept(g, f, &clearance);
+  const auto roots = scalp_roots(2000);
+  const GrowthOptions opt;
+  const Strands before = grow_strands(bare, roots, opt), after = grow_strands(kept, roots, opt);
+  const int pen_before = count_penetrating_segments(before, head), pen_after = count_penetrating_segments(after, head);
+  MESSAGE("penetrating segments: " << pen_before << " without the clearance, " << pen_after << " with it");
+  REQUIRE(pen_before > 100);
+  CHECK(pen_after == 0);
+  REQUIRE(after.count() == before.count());
+  const float least = static_cast<float>(opt.head_clearance * g.spacing);
+  int changed = 0, short_segments = 0;
+  for (int s = 0; s < after.count(); ++s) {
+    // Up to the first point growth put closer than the clearance, or whose segment passes
+    // closer at its midpoint, the strand is the bare one, float for float: the check changes
+    // nothing it need not.
+    const int a = before.offsets[s], n = before.offsets[s + 1] - a, m = after.offsets[s + 1] - after.offsets[s];
+    auto clear = [&](int i) {
+      const Eigen::Vector3f& p = before.points[a + i];
+      return clearance(p) >= least && clearance(0.5f * (p + before.points[a + i - 1])) >= least;
+    };
+    int k = 1;
+    while (k < n && clear(k)) ++k;
+    REQUIRE(m >= std::min(k, n));
+    for (int i = 0; i < std::min(k, n); ++i) {
+      INFO("s " << s << " i " << i << " k " << k << " n " << n);
+      REQUIRE(after.points[after.offsets[s] + i] == before.points[a + i]);
+    }
+    changed += k < n;
+    // Strands slide along the scalp or end: no point is left on top of the one before it.
+    for (int i = after.offsets[s] + 1; i < after.offsets[s + 1]; ++i)
+      short_segments += (after.points[i] - after.points[i - 1]).norm() < 0.05f * 0.5f * g.spacing * 0.05f;
+  }
+  MESSAGE(changed << " of " << after.count() << " strands came closer than the clearance");
+  CHECK(changed > 100);
+  CHECK(short_segments == 0);
+  // Off, the clearance is ignored: the thesis' strands.
+  GrowthOptions off;
+  off.keep_outside_head = false;
+  const Strands thesis = grow_strands(kept, roots, off);
+  CHECK(thesis.offsets == before.offsets);
+  CHECK(thesis.points == before.points);
+  // The same on one thread as on two.
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Strands one = grow_strands(kept, roots, opt);
+  omp_set_num_threads(threads);
+  CHECK(one.offsets == after.offsets);
+  CHECK(one.points == after.points);
+  // A clearance sampled on another grid is refused by name.
+  const HeadClearance other(head, small_grid(3000));
+  CHECK_THROWS_WITH_AS(SampledField(g, f, &other), doctest::Contains("another grid"), lapis::InvalidArgument);
+}
+
 TEST_CASE(
     "hair_sketch: growth follows the §4.6 rule step by step; regrowth into reused storage "
     "gives the same strands") {

@@ -55,8 +55,9 @@ bool operator==(const HairstyleSettings& a, const HairstyleSettings& b) {
          a.field_detail.wavelength == b.field_detail.wavelength &&
          a.gravity_prior.strength == b.gravity_prior.strength && a.roots.count == b.roots.count &&
          a.roots.seed == b.roots.seed && a.growth.step == b.growth.step && a.growth.max_length == b.growth.max_length &&
-         a.scalp_avoidance == b.scalp_avoidance && a.support == b.support &&
-         a.sketch.tail_segments == b.sketch.tail_segments;
+         a.growth.keep_outside_head == b.growth.keep_outside_head &&
+         a.growth.head_clearance == b.growth.head_clearance && a.scalp_avoidance == b.scalp_avoidance &&
+         a.support == b.support && a.sketch.tail_segments == b.sketch.tail_segments;
 }
 
 const char* to_string(StrokeAction a) {

@@ -18,10 +18,20 @@ namespace lapis::hair_sketch {
 using hair_field::Field;
 using hair_field::Grid;
 
-SampledField::SampledField(const Grid& grid, const Field& field)
-    : grid_(grid), data_(field.data(), field.data() + field.size()) {
-  // Padding: the vector lookup reads a node's x y z as four floats (interpolate()).
-  data_.resize(data_.size() + 4, 0.0f);
+SampledField::SampledField(const Grid& grid, const Field& field, const HeadClearance* head)
+    : grid_(grid), head_(head), data_(4 * static_cast<std::size_t>(field.rows())) {
+  constexpr const char* fn = "hair_sketch::SampledField";
+  if (field.rows() != grid.num_nodes() || field.cols() != 3)
+    throw InvalidArgument(std::string(fn) + ": the field has " + std::to_string(field.rows()) + " rows for " +
+                          std::to_string(grid.num_nodes()) + " grid nodes");
+  if (head &&
+      !(head->grid().dims == grid.dims && head->grid().origin == grid.origin && head->grid().spacing == grid.spacing))
+    throw InvalidArgument(std::string(fn) + ": the head's clearance is sampled on another grid");
+  for (Eigen::Index i = 0; i < field.rows(); ++i) {
+    float* node = &data_[4 * static_cast<std::size_t>(i)];
+    for (int a = 0; a < 3; ++a) node[a] = static_cast<float>(field(i, a));
+    node[3] = head ? head->node_distances()[i] : kFarFromHead;
+  }
 }
 
 namespace {
@@ -42,7 +52,7 @@ inline Float4 splat(float x) { return Float4{x, x, x, x}; }
 
 // What a lookup needs of the field.
 struct Lookup {
-  const float* data;      // x y z per node, node-major, padded (SampledField)
+  const float* data;      // x y z and the head's distance per node, node-major (SampledField)
   std::ptrdiff_t sy, sz;  // float offsets of the next node along y and z
   Float4 far_corner;      // dims − 1
   Float4 last_cell;       // dims − 2: the first corner of the last cell per axis
@@ -50,7 +60,7 @@ struct Lookup {
 
 Lookup lookup_of(const SampledField& field) {
   const std::array<int, 3>& d = field.grid().dims;
-  const std::ptrdiff_t sy = 3 * static_cast<std::ptrdiff_t>(d[0]);
+  const std::ptrdiff_t sy = 4 * static_cast<std::ptrdiff_t>(d[0]);
   return {field.data(), sy, sy * d[1], Float4{float(d[0] - 1), float(d[1] - 1), float(d[2] - 1), 0.f},
           Float4{float(d[0] - 2), float(d[1] - 2), float(d[2] - 2), 0.f}};
 }
@@ -65,18 +75,18 @@ inline bool inside(const Lookup& f, Float4 q) {
 #endif
 }
 
-// Trilinear interpolation at q, which must be inside the grid; lane 3 of the result is
-// meaningless. The cell's four x-edges, then lerps along x, y and z: a dependency chain
-// three multiply-adds deep instead of a sum over the eight corners. An x-edge is six
-// consecutive floats, read as two overlapping 4-float loads, so each lerp is one vector
-// subtract, multiply and add on x y z at once.
+// Trilinear interpolation at q, which must be inside the grid: the field in lanes 0–2, the
+// head's coarse distance in lane 3. The cell's four x-edges, then lerps along x, y and z: a
+// dependency chain three multiply-adds deep instead of a sum over the eight corners. An
+// x-edge is two nodes of four floats, so each lerp is one vector subtract, multiply and add
+// on all four lanes at once.
 inline Float4 interpolate(const Lookup& f, Float4 q) {
   const Int4 cell = __builtin_convertvector(q < f.last_cell ? q : f.last_cell, Int4);
   const Float4 t = q - __builtin_convertvector(cell, Float4);
-  const float* e00 = f.data + 3 * static_cast<std::ptrdiff_t>(cell[0]) + f.sy * cell[1] + f.sz * cell[2];
+  const float* e00 = f.data + 4 * static_cast<std::ptrdiff_t>(cell[0]) + f.sy * cell[1] + f.sz * cell[2];
   const Float4 tx = splat(t[0]), ty = splat(t[1]), tz = splat(t[2]);
   auto lerp = [](Float4 a, Float4 b, Float4 w) { return a + w * (b - a); };
-  auto edge = [&](const float* e) { return lerp(load4(e), load4(e + 3), tx); };
+  auto edge = [&](const float* e) { return lerp(load4(e), load4(e + 4), tx); };
   return lerp(lerp(edge(e00), edge(e00 + f.sy), ty), lerp(edge(e00 + f.sz), edge(e00 + f.sz + f.sy), ty), tz);
 }
 
@@ -107,11 +117,48 @@ namespace {
 // latency; eight chains in turn keep it busy.
 constexpr int kLanes = 8;
 
+// Keeping a strand out of the head: where the coarse distance (lane 3 of a lookup) says the
+// last point may be closer than `clearance`, the fine distance decides, and a point too close is
+// pushed out.
+struct Obstacle {
+  const HeadClearance* head;  // null: no check
+  float clearance;            // world units
+  float near;                 // coarse distance below which the fine one is read
+};
+
+enum class Settled { Clear, Moved, Stuck };
+
+// Moves the last point of `lane` (not its root) out of the head. Stuck when it could not move
+// away from the point before it: the field points straight into the head, and the strand ends
+// at that point (the pushed point is dropped). Where the scalp curves tighter than the segment
+// (an ear, the nose), a segment between two clear points can still cut through it: then its
+// midpoint is pushed out too and joins the strand.
+Settled settle(const Obstacle& obstacle, std::vector<Eigen::Vector3f>& lane) {
+  if (lane.size() < 2) return Settled::Clear;
+  const HeadClearance& head = *obstacle.head;
+  Eigen::Vector3f p = lane.back();
+  const Eigen::Vector3f before = lane[lane.size() - 2];
+  Settled result = Settled::Clear;
+  if (head(p) < obstacle.clearance) {
+    const Eigen::Vector3f out = head.push_out(p, obstacle.clearance);
+    if ((out - before).squaredNorm() < 0.0025f * (p - before).squaredNorm()) {
+      lane.pop_back();
+      return Settled::Stuck;
+    }
+    p = lane.back() = out;
+    result = Settled::Moved;
+  }
+  const Eigen::Vector3f mid = 0.5f * (before + p);
+  if (head(mid) < obstacle.clearance) lane.insert(lane.end() - 1, head.push_out(mid, obstacle.clearance));
+  return result;
+}
+
 // Strands [first, last) grown into one block, kLanes at a time: each lane appends its points
 // to its own buffer, and finished groups go to the block in strand order.
 // `step` is the segment length per unit of field in grid spacings.
 void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& roots, int first, int last, float step,
-                int max_steps, float vmin, std::vector<Eigen::Vector3f>& points, std::vector<int>& counts) {
+                int max_steps, float vmin, const Obstacle& obstacle, std::vector<Eigen::Vector3f>& points,
+                std::vector<int>& counts) {
   const float vmin2 = vmin * vmin;
   const Lookup f = lookup_of(field);
   const Eigen::Vector3f origin = field.grid().origin.cast<float>();
@@ -145,7 +192,18 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
           growing &= ~(1u << a);
           continue;
         }
-        const Float4 v = interpolate(f, q[a]);
+        Float4 v = interpolate(f, q[a]);
+        if (v[3] < obstacle.near) {
+          const Settled settled = settle(obstacle, lanes[a]);
+          if (settled == Settled::Stuck) {
+            growing &= ~(1u << a);
+            continue;
+          }
+          if (settled == Settled::Moved) {  // else q stays as stepped, not rounded through p
+            q[a] = to_grid(field, lanes[a].back());
+            v = interpolate(f, q[a]);
+          }
+        }
         if (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] < vmin2) {
           growing &= ~(1u << a);
           continue;
@@ -155,6 +213,8 @@ void grow_block(const SampledField& field, const std::vector<Eigen::Vector3d>& r
         lanes[a].emplace_back(p[0], p[1], p[2]);
       }
     for (int a = 0; a < m; ++a) {
+      // A strand stopped by its step count has a last point no lookup has checked.
+      if (obstacle.head && (growing & (1u << a))) settle(obstacle, lanes[a]);
       points.insert(points.end(), lanes[a].begin(), lanes[a].end());
       counts.push_back(static_cast<int>(lanes[a].size()));
     }
@@ -182,6 +242,9 @@ void check_growth(double roots, const GrowthOptions& o, const std::string& fn) {
     throw InvalidArgument(fn + ": max_length must be non-negative, got " + format_number(o.max_length));
   if (!(std::isfinite(o.min_magnitude) && o.min_magnitude >= 0))
     throw InvalidArgument(fn + ": min_magnitude must be non-negative, got " + format_number(o.min_magnitude));
+  if (!(std::isfinite(o.head_clearance) && o.head_clearance >= 0 && o.head_clearance <= 1))
+    throw InvalidArgument(fn + ": head_clearance must be in [0, 1] grid spacings, got " +
+                          format_number(o.head_clearance));
   if (!(roots >= 0 && roots <= std::numeric_limits<int>::max() / 2))
     throw InvalidArgument(fn + ": " + format_number(roots) + " roots are too many");
   const double points = roots * (max_steps_of(o) + 1), bytes = estimate_strand_bytes(roots, o);
@@ -207,12 +270,20 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   const float l = static_cast<float>(o.step);
   const int max_steps = static_cast<int>(max_steps_of(o));  // check_growth keeps it in int range
   const float vmin = static_cast<float>(o.min_magnitude);
+  Obstacle obstacle{nullptr, 0.f, -std::numeric_limits<float>::infinity()};
+  if (o.keep_outside_head && field.head()) {
+    const double spacing = field.grid().spacing;
+    // The coarse distance is trilinear over a whole cell: below a spacing it may be off by a
+    // good part of one near the ears and the nose, so the fine samples decide there.
+    obstacle = {field.head(), static_cast<float>(o.head_clearance * spacing),
+                static_cast<float>((o.head_clearance + 1) * spacing)};
+  }
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;
   if (static_cast<int>(blocks_.size()) < blocks) blocks_.resize(blocks);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int b = 0; b < blocks; ++b)
-    grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin, blocks_[b].points,
+    grow_block(field, roots, b * kBlock, std::min(n, (b + 1) * kBlock), l, max_steps, vmin, obstacle, blocks_[b].points,
                blocks_[b].counts);
   // Blocks in strand order, so the result does not depend on which thread grew what.
   std::vector<size_t> block_start(blocks + 1, 0);

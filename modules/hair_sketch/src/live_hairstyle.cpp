@@ -66,10 +66,15 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   out.solve_ms = ms_since(t0);
   out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
+  const bool keep_outside = settings_.growth.keep_outside_head;
+  if (!clearance_ && (keep_outside || !details.empty())) {
+    clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
+    detail_context_ = detail_context(*head_, roots_, clearance_.get());
+  }
   if (out.regrown) {
     grown_valid_ = false;  // until the growth below completes
     grower_.set_options(settings_.growth);
-    grower_.grow(SampledField(field_.grid(), field()), roots_, grown_);
+    grower_.grow(SampledField(field_.grid(), field(), keep_outside ? clearance_.get() : nullptr), roots_, grown_);
     last_primitives_ = primitives;
     grown_valid_ = true;
   }
@@ -78,10 +83,6 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   if (details.empty()) {
     copy_into(grown_, out.strands);
   } else {
-    if (!clearance_) {
-      clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
-      detail_context_ = detail_context(*head_, roots_, clearance_.get());
-    }
     out.strands = apply_strand_detail(grown_, details, detail_context_);
   }
   out.detail_ms = ms_since(t2);

@@ -318,6 +318,9 @@ class Reader {
     s.roots.seed = static_cast<std::uint32_t>(integer(j, path, "seed", 0, 0xffffffffLL));
     s.growth.step = number(j, path, "step", 1e-3, 10);
     s.growth.max_length = number(j, path, "max_length", 0, 1e6);
+    if (j.contains("keep_outside_head"))  // optional: on when absent
+      s.growth.keep_outside_head = boolean(j, path, "keep_outside_head");
+    if (j.contains("head_clearance")) s.growth.head_clearance = number(j, path, "head_clearance", 0, 1);
     s.scalp_avoidance = boolean(j, path, "scalp_avoidance");
     s.support = support(j, path);
     s.sketch.tail_segments = static_cast<int>(integer(j, path, "tail_segments", 0, 1000));
@@ -354,6 +357,10 @@ std::string session_to_json(const Hairstyle& style) {
                    {"scalp_avoidance", s.scalp_avoidance},
                    {"support", to_string(s.support)},
                    {"tail_segments", s.sketch.tail_segments}};
+  // Written where they differ from the defaults, so that sessions without them read the same.
+  if (!s.growth.keep_outside_head) j["settings"]["keep_outside_head"] = false;
+  if (s.growth.head_clearance != GrowthOptions{}.head_clearance)
+    j["settings"]["head_clearance"] = s.growth.head_clearance;
   if (s.gravity_prior.strength > 0) j["settings"]["gravity_prior"] = s.gravity_prior.strength;
   if (s.field_detail.amplitude > 0) {
     j["settings"]["field_detail_amplitude"] = s.field_detail.amplitude;

@@ -117,8 +117,12 @@ DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d
   c.center = head.center.cast<float>();
   c.clearance = clearance;
   // As far out as growth lifts the roots (RootOptions::lift), so a faded-in offset never
-  // counts as sinking.
+  // counts as sinking, and no closer than growth keeps the strands (GrowthOptions::head_clearance),
+  // so that a segment between two offset points does not cut through a curve of the scalp.
   c.min_clearance = static_cast<float>(0.5e-3 * head.box.diagonal().norm());
+  if (clearance)
+    c.min_clearance =
+        std::max(c.min_clearance, static_cast<float>(GrowthOptions{}.head_clearance * clearance->grid().spacing));
   return c;
 }
 

@@ -2,6 +2,7 @@
 #include "lapis/hair_sketch/style_field.h"
 
 #include <chrono>
+#include <memory>
 
 #include "lapis/hair_sketch/scalp_avoidance.h"
 #include "lapis/hair_sketch/symmetry.h"
@@ -112,13 +113,19 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   r.constraints = field.constraints().size();
   t0 = std::chrono::steady_clock::now();
   const std::vector<Eigen::Vector3d> roots = sample_roots(head, s.roots);
-  r.strands = grow_strands(SampledField(r.grid, r.field), roots, s.growth);
+  std::unique_ptr<HeadClearance> clearance;
+  if (s.growth.keep_outside_head || !style.details.empty()) {
+    clearance = std::make_unique<HeadClearance>(head, r.grid);
+    r.clearance_ms = ms_since(t0);
+    t0 = std::chrono::steady_clock::now();
+  }
+  r.strands = grow_strands(SampledField(r.grid, r.field, s.growth.keep_outside_head ? clearance.get() : nullptr), roots,
+                           s.growth);
   r.growth_ms = ms_since(t0);
   if (!style.details.empty()) {
     t0 = std::chrono::steady_clock::now();
     for (const auto& d : style.details) check_detail(d, head.mesh.num_vertices(), "hair_sketch::build_hairstyle()");
-    const HeadClearance clearance(head, r.grid);
-    r.strands = apply_strand_detail(r.strands, style.details, detail_context(head, roots, &clearance));
+    r.strands = apply_strand_detail(r.strands, style.details, detail_context(head, roots, clearance.get()));
     r.detail_ms = ms_since(t0);
   }
   t0 = std::chrono::steady_clock::now();

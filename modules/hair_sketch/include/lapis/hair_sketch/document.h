@@ -50,15 +50,16 @@ struct HairstyleSettings {
   FieldDetailOptions field_detail;           // δᵢ of Eq. 4.1 from an example field (§4.7); off by default
   GravityPriorOptions gravity_prior;         // hair falls where nothing is sketched; off by default
   RootOptions roots;                         // roots.count strands to grow, roots.seed their jitter (§4.6)
-  GrowthOptions growth;                      // growth.step l and growth.max_length, thesis §4.6
+  GrowthOptions growth;                      // growth.step l and growth.max_length, thesis §4.6;
+                                             // growth.keep_outside_head and .head_clearance
   bool scalp_avoidance = true;               // thesis §4.6's one-shot avoidance step before growing
   SupportMode support = SupportMode::Strip;  // supporting surface of new curves
   SketchOptions sketch;                      // sketch.tail_segments of new stream curves (§4.5); its
                                              // spacing is the grid's (sketch_options)
 };
 // Equal in what a session stores: the paths, grid.target_unknowns, field_method,
-// field.omega, field_detail, gravity_prior.strength, roots.count and .seed, growth.step and .max_length,
-// scalp_avoidance, support and sketch.tail_segments.
+// field.omega, field_detail, gravity_prior.strength, roots.count and .seed, growth.step, .max_length,
+// .keep_outside_head and .head_clearance, scalp_avoidance, support and sketch.tail_segments.
 bool operator==(const HairstyleSettings& a, const HairstyleSettings& b);
 
 // What a recorded stroke did: create a primitive or edit primitive `target`.

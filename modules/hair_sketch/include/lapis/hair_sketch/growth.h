@@ -1,9 +1,9 @@
 // Hair growth along the field (thesis §4.6): from each root, append segments l·v(p) with
 // l = 0.5 d and v the trilinearly interpolated field, until |v| < 0.05, the strand leaves
-// the grid, or reaches its maximum length. Strands step in grid coordinates (q += 0.5 v(q),
-// p = origin + d q), which saves a conversion per step. Strands grow in parallel (OpenMP) into a
-// float field copy laid out node-major for cache-friendly lookups; the result does not
-// depend on the thread count.
+// the grid, or reaches its maximum length. Given the head's clearance, growth also keeps the
+// strands out of the head (not in the thesis, see GrowthOptions::keep_outside_head). Strands step in grid coordinates
+// (q += 0.5 v(q), p = origin + d q), which saves a conversion per step. Strands grow in parallel (OpenMP) into a float
+// field copy laid out node-major for cache-friendly lookups; the result does not depend on the thread count.
 #pragma once
 
 #include <vector>
@@ -13,23 +13,30 @@
 #include "lapis/hair_field/grid.h"
 #include "lapis/hair_field/grid_operators.h"
 #include "lapis/hair_sketch/head.h"
+#include "lapis/hair_sketch/head_clearance.h"
 
 namespace lapis::hair_sketch {
 
-// The field as growth reads it: float, x y z of a node contiguous.
+// The field as growth reads it: float, x y z of a node contiguous, and beside them the head's
+// coarse distance when growth is to keep the strands out of the head.
 class SampledField {
  public:
-  SampledField(const hair_field::Grid& grid, const hair_field::Field& field);
+  // `head`: the head's clearance on the same grid, or null (strands may then enter the head).
+  // It must outlive this.
+  SampledField(const hair_field::Grid& grid, const hair_field::Field& field, const HeadClearance* head = nullptr);
   // Trilinear interpolation at a world point; zero outside the grid.
   Eigen::Vector3f operator()(const Eigen::Vector3f& p) const;
   // The same at grid coordinates q = (p − origin) / spacing, as growth steps them.
   Eigen::Vector3f at_grid(const Eigen::Vector3f& q) const;
   const hair_field::Grid& grid() const { return grid_; }
-  const float* data() const { return data_.data(); }  // x y z per node, node-major
+  const HeadClearance* head() const { return head_; }
+  const float* data() const { return data_.data(); }  // x y z distance per node, node-major
 
  private:
+  static constexpr float kFarFromHead = 1e30f;  // the distance stored without a head
   hair_field::Grid grid_;
-  std::vector<float> data_;  // 3 per node
+  const HeadClearance* head_;
+  std::vector<float> data_;  // 4 per node
 };
 
 struct GrowthOptions {
@@ -37,6 +44,14 @@ struct GrowthOptions {
   double min_magnitude = 0.05;  // stop when |v(p)| < this (thesis §4.6)
   double max_length = 120;      // in grid spacings (the thesis stops only at the box; a cap
                                 // keeps circulating flow from growing forever)
+  // Not in the thesis: §4.6's avoidance constraints act on grid nodes only, and between them
+  // the interpolated field still points into the head near concave parts of the scalp, where
+  // about 15% of the strands entered it close to their roots. With this on, a point that growth
+  // would put inside the head (or closer than `head_clearance` grid spacings) is moved out along
+  // the distance's gradient, so the strand slides along the scalp; a strand that cannot slide
+  // (the field points straight in) stops. Off reproduces the thesis' strands.
+  bool keep_outside_head = true;
+  double head_clearance = 0.05;  // in grid spacings: above the chord error of a 0.5 d segment
   // Memory the strands may use (bytes): growth is refused, before it starts, when the worst
   // case (every strand max_length / step steps long) would need more.
   double memory_limit_bytes = 4.0 * (1ull << 30);

@@ -68,8 +68,9 @@ class LiveHairstyle {
   Strands grown_;
   std::vector<StylePrimitive> last_primitives_;
   bool grown_valid_ = false;
-  // Made on the first update with details: the clearance costs a few hundred closest-point
-  // queries per refined cell, which hair without detail never needs.
+  // Made on the first update that grows strands out of the head or has details: the
+  // clearance costs a hundred closest-point queries per refined cell, which the thesis' growth
+  // without detail never needs.
   std::unique_ptr<HeadClearance> clearance_;
   std::unique_ptr<ScalpAvoidance> avoidance_;  // made on the first update that needs it
   DetailContext detail_context_;

@@ -72,6 +72,7 @@ struct HairstyleResult {
   int penetrating_segments = 0;
   std::vector<hair_field::FieldSolveReport> solves;  // the style solve, then the avoidance solve
   double grid_ms = 0, solve_ms = 0, growth_ms = 0, detail_ms = 0, penetration_ms = 0;
+  double clearance_ms = 0;  // sampling the head's distance (HeadClearance), for growth and detail
 };
 
 // Solves the document's field from scratch (style, then scalp avoidance if enabled), grows
