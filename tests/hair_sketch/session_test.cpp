@@ -195,7 +195,7 @@ TEST_CASE("hair_sketch: each bundled example session replays to the counts of it
     CHECK(r.strands.count() - grown.count() == report["roots_without_hair"].get<int>());
     CHECK(r.penetrating_segments == report["penetrating_segments"].get<int>());
     // Growth keeps the strands out of the head (GrowthOptions::keep_outside_head): at most a
-    // segment in 10,000 of curled hair still dips in, where the avoidance alone left 0.4–4%.
+    // segment in 10,000 may dip in (none does today), where the avoidance alone left 0.4–4%.
     CHECK(r.penetrating_segments <= grown.segments() / 10000);
     // Each of the two ponytails gathers a fifth of the hair or more; the half-up tail gathers
     // the hair above the dividing curves, a smaller share.

@@ -139,15 +139,20 @@ Settled settle(const Obstacle& obstacle, std::vector<Eigen::Vector3f>& lane) {
   Eigen::Vector3f p = lane.back();
   const Eigen::Vector3f before = lane[lane.size() - 2];
   Settled result = Settled::Clear;
-  if (head(p) < obstacle.clearance) {
+  double distance = head(p);
+  if (distance < obstacle.clearance) {
     const Eigen::Vector3f out = head.push_out(p, obstacle.clearance);
     if ((out - before).squaredNorm() < 0.0025f * (p - before).squaredNorm()) {
       lane.pop_back();
       return Settled::Stuck;
     }
     p = lane.back() = out;
+    distance = obstacle.clearance;
     result = Settled::Moved;
   }
+  // The distance is 1-Lipschitz: farther than half the segment plus the clearance, the
+  // midpoint is clear.
+  if (distance >= obstacle.clearance + 0.5f * (p - before).norm()) return result;
   const Eigen::Vector3f mid = 0.5f * (before + p);
   if (head(mid) < obstacle.clearance) lane.insert(lane.end() - 1, head.push_out(mid, obstacle.clearance));
   return result;
@@ -273,10 +278,11 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   Obstacle obstacle{nullptr, 0.f, -std::numeric_limits<float>::infinity()};
   if (o.keep_outside_head && field.head()) {
     const double spacing = field.grid().spacing;
-    // The coarse distance is trilinear over a whole cell: below a spacing it may be off by a
-    // good part of one near the ears and the nose, so the fine samples decide there.
+    // The coarse distance interpolates exact distances at a cell's corners, and the distance is
+    // 1-Lipschitz: it is off by at most the distance to the corners, half a cell diagonal. Closer
+    // than that to the clearance, the fine samples decide.
     obstacle = {field.head(), static_cast<float>(o.head_clearance * spacing),
-                static_cast<float>((o.head_clearance + 1) * spacing)};
+                static_cast<float>((o.head_clearance + std::sqrt(3.0) / 2 + 1e-3) * spacing)};
   }
   constexpr int kBlock = 64;
   const int blocks = (n + kBlock - 1) / kBlock;

@@ -35,6 +35,17 @@ double trilinear(const std::array<double, 8>& v, const Eigen::Vector3d& w) {
   return out;
 }
 
+// Its gradient with respect to w.
+Eigen::Vector3d trilinear_gradient(const std::array<double, 8>& v, const Eigen::Vector3d& w) {
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 8; ++c) {
+    const double x = (c & 1) ? w.x() : 1 - w.x(), y = (c & 2) ? w.y() : 1 - w.y(), z = (c & 4) ? w.z() : 1 - w.z();
+    const double sx = (c & 1) ? 1 : -1, sy = (c & 2) ? 1 : -1, sz = (c & 4) ? 1 : -1;
+    g += v[c] * Eigen::Vector3d(sx * y * z, x * sy * z, x * y * sz);
+  }
+  return g;
+}
+
 // The cell of grid coordinates q (its lowest node) and the weights within it.
 std::array<int, 3> cell_of(const hair_field::Grid& grid, const Eigen::Vector3d& q, Eigen::Vector3d& w) {
   std::array<int, 3> c;
@@ -141,62 +152,48 @@ double HeadClearance::fine_sample(const Head& head, const Eigen::Vector3i& fine)
   return signed_distance(head, p, head.bvh->closest_point(p), side);
 }
 
-double HeadClearance::coarse(const Eigen::Vector3d& q) const {
-  Eigen::Vector3d w;
-  const auto c = cell_of(grid_, q, w);
-  std::array<double, 8> v;
-  for (int k = 0; k < 8; ++k)
-    v[k] = distance_[grid_.index(std::min(c[0] + (k & 1), grid_.dims[0] - 1),
-                                 std::min(c[1] + (k >> 1 & 1), grid_.dims[1] - 1),
-                                 std::min(c[2] + (k >> 2 & 1), grid_.dims[2] - 1))];
-  return trilinear(v, w);
-}
+double HeadClearance::operator()(const Eigen::Vector3f& p) const { return evaluate(p, nullptr); }
 
-double HeadClearance::operator()(const Eigen::Vector3f& p) const {
+double HeadClearance::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradient) const {
   const Eigen::Vector3d q = grid_.to_grid(p.cast<double>());
   const auto& dims = grid_.dims;
+  if (gradient) gradient->setZero();
   if (!(q.minCoeff() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1))
     return grid_.spacing;  // the grid surrounds the head with a margin: outside it is clear
   Eigen::Vector3d w;
   const auto c = cell_of(grid_, q, w);
   const int block = block_of_cell_[grid_.index(c[0], c[1], c[2])];
-  if (block < 0) return coarse(q);
-  // The fine sub-cell within the block.
-  const Eigen::Vector3d f = w * kRefinement;
-  Eigen::Vector3d fw;
-  std::array<int, 3> s;
-  for (int a = 0; a < 3; ++a) {
-    s[a] = std::min(static_cast<int>(f[a]), kRefinement - 1);
-    fw[a] = f[a] - s[a];
-  }
-  const float* samples = &blocks_[static_cast<std::size_t>(block) * kBlockSize];
   std::array<double, 8> v;
-  constexpr int r = kRefinement + 1;
-  for (int k = 0; k < 8; ++k)
-    v[k] = samples[(s[0] + (k & 1)) + r * ((s[1] + (k >> 1 & 1)) + r * (s[2] + (k >> 2 & 1)))];
-  return trilinear(v, fw);
+  double size = grid_.spacing;  // of the cell interpolated in
+  if (block < 0) {
+    for (int k = 0; k < 8; ++k) v[k] = distance_[grid_.index(c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1))];
+  } else {  // the fine sub-cell within the block
+    const Eigen::Vector3d f = w * kRefinement;
+    std::array<int, 3> s;
+    for (int a = 0; a < 3; ++a) {
+      s[a] = std::min(static_cast<int>(f[a]), kRefinement - 1);
+      w[a] = f[a] - s[a];
+    }
+    const float* samples = &blocks_[static_cast<std::size_t>(block) * kBlockSize];
+    constexpr int r = kRefinement + 1;
+    for (int k = 0; k < 8; ++k)
+      v[k] = samples[(s[0] + (k & 1)) + r * ((s[1] + (k >> 1 & 1)) + r * (s[2] + (k >> 2 & 1)))];
+    size /= kRefinement;
+  }
+  if (gradient) *gradient = (trilinear_gradient(v, w) / size).cast<float>();
+  return trilinear(v, w);
 }
 
-}  // namespace lapis::hair_sketch
-
-namespace lapis::hair_sketch {
-
 Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance) const {
-  // Central differences over half a fine cell: the sampled distance is trilinear per fine
-  // cell, so its gradient is smooth enough at that scale and still follows the scalp.
-  const float h = static_cast<float>(grid_.spacing / kRefinement / 2);
-  Eigen::Vector3f x = p;
-  double d = (*this)(x);
-  for (int newton = 0; newton < 4 && d < clearance; ++newton) {
-    Eigen::Vector3f g;
-    for (int a = 0; a < 3; ++a) {
-      const Eigen::Vector3f e = Eigen::Vector3f::Unit(a) * h;
-      g[a] = static_cast<float>(((*this)(x + e) - (*this)(x - e)) / (2 * h));
-    }
+  // Newton on the sampled distance, with the gradient of its trilinear interpolant: one lookup
+  // per step.
+  Eigen::Vector3f x = p, g;
+  for (int newton = 0; newton < 5; ++newton) {
+    const double d = evaluate(x, &g);
+    if (d >= clearance) break;
     const float g2 = g.squaredNorm();
     if (!(g2 > 1e-4f)) break;  // a ridge of the distance deep inside: no direction out
     x += static_cast<float>(clearance - d) / g2 * g;
-    d = (*this)(x);
   }
   return x;
 }

@@ -29,7 +29,8 @@ class HeadClearance {
 
  private:
   static constexpr int kBlockSize = (kRefinement + 1) * (kRefinement + 1) * (kRefinement + 1);
-  double coarse(const Eigen::Vector3d& q) const;  // at grid coordinates
+  // The distance at p and, if asked, its gradient (of the interpolant in the cell p is in).
+  double evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradient) const;
   // The signed distance at a point of the fine lattice (kRefinement points per spacing).
   double fine_sample(const Head& head, const Eigen::Vector3i& fine) const;
   hair_field::Grid grid_;
