@@ -184,12 +184,47 @@ double HeadClearance::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradie
   return trilinear(v, w);
 }
 
-Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance) const {
+float HeadClearance::at_grid(const Eigen::Vector3f& q) const {
+  const auto& dims = grid_.dims;
+  if (!(q.minCoeff() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1))
+    return static_cast<float>(grid_.spacing);
+  int c[3];
+  Eigen::Vector3f w;
+  for (int a = 0; a < 3; ++a) {
+    c[a] = std::min(static_cast<int>(q[a]), std::max(0, dims[a] - 2));
+    w[a] = std::min(q[a] - static_cast<float>(c[a]), 1.0f);
+  }
+  const int cell = grid_.index(c[0], c[1], c[2]);
+  const int block = block_of_cell_[cell];
+  float v[8];
+  if (block < 0) {
+    const int sy = dims[0], sz = dims[0] * dims[1];
+    for (int k = 0; k < 8; ++k) v[k] = distance_[cell + (k & 1) + (k >> 1 & 1) * sy + (k >> 2 & 1) * sz];
+  } else {
+    int s[3];
+    for (int a = 0; a < 3; ++a) {
+      const float f = w[a] * kRefinement;
+      s[a] = std::min(static_cast<int>(f), kRefinement - 1);
+      w[a] = f - static_cast<float>(s[a]);
+    }
+    constexpr int r = kRefinement + 1;
+    const float* samples = &blocks_[static_cast<std::size_t>(block) * kBlockSize + s[0] + r * (s[1] + r * s[2])];
+    for (int k = 0; k < 8; ++k) v[k] = samples[(k & 1) + r * ((k >> 1 & 1) + r * (k >> 2 & 1))];
+  }
+  // Lerps along x, then y, then z.
+  const float x0 = v[0] + w.x() * (v[1] - v[0]), x1 = v[2] + w.x() * (v[3] - v[2]);
+  const float x2 = v[4] + w.x() * (v[5] - v[4]), x3 = v[6] + w.x() * (v[7] - v[6]);
+  const float y0 = x0 + w.y() * (x1 - x0), y1 = x2 + w.y() * (x3 - x2);
+  return y0 + w.z() * (y1 - y0);
+}
+
+Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance, double* distance) const {
   // Newton on the sampled distance, with the gradient of its trilinear interpolant: one lookup
   // per step.
   Eigen::Vector3f x = p, g;
   for (int newton = 0; newton < 5; ++newton) {
     const double d = evaluate(x, &g);
+    if (newton == 0 && distance) *distance = d;
     if (d >= clearance) break;
     const float g2 = g.squaredNorm();
     if (!(g2 > 1e-4f)) break;  // a ridge of the distance deep inside: no direction out

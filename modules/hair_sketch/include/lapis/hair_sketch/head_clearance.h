@@ -19,9 +19,13 @@ class HeadClearance {
   static constexpr int kRefinement = 4;  // fine samples per coarse cell and axis
   HeadClearance(const Head& head, const hair_field::Grid& grid);
   double operator()(const Eigen::Vector3f& p) const;  // +spacing outside the grid
+  // The same in float at grid coordinates q = (p − origin) / spacing, for growth's per-step
+  // check: the same samples and weights, a third of the time.
+  float at_grid(const Eigen::Vector3f& q) const;
   // p moved along the distance's gradient until it is at least `clearance` outside (a few
-  // Newton steps on the sampled distance); p itself where it already is.
-  Eigen::Vector3f push_out(const Eigen::Vector3f& p, float clearance) const;
+  // Newton steps on the sampled distance); p itself where it already is. `distance`, if given,
+  // receives the distance at p.
+  Eigen::Vector3f push_out(const Eigen::Vector3f& p, float clearance, double* distance = nullptr) const;
 
   const hair_field::Grid& grid() const { return grid_; }
   const std::vector<float>& node_distances() const { return distance_; }  // the coarse samples
