@@ -183,6 +183,26 @@ void apply_one(const StrandDetail& d, std::vector<detail::Polyline>& strands, co
   }
 }
 
+// Offsets keep every point clear of the head (keep_clear), but a curl wound close to the scalp
+// can still cut through it between two clear points, where the scalp curves tighter than the
+// curl's step. The last pass pushes out the middle of each segment whose middle is inside the
+// head, as a new point. Strands that are clear (as grown ones are) stay as they are.
+void keep_segments_outside(detail::Polyline& p, const DetailContext& context) {
+  const HeadClearance& head = *context.clearance;
+  auto distance = [&](const Eigen::Vector3f& x) {
+    return head.at_grid(head.grid().to_grid(x.cast<double>()).cast<float>());
+  };
+  const float floor = 0.5f * context.min_clearance;  // below what growth and offsets leave
+  for (std::size_t i = 1; i < p.size(); ++i)
+    if (distance(p[i]) < floor) p[i] = head.push_out(p[i], context.min_clearance);
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const Eigen::Vector3f mid = 0.5f * (p[i - 1] + p[i]);
+    if (distance(mid) >= floor) continue;
+    p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), head.push_out(mid, context.min_clearance));
+    ++i;  // the halves are not checked again: each is a quarter of the sag
+  }
+}
+
 }  // namespace
 
 Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDetail>& details,
@@ -195,6 +215,11 @@ Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDeta
   if (details.empty()) return strands;
   std::vector<detail::Polyline> polylines = unpack(strands);
   for (const auto& d : details) apply_one(d, polylines, context);
+  if (context.clearance) {
+    const auto n = static_cast<std::ptrdiff_t>(polylines.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::ptrdiff_t s = 0; s < n; ++s) keep_segments_outside(polylines[s], context);
+  }
   return pack(polylines);
 }
 
