@@ -244,7 +244,7 @@ namespace {
 struct GrownHair {
   Grid grid;
   std::vector<Eigen::Vector3d> roots;
-  Strands strands;
+  Strands strands;  // grown as the thesis does, without the head check
 };
 const GrownHair& grown_hair() {
   static const GrownHair hair = [] {
