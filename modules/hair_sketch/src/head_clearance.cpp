@@ -35,17 +35,6 @@ double trilinear(const std::array<double, 8>& v, const Eigen::Vector3d& w) {
   return out;
 }
 
-// Its gradient with respect to w.
-Eigen::Vector3d trilinear_gradient(const std::array<double, 8>& v, const Eigen::Vector3d& w) {
-  Eigen::Vector3d g = Eigen::Vector3d::Zero();
-  for (int c = 0; c < 8; ++c) {
-    const double x = (c & 1) ? w.x() : 1 - w.x(), y = (c & 2) ? w.y() : 1 - w.y(), z = (c & 4) ? w.z() : 1 - w.z();
-    const double sx = (c & 1) ? 1 : -1, sy = (c & 2) ? 1 : -1, sz = (c & 4) ? 1 : -1;
-    g += v[c] * Eigen::Vector3d(sx * y * z, x * sy * z, x * y * sz);
-  }
-  return g;
-}
-
 // The cell of grid coordinates q (its lowest node) and the weights within it.
 std::array<int, 3> cell_of(const hair_field::Grid& grid, const Eigen::Vector3d& q, Eigen::Vector3d& w) {
   std::array<int, 3> c;
@@ -152,19 +141,15 @@ double HeadClearance::fine_sample(const Head& head, const Eigen::Vector3i& fine)
   return signed_distance(head, p, head.bvh->closest_point(p), side);
 }
 
-double HeadClearance::operator()(const Eigen::Vector3f& p) const { return evaluate(p, nullptr); }
-
-double HeadClearance::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradient) const {
+double HeadClearance::operator()(const Eigen::Vector3f& p) const {
   const Eigen::Vector3d q = grid_.to_grid(p.cast<double>());
   const auto& dims = grid_.dims;
-  if (gradient) gradient->setZero();
   if (!(q.minCoeff() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1))
     return grid_.spacing;  // the grid surrounds the head with a margin: outside it is clear
   Eigen::Vector3d w;
   const auto c = cell_of(grid_, q, w);
   const int block = block_of_cell_[grid_.index(c[0], c[1], c[2])];
   std::array<double, 8> v;
-  double size = grid_.spacing;  // of the cell interpolated in
   if (block < 0) {
     for (int k = 0; k < 8; ++k) v[k] = distance_[grid_.index(c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1))];
   } else {  // the fine sub-cell within the block
@@ -178,14 +163,13 @@ double HeadClearance::evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradie
     constexpr int r = kRefinement + 1;
     for (int k = 0; k < 8; ++k)
       v[k] = samples[(s[0] + (k & 1)) + r * ((s[1] + (k >> 1 & 1)) + r * (s[2] + (k >> 2 & 1)))];
-    size /= kRefinement;
   }
-  if (gradient) *gradient = (trilinear_gradient(v, w) / size).cast<float>();
   return trilinear(v, w);
 }
 
-float HeadClearance::at_grid(const Eigen::Vector3f& q) const {
+float HeadClearance::at_grid(const Eigen::Vector3f& q, Eigen::Vector3f* gradient) const {
   const auto& dims = grid_.dims;
+  if (gradient) gradient->setZero();
   if (!(q.minCoeff() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1))
     return static_cast<float>(grid_.spacing);
   int c[3];
@@ -197,6 +181,7 @@ float HeadClearance::at_grid(const Eigen::Vector3f& q) const {
   const int cell = grid_.index(c[0], c[1], c[2]);
   const int block = block_of_cell_[cell];
   float v[8];
+  float cells_per_spacing = 1;
   if (block < 0) {
     const int sy = dims[0], sz = dims[0] * dims[1];
     for (int k = 0; k < 8; ++k) v[k] = distance_[cell + (k & 1) + (k >> 1 & 1) * sy + (k >> 2 & 1) * sz];
@@ -210,27 +195,37 @@ float HeadClearance::at_grid(const Eigen::Vector3f& q) const {
     constexpr int r = kRefinement + 1;
     const float* samples = &blocks_[static_cast<std::size_t>(block) * kBlockSize + s[0] + r * (s[1] + r * s[2])];
     for (int k = 0; k < 8; ++k) v[k] = samples[(k & 1) + r * ((k >> 1 & 1) + r * (k >> 2 & 1))];
+    cells_per_spacing = kRefinement;
   }
   // Lerps along x, then y, then z.
   const float x0 = v[0] + w.x() * (v[1] - v[0]), x1 = v[2] + w.x() * (v[3] - v[2]);
   const float x2 = v[4] + w.x() * (v[5] - v[4]), x3 = v[6] + w.x() * (v[7] - v[6]);
   const float y0 = x0 + w.y() * (x1 - x0), y1 = x2 + w.y() * (x3 - x2);
+  if (gradient) {  // of the interpolant, per grid spacing
+    const float dx0 = v[1] - v[0] + w.y() * (v[3] - v[2] - v[1] + v[0]);
+    const float dx1 = v[5] - v[4] + w.y() * (v[7] - v[6] - v[5] + v[4]);
+    const float dy0 = x1 - x0, dy1 = x3 - x2;
+    *gradient = cells_per_spacing * Eigen::Vector3f(dx0 + w.z() * (dx1 - dx0), dy0 + w.z() * (dy1 - dy0), y1 - y0);
+  }
   return y0 + w.z() * (y1 - y0);
 }
 
-Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance, double* distance) const {
-  // Newton on the sampled distance, with the gradient of its trilinear interpolant: one lookup
-  // per step.
-  Eigen::Vector3f x = p, g;
+Eigen::Vector3f HeadClearance::push_out(const Eigen::Vector3f& p, float clearance) const {
+  // Newton on the sampled distance at grid coordinates, with the gradient of its trilinear
+  // interpolant: one lookup per step.
+  const Eigen::Vector3f origin = grid_.origin.cast<float>();
+  const float spacing = static_cast<float>(grid_.spacing);
+  Eigen::Vector3f q = (p - origin) / spacing, g;
+  bool moved = false;
   for (int newton = 0; newton < 5; ++newton) {
-    const double d = evaluate(x, &g);
-    if (newton == 0 && distance) *distance = d;
+    const float d = at_grid(q, &g);  // g: distance per grid spacing
     if (d >= clearance) break;
     const float g2 = g.squaredNorm();
-    if (!(g2 > 1e-4f)) break;  // a ridge of the distance deep inside: no direction out
-    x += static_cast<float>(clearance - d) / g2 * g;
+    if (!(g2 > 1e-4f * spacing * spacing)) break;  // a ridge of the distance deep inside: no way out
+    q += (clearance - d) / g2 * g;
+    moved = true;
   }
-  return x;
+  return moved ? Eigen::Vector3f(origin + spacing * q) : p;
 }
 
 }  // namespace lapis::hair_sketch

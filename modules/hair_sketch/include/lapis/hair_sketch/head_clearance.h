@@ -21,11 +21,11 @@ class HeadClearance {
   double operator()(const Eigen::Vector3f& p) const;  // +spacing outside the grid
   // The same in float at grid coordinates q = (p − origin) / spacing, for growth's per-step
   // check: the same samples and weights, a third of the time.
-  float at_grid(const Eigen::Vector3f& q) const;
+  // `gradient`, if given, receives the interpolant's gradient per grid spacing.
+  float at_grid(const Eigen::Vector3f& q, Eigen::Vector3f* gradient = nullptr) const;
   // p moved along the distance's gradient until it is at least `clearance` outside (a few
-  // Newton steps on the sampled distance); p itself where it already is. `distance`, if given,
-  // receives the distance at p.
-  Eigen::Vector3f push_out(const Eigen::Vector3f& p, float clearance, double* distance = nullptr) const;
+  // Newton steps on the sampled distance, at_grid's); p itself where it already is.
+  Eigen::Vector3f push_out(const Eigen::Vector3f& p, float clearance) const;
 
   const hair_field::Grid& grid() const { return grid_; }
   const std::vector<float>& node_distances() const { return distance_; }  // the coarse samples
@@ -33,8 +33,6 @@ class HeadClearance {
 
  private:
   static constexpr int kBlockSize = (kRefinement + 1) * (kRefinement + 1) * (kRefinement + 1);
-  // The distance at p and, if asked, its gradient (of the interpolant in the cell p is in).
-  double evaluate(const Eigen::Vector3f& p, Eigen::Vector3f* gradient) const;
   // The signed distance at a point of the fine lattice (kRefinement points per spacing).
   double fine_sample(const Head& head, const Eigen::Vector3i& fine) const;
   hair_field::Grid grid_;
