@@ -285,7 +285,10 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
     const double spacing = field.grid().spacing;
     // The coarse distance interpolates exact distances at a cell's corners, and the distance is
     // 1-Lipschitz: it is off by at most the distance to the corners, half a cell diagonal. Closer
-    // than that to the clearance, the fine samples decide.
+    // than that to the clearance, the fine samples decide. (A segment whose end lies beyond that
+    // band has its midpoint checked only by the band too. Its chord sags below its ends by
+    // l²/8R; to reach into the head it would need both a surface curved tighter than 0.6 d and
+    // a coarse distance that much off there. No bundled session or test shows one.)
     obstacle.head = field.head();
     obstacle.clearance = static_cast<float>(o.head_clearance * spacing);
     obstacle.near = static_cast<float>((o.head_clearance + std::sqrt(3.0) / 2 + 1e-3) * spacing);
