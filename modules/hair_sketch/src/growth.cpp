@@ -124,9 +124,6 @@ struct Obstacle {
   const HeadClearance* head;  // null: no check
   float clearance;            // world units
   float near;                 // coarse distance below which the fine one is read
-  Eigen::Vector3f origin;     // of the grid
-  float inverse_spacing;
-  Eigen::Vector3f to_grid(const Eigen::Vector3f& p) const { return (p - origin) * inverse_spacing; }
 };
 
 enum class Settled { Clear, Moved, Stuck };
@@ -142,7 +139,7 @@ Settled settle(const Obstacle& obstacle, std::vector<Eigen::Vector3f>& lane) {
   Eigen::Vector3f p = lane.back();
   const Eigen::Vector3f before = lane[lane.size() - 2];
   Settled result = Settled::Clear;
-  double distance = head.at_grid(obstacle.to_grid(p));
+  double distance = head(p);
   if (distance < obstacle.clearance) {
     const Eigen::Vector3f out = head.push_out(p, obstacle.clearance);
     if ((out - before).squaredNorm() < 0.0025f * (p - before).squaredNorm()) {
@@ -157,8 +154,7 @@ Settled settle(const Obstacle& obstacle, std::vector<Eigen::Vector3f>& lane) {
   // midpoint is clear.
   if (distance >= obstacle.clearance + 0.5f * (p - before).norm()) return result;
   const Eigen::Vector3f mid = 0.5f * (before + p);
-  if (head.at_grid(obstacle.to_grid(mid)) < obstacle.clearance)
-    lane.insert(lane.end() - 1, head.push_out(mid, obstacle.clearance));
+  if (head(mid) < obstacle.clearance) lane.insert(lane.end() - 1, head.push_out(mid, obstacle.clearance));
   return result;
 }
 
@@ -279,8 +275,7 @@ void StrandGrower::grow(const SampledField& field, const std::vector<Eigen::Vect
   const float l = static_cast<float>(o.step);
   const int max_steps = static_cast<int>(max_steps_of(o));  // check_growth keeps it in int range
   const float vmin = static_cast<float>(o.min_magnitude);
-  Obstacle obstacle{nullptr, 0.f, -std::numeric_limits<float>::infinity(), field.grid().origin.cast<float>(),
-                    static_cast<float>(1.0 / field.grid().spacing)};
+  Obstacle obstacle{nullptr, 0.f, -std::numeric_limits<float>::infinity()};
   if (o.keep_outside_head && field.head()) {
     const double spacing = field.grid().spacing;
     // The coarse distance interpolates exact distances at a cell's corners, and the distance is

@@ -35,16 +35,6 @@ double trilinear(const std::array<double, 8>& v, const Eigen::Vector3d& w) {
   return out;
 }
 
-// The cell of grid coordinates q (its lowest node) and the weights within it.
-std::array<int, 3> cell_of(const hair_field::Grid& grid, const Eigen::Vector3d& q, Eigen::Vector3d& w) {
-  std::array<int, 3> c;
-  for (int a = 0; a < 3; ++a) {
-    c[a] = std::clamp(static_cast<int>(q[a]), 0, std::max(0, grid.dims[a] - 2));
-    w[a] = std::clamp(q[a] - c[a], 0.0, 1.0);
-  }
-  return c;
-}
-
 }  // namespace
 
 HeadClearance::HeadClearance(const Head& head, const hair_field::Grid& grid)
@@ -142,29 +132,8 @@ double HeadClearance::fine_sample(const Head& head, const Eigen::Vector3i& fine)
 }
 
 double HeadClearance::operator()(const Eigen::Vector3f& p) const {
-  const Eigen::Vector3d q = grid_.to_grid(p.cast<double>());
-  const auto& dims = grid_.dims;
-  if (!(q.minCoeff() >= 0 && q.x() <= dims[0] - 1 && q.y() <= dims[1] - 1 && q.z() <= dims[2] - 1))
-    return grid_.spacing;  // the grid surrounds the head with a margin: outside it is clear
-  Eigen::Vector3d w;
-  const auto c = cell_of(grid_, q, w);
-  const int block = block_of_cell_[grid_.index(c[0], c[1], c[2])];
-  std::array<double, 8> v;
-  if (block < 0) {
-    for (int k = 0; k < 8; ++k) v[k] = distance_[grid_.index(c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1))];
-  } else {  // the fine sub-cell within the block
-    const Eigen::Vector3d f = w * kRefinement;
-    std::array<int, 3> s;
-    for (int a = 0; a < 3; ++a) {
-      s[a] = std::min(static_cast<int>(f[a]), kRefinement - 1);
-      w[a] = f[a] - s[a];
-    }
-    const float* samples = &blocks_[static_cast<std::size_t>(block) * kBlockSize];
-    constexpr int r = kRefinement + 1;
-    for (int k = 0; k < 8; ++k)
-      v[k] = samples[(s[0] + (k & 1)) + r * ((s[1] + (k >> 1 & 1)) + r * (s[2] + (k >> 2 & 1)))];
-  }
-  return trilinear(v, w);
+  const Eigen::Vector3f origin = grid_.origin.cast<float>();
+  return at_grid((p - origin) / static_cast<float>(grid_.spacing));
 }
 
 float HeadClearance::at_grid(const Eigen::Vector3f& q, Eigen::Vector3f* gradient) const {

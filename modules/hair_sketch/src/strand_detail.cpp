@@ -189,15 +189,12 @@ void apply_one(const StrandDetail& d, std::vector<detail::Polyline>& strands, co
 // head, as a new point. Strands that are clear (as grown ones are) stay as they are.
 void keep_segments_outside(detail::Polyline& p, const DetailContext& context) {
   const HeadClearance& head = *context.clearance;
-  auto distance = [&](const Eigen::Vector3f& x) {
-    return head.at_grid(head.grid().to_grid(x.cast<double>()).cast<float>());
-  };
   const float floor = 0.5f * context.min_clearance;  // below what growth and offsets leave
   for (std::size_t i = 1; i < p.size(); ++i)
-    if (distance(p[i]) < floor) p[i] = head.push_out(p[i], context.min_clearance);
+    if (head(p[i]) < floor) p[i] = head.push_out(p[i], context.min_clearance);
   for (std::size_t i = 1; i < p.size(); ++i) {
     const Eigen::Vector3f mid = 0.5f * (p[i - 1] + p[i]);
-    if (distance(mid) >= floor) continue;
+    if (head(mid) >= floor) continue;
     p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), head.push_out(mid, context.min_clearance));
     ++i;  // the halves are not checked again: each is a quarter of the sag
   }

@@ -19,8 +19,7 @@ class HeadClearance {
   static constexpr int kRefinement = 4;  // fine samples per coarse cell and axis
   HeadClearance(const Head& head, const hair_field::Grid& grid);
   double operator()(const Eigen::Vector3f& p) const;  // +spacing outside the grid
-  // The same in float at grid coordinates q = (p − origin) / spacing, for growth's per-step
-  // check: the same samples and weights, a third of the time.
+  // The same at grid coordinates q = (p − origin) / spacing, as growth steps them.
   // `gradient`, if given, receives the interpolant's gradient per grid spacing.
   float at_grid(const Eigen::Vector3f& q, Eigen::Vector3f* gradient = nullptr) const;
   // p moved along the distance's gradient until it is at least `clearance` outside (a few
