@@ -69,7 +69,7 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   const bool keep_outside = settings_.growth.keep_outside_head;
   if (!clearance_ && (keep_outside || !details.empty())) {
     clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
-    detail_context_ = detail_context(*head_, roots_, clearance_.get());
+    detail_context_ = detail_context(*head_, roots_, clearance_.get(), settings_.growth.head_clearance);
   }
   if (out.regrown) {
     grown_valid_ = false;  // until the growth below completes

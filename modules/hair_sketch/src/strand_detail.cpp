@@ -111,7 +111,7 @@ std::vector<int> nearest_head_vertices(const Head& head, const std::vector<Eigen
 }
 
 DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d>& roots,
-                             const HeadClearance* clearance) {
+                             const HeadClearance* clearance, double head_clearance) {
   DetailContext c;
   c.root_vertex = nearest_head_vertices(head, roots);
   c.center = head.center.cast<float>();
@@ -121,8 +121,7 @@ DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d
   // so that a segment between two offset points does not cut through a curve of the scalp.
   c.min_clearance = static_cast<float>(0.5e-3 * head.box.diagonal().norm());
   if (clearance)
-    c.min_clearance =
-        std::max(c.min_clearance, static_cast<float>(GrowthOptions{}.head_clearance * clearance->grid().spacing));
+    c.min_clearance = std::max(c.min_clearance, static_cast<float>(head_clearance * clearance->grid().spacing));
   return c;
 }
 

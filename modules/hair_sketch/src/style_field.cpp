@@ -125,7 +125,8 @@ HairstyleResult build_hairstyle(const Hairstyle& style, const Head& head) {
   if (!style.details.empty()) {
     t0 = std::chrono::steady_clock::now();
     for (const auto& d : style.details) check_detail(d, head.mesh.num_vertices(), "hair_sketch::build_hairstyle()");
-    r.strands = apply_strand_detail(r.strands, style.details, detail_context(head, roots, clearance.get()));
+    r.strands = apply_strand_detail(r.strands, style.details,
+                                    detail_context(head, roots, clearance.get(), s.growth.head_clearance));
     r.detail_ms = ms_since(t0);
   }
   t0 = std::chrono::steady_clock::now();

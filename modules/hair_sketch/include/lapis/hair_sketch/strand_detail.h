@@ -90,8 +90,9 @@ struct DetailContext {
   float min_clearance = 0;                   // offset points stay at least this far outside
 };
 // The context for strands grown from `roots` on `head`; clearance may be null.
+// `head_clearance`: how far out growth keeps the strands, in grid spacings (GrowthOptions).
 DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d>& roots,
-                             const HeadClearance* clearance);
+                             const HeadClearance* clearance, double head_clearance = GrowthOptions{}.head_clearance);
 
 // Applies the details in order to `strands` (one per root, as grown). Strands with fewer than
 // two points are left alone. Throws InvalidArgument from check_detail, or when the context
