@@ -131,3 +131,51 @@ TEST_CASE("hair_sketch: after several edits, a live hairstyle's field is a fresh
   CHECK(difference <= 1e-6 * scale);
   CHECK(edited.strands.offsets == fresh.strands.offsets);
 }
+
+TEST_CASE("hair_sketch: a live preview grows every k-th strand as the update does, point for point") {
+  // An app that draws every k-th strand shows the preview's strands first; the update then
+  // grows the rest in the same field and must give those strands unchanged, details included.
+  const Head& head = bundled_head();
+  const Hairstyle style = back_style();
+  StrandDetail curl, frizz, length;
+  curl.shape = CurlDetail{};  // a phase and a radius drawn per strand: the strand's own index decides
+  frizz.shape = FrizzDetail{};
+  frizz.seed = 4;
+  length.shape = LengthDetail{};
+  length.region = {1, 2, 3, 40, 41, 42};
+  const std::vector<StrandDetail> details = {curl, frizz, length};
+  const int stride = 7;
+  LiveHairstyle live(head, style.settings);
+  const LiveUpdate preview = live.preview(style.primitives, details, stride);
+  CHECK(preview.solves.size() == 2);
+  const LiveUpdate full = live.update(style.primitives, details);
+  CHECK(full.solves.empty());  // the preview's solve holds
+  CHECK(full.regrown);
+  REQUIRE(preview.strands.count() == (full.strands.count() + stride - 1) / stride);
+  const auto strand = [](const Strands& s, int i) {
+    return std::vector<Eigen::Vector3f>(s.points.begin() + s.offsets[i], s.points.begin() + s.offsets[i + 1]);
+  };
+  int differing = 0;
+  for (int k = 0; k < preview.strands.count(); ++k)
+    differing += strand(preview.strands, k) != strand(full.strands, k * stride);
+  CHECK(differing == 0);
+  CHECK(full.strands.points.size() > 4 * preview.strands.points.size());
+
+  // The update after a preview is a fresh update; a preview after an update takes its strands.
+  LiveHairstyle fresh(head, style.settings);
+  CHECK(fresh.update(style.primitives, details).strands.points == full.strands.points);
+  const LiveUpdate plain = live.update(style.primitives, std::vector<StrandDetail>{});
+  const LiveUpdate again = live.preview(style.primitives, std::vector<StrandDetail>{}, stride);
+  CHECK(again.solves.empty());
+  REQUIRE(again.strands.count() == preview.strands.count());
+  differing = 0;
+  for (int k = 0; k < again.strands.count(); ++k)
+    differing += strand(again.strands, k) != strand(plain.strands, k * stride);
+  CHECK(differing == 0);
+
+  StrandDetail clump;
+  clump.shape = ClumpDetail{};
+  CHECK_FALSE(LiveHairstyle::previewable({curl, clump}));
+  CHECK_THROWS_AS(live.preview(style.primitives, {clump}, stride), lapis::InvalidArgument);
+  CHECK_THROWS_AS(live.preview(style.primitives, {}, 0), lapis::InvalidArgument);
+}

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <utility>
+#include <variant>
 
+#include "lapis/core/error.h"
 #include "lapis/hair_sketch/scalp_avoidance.h"
 
 namespace lapis::hair_sketch {
@@ -44,38 +47,46 @@ void copy_into(const Strands& from, Strands& to) {
 
 }  // namespace
 
+void LiveHairstyle::solve(const std::vector<StylePrimitive>& primitives, LiveUpdate& out) {
+  solved_valid_ = grown_valid_ = false;  // until the solves below complete
+  out.solves.push_back(field_.update(primitives));
+  // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
+  avoided_used_ = settings_.scalp_avoidance && !field_.constraints().empty();
+  if (avoided_used_) {
+    const auto t = std::chrono::steady_clock::now();
+    if (!avoidance_) avoidance_ = std::make_unique<ScalpAvoidance>(field_.grid(), *head_);
+    const std::vector<hair_field::Constraint> avoid = avoidance_->constraints(field_.field());
+    out.avoidance_ms = ms_since(t);
+    out.solves.push_back(avoided_->update(primitives, avoid));
+  }
+  solved_primitives_ = primitives;
+  solved_valid_ = true;
+}
+
+SampledField LiveHairstyle::sampled_field(const std::vector<StrandDetail>& details) {
+  const bool keep_outside = settings_.growth.keep_outside_head;
+  if (!clearance_ && (keep_outside || !details.empty())) {
+    clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
+    detail_context_ = detail_context(*head_, roots_, clearance_.get(), settings_.growth.head_clearance);
+  }
+  return SampledField(field_.grid(), field(), keep_outside ? clearance_.get() : nullptr);
+}
+
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
                                  const std::vector<StrandDetail>& details, Strands reuse) {
   for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), "hair_sketch::LiveHairstyle::update()");
   LiveUpdate out;
   out.strands = std::move(reuse);
   const auto t0 = std::chrono::steady_clock::now();
-  out.regrown = !grown_valid_ || !same_primitives(primitives, last_primitives_);
-  if (out.regrown) {
-    out.solves.push_back(field_.update(primitives));
-    // §4.6: the avoidance constraints depend on the style field, so they follow its solve.
-    avoided_used_ = settings_.scalp_avoidance && !field_.constraints().empty();
-    if (avoided_used_) {
-      const auto t = std::chrono::steady_clock::now();
-      if (!avoidance_) avoidance_ = std::make_unique<ScalpAvoidance>(field_.grid(), *head_);
-      const std::vector<hair_field::Constraint> avoid = avoidance_->constraints(field_.field());
-      out.avoidance_ms = ms_since(t);
-      out.solves.push_back(avoided_->update(primitives, avoid));
-    }
-  }
+  if (!solved_valid_ || !same_primitives(primitives, solved_primitives_)) solve(primitives, out);
+  out.regrown = !grown_valid_;
   out.solve_ms = ms_since(t0);
   out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
-  const bool keep_outside = settings_.growth.keep_outside_head;
-  if (!clearance_ && (keep_outside || !details.empty())) {
-    clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
-    detail_context_ = detail_context(*head_, roots_, clearance_.get(), settings_.growth.head_clearance);
-  }
+  const SampledField sampled = sampled_field(details);
   if (out.regrown) {
-    grown_valid_ = false;  // until the growth below completes
     grower_.set_options(settings_.growth);
-    grower_.grow(SampledField(field_.grid(), field(), keep_outside ? clearance_.get() : nullptr), roots_, grown_);
-    last_primitives_ = primitives;
+    grower_.grow(sampled, roots_, grown_);
     grown_valid_ = true;
   }
   out.growth_ms = ms_since(t1);
@@ -84,6 +95,60 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
     copy_into(grown_, out.strands);
   } else {
     out.strands = apply_strand_detail(grown_, details, detail_context_);
+  }
+  out.detail_ms = ms_since(t2);
+  out.total_ms = ms_since(t0);
+  return out;
+}
+
+bool LiveHairstyle::previewable(const std::vector<StrandDetail>& details) {
+  return std::none_of(details.begin(), details.end(),
+                      [](const StrandDetail& d) { return std::holds_alternative<ClumpDetail>(d.shape); });
+}
+
+LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
+                                  const std::vector<StrandDetail>& details, int stride) {
+  const std::string fn = "hair_sketch::LiveHairstyle::preview()";
+  if (stride < 1) throw InvalidArgument(fn + ": the stride must be at least 1, got " + std::to_string(stride));
+  if (!previewable(details))
+    throw InvalidArgument(fn +
+                          ": a clump detail draws each strand toward a guide among all the strands; "
+                          "update() applies it");
+  for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), fn);
+  LiveUpdate out;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!solved_valid_ || !same_primitives(primitives, solved_primitives_)) solve(primitives, out);
+  out.regrown = true;
+  out.solve_ms = ms_since(t0);
+  out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
+  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<int> subset;
+  for (int i = 0; i < static_cast<int>(roots_.size()); i += stride) subset.push_back(i);
+  const SampledField sampled = sampled_field(details);
+  Strands grown;
+  if (grown_valid_) {  // already grown in this field: the subset of those
+    for (const int i : subset) {
+      grown.points.insert(grown.points.end(), grown_.points.begin() + grown_.offsets[i],
+                          grown_.points.begin() + grown_.offsets[i + 1]);
+      grown.offsets.push_back(static_cast<int>(grown.points.size()));
+    }
+  } else {
+    std::vector<Eigen::Vector3d> roots;
+    roots.reserve(subset.size());
+    for (const int i : subset) roots.push_back(roots_[i]);
+    preview_grower_.set_options(settings_.growth);
+    preview_grower_.grow(sampled, roots, grown);
+  }
+  out.growth_ms = ms_since(t1);
+  const auto t2 = std::chrono::steady_clock::now();
+  if (details.empty()) {
+    out.strands = std::move(grown);
+  } else {
+    DetailContext context = detail_context_;
+    context.root_vertex.clear();
+    for (const int i : subset) context.root_vertex.push_back(detail_context_.root_vertex[i]);
+    context.strand_index = subset;
+    out.strands = apply_strand_detail(grown, details, context);
   }
   out.detail_ms = ms_since(t2);
   out.total_ms = ms_since(t0);

@@ -173,10 +173,11 @@ void apply_one(const StrandDetail& d, std::vector<detail::Polyline>& strands, co
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const int i = affected[k];
+    const int index = context.strand_index.empty() ? i : context.strand_index[i];  // the strand's streams
     detail::Polyline& p = strands[i];
-    std::visit(Overloaded{[&](const CurlDetail& c) { p = detail::curl_strand(c, d.seed, i, p, context); },
-                          [&](const FrizzDetail& f) { p = detail::frizz_strand(f, d.seed, i, p, context); },
-                          [&](const LengthDetail& l) { p = detail::vary_length(l, d.seed, i, p); },
+    std::visit(Overloaded{[&](const CurlDetail& c) { p = detail::curl_strand(c, d.seed, index, p, context); },
+                          [&](const FrizzDetail& f) { p = detail::frizz_strand(f, d.seed, index, p, context); },
+                          [&](const LengthDetail& l) { p = detail::vary_length(l, d.seed, index, p); },
                           [&](const CutDetail& c) { p = detail::cut_strand(c, p); }, [](const ClumpDetail&) {}},
                d.shape);
   }
@@ -207,7 +208,14 @@ Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDeta
   if (static_cast<int>(context.root_vertex.size()) != strands.count())
     throw InvalidArgument(fn + ": the detail context is for " + std::to_string(context.root_vertex.size()) +
                           " strands, not " + std::to_string(strands.count()));
-  for (const auto& d : details) check_detail(d, std::numeric_limits<int>::max(), fn);
+  if (!context.strand_index.empty() && context.strand_index.size() != context.root_vertex.size())
+    throw InvalidArgument(fn + ": the detail context has " + std::to_string(context.strand_index.size()) +
+                          " strand indices for " + std::to_string(context.root_vertex.size()) + " strands");
+  for (const auto& d : details) {
+    check_detail(d, std::numeric_limits<int>::max(), fn);
+    if (!context.strand_index.empty() && std::holds_alternative<ClumpDetail>(d.shape))
+      throw InvalidArgument(fn + ": a clump detail needs all the strands, not a subset");
+  }
   if (details.empty()) return strands;
   std::vector<detail::Polyline> polylines = unpack(strands);
   for (const auto& d : details) apply_one(d, polylines, context);

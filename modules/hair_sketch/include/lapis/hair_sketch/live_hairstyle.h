@@ -47,6 +47,16 @@ class LiveHairstyle {
   LiveUpdate update(const std::vector<StylePrimitive>& primitives, const std::vector<StrandDetail>& details,
                     Strands reuse = {});
 
+  // The strands of every `stride`-th root only (roots 0, stride, 2·stride, …), `details`
+  // applied: what a view that draws only that subset shows, at a fraction of the growth's cost.
+  // Each is the strand update() gives for its root, point for point. Solves as update() does; a
+  // following update() with the same primitives then only grows the rest. Throws
+  // InvalidArgument for a stride below 1 and for a clump detail (a clump needs every strand's
+  // guide, previewable() says which details can be previewed), and as update() does.
+  LiveUpdate preview(const std::vector<StylePrimitive>& primitives, const std::vector<StrandDetail>& details,
+                     int stride);
+  static bool previewable(const std::vector<StrandDetail>& details);
+
   const HairstyleSettings& settings() const { return settings_; }
   const hair_field::Grid& grid() const { return field_.grid(); }
   // The field the strands grew in: the avoidance solve's where it ran, else the style's.
@@ -54,6 +64,12 @@ class LiveHairstyle {
   const std::vector<Eigen::Vector3d>& roots() const { return roots_; }
 
  private:
+  // Brings the field up to date with `primitives` (both solves), recording them in `out`.
+  void solve(const std::vector<StylePrimitive>& primitives, LiveUpdate& out);
+  // The field's sampled copy for growth, with the head's clearance where growth or detail
+  // needs it (made on first use).
+  SampledField sampled_field(const std::vector<StrandDetail>& details);
+
   const Head* head_;
   HairstyleSettings settings_;
   StyleField field_;  // the primitives' constraints only
@@ -64,10 +80,13 @@ class LiveHairstyle {
   bool avoided_used_ = false;  // the last update's field is avoided_'s
   std::vector<Eigen::Vector3d> roots_;
   StrandGrower grower_;
-  // The strands as grown for last_primitives_, before detail.
+  // The primitives the field was last solved for, and the strands as grown in that field
+  // (before detail) when grown_valid_.
+  std::vector<StylePrimitive> solved_primitives_;
+  bool solved_valid_ = false;
   Strands grown_;
-  std::vector<StylePrimitive> last_primitives_;
   bool grown_valid_ = false;
+  StrandGrower preview_grower_;  // a buffer of its own, so a preview leaves grown_ alone
   // Made on the first update that grows strands out of the head or has details: the
   // clearance costs a hundred closest-point queries per refined cell, which the thesis' growth
   // without detail never needs.

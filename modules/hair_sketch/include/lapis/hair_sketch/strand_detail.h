@@ -88,6 +88,9 @@ struct DetailContext {
   Eigen::Vector3f center = Eigen::Vector3f::Zero();
   const HeadClearance* clearance = nullptr;  // null: offsets are not checked
   float min_clearance = 0;                   // offset points stay at least this far outside
+  // For a subset of the strands (LiveHairstyle::preview): per strand, the index in the whole set
+  // that its random streams are drawn for. Empty: the strands are the whole set.
+  std::vector<int> strand_index;
 };
 // The context for strands grown from `roots` on `head`; clearance may be null.
 // `head_clearance`: how far out growth keeps the strands, in grid spacings (GrowthOptions).
@@ -95,8 +98,8 @@ DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d
                              const HeadClearance* clearance, double head_clearance = GrowthOptions{}.head_clearance);
 
 // Applies the details in order to `strands` (one per root, as grown). Strands with fewer than
-// two points are left alone. Throws InvalidArgument from check_detail, or when the context
-// has a different strand count.
+// two points are left alone. Throws InvalidArgument from check_detail, when the context
+// has a different strand count, and for a clump detail on a subset (context.strand_index).
 Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDetail>& details,
                             const DetailContext& context);
 
