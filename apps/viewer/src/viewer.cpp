@@ -525,6 +525,7 @@ int Viewer::run(ViewerApp& app) {
     if (!close_when_done()) exit_code = 1;
     keep_open_if_app_asks();
     glfwSwapBuffers(window_->handle);
+    app.on_frame_shown(*this);
     if (!options_.ready_file.empty()) report_ready(app.busy());
     // The frame's own work (events to swap), not the waits between on-demand frames.
     last_frame_ms_ = std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();

@@ -1,7 +1,8 @@
 // Runs an app's expensive update (regrow strands, solve a deformation) on one background
 // thread so the UI never waits: submit() queues a job, replacing any queued job that has
 // not started (stale requests are dropped, only the newest matters); take() hands the newest
-// finished result to the UI thread once. Exceptions from a job are delivered by take().
+// finished result to the UI thread once. A job may post() a partial result before its own. Exceptions from a job are
+// delivered by take().
 #pragma once
 
 #include <condition_variable>
@@ -36,6 +37,14 @@ class LatestWorker {
       ++submitted_;
     }
     wake_.notify_all();
+  }
+
+  // From inside a running job: hands `partial` over now, as the newest result (a first look at
+  // what the job makes; on_done runs as after a job). The job's own result follows it.
+  void post(Result partial) {
+    std::lock_guard lock(mutex_);
+    done_ = std::move(partial);
+    if (on_done_) on_done_();
   }
 
   // The newest finished result not yet taken; rethrows what its job threw.

@@ -69,6 +69,8 @@ class ViewerApp {
   virtual bool on_event(Viewer&, const InputEvent&) { return false; }
   // Per-frame update, before drawing: poll workers, update the scene.
   virtual void on_frame(Viewer&) {}
+  // After the frame is on screen (its buffers swapped): work that should not slow it down.
+  virtual void on_frame_shown(Viewer&) {}
   // ImGui panels.
   virtual void on_gui(Viewer&) {}
   virtual void on_exit(Viewer&) {}
