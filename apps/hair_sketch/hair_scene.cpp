@@ -72,10 +72,16 @@ void HairSketchApp::update_head_item(viewer::Viewer& v) {
   head_dirty_ = false;
 }
 
-void HairSketchApp::update_strand_item(viewer::Viewer& v, const Strands& strands) {
+void HairSketchApp::update_strand_item(viewer::Viewer& v, const Strands& strands, int subset_stride) {
   auto& item = v.scene().lines["strands"];
   std::vector<int> source;
-  const Strands shown = display_strands(strands, {.max_segments = static_cast<int>(strand_budget_.value())}, &source);
+  StrandDisplayOptions options{.max_segments = static_cast<int>(strand_budget_.value()),
+                               .current_stride = shown_stride_};
+  if (subset_stride > 0) options.stride = 1;  // the subset is what is shown
+  shown_stride_ = subset_stride > 0 ? subset_stride : display_stride(strands, options);
+  const Strands shown = display_strands(strands, options, &source);
+  if (subset_stride > 0)
+    for (int& s : source) s *= subset_stride;  // the strand's index in the whole set, for its colour
   shown_strands_ = shown.count();
   const int n = static_cast<int>(shown.points.size());
   item.points.resize(n, 3);

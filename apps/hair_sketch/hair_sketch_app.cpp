@@ -16,6 +16,7 @@
 #include "lapis/hair_sketch/style_field.h"
 #include "lapis/hair_sketch/symmetry.h"
 #include "primitive_geometry.h"
+#include "strand_display.h"
 
 namespace lapis::hair_app {
 namespace {
@@ -401,6 +402,7 @@ void HairSketchApp::autosave_if_due(viewer::Viewer& v) {
 }
 
 void HairSketchApp::on_exit(viewer::Viewer& v) {
+  if (preview_gate_) preview_gate_->open();
   worker_.wait();
   worker_.set_on_done({});  // the window goes away after this
   receive_regrowth(v);
@@ -428,6 +430,30 @@ void HairSketchApp::settings_changed() {
   request_regrowth();
 }
 
+void FrameGate::open() {
+  {
+    std::lock_guard lock(mutex_);
+    open_ = true;
+  }
+  opened_.notify_all();
+}
+
+void FrameGate::wait() {
+  std::unique_lock lock(mutex_);
+  opened_.wait_for(lock, std::chrono::seconds(1), [this] { return open_; });
+}
+
+// The window draws every k-th strand (display_stride): a regrowth shows those first, grown
+// alone, then grows the rest. Not for the first strands (no stride known yet), a window that
+// draws every strand, other settings (other roots) or details that need every strand.
+int HairSketchApp::preview_stride() const {
+  const int budget = static_cast<int>(strand_budget_.value());
+  if (!last_ || budget == 0 || last_->settings_epoch != settings_epoch_) return 0;
+  if (!LiveHairstyle::previewable(document_.style().details)) return 0;
+  const int k = display_stride(last_->update.strands, {.max_segments = budget, .current_stride = shown_stride_});
+  return k > 1 ? k : 0;
+}
+
 void HairSketchApp::request_regrowth() {
   if (requested_revision_ == document_.revision() && requested_epoch_ == settings_epoch_) return;
   requested_revision_ = document_.revision();
@@ -438,28 +464,55 @@ void HairSketchApp::request_regrowth() {
   const std::vector<StylePrimitive> primitives = document_.style().primitives;
   const std::vector<StrandDetail> details = document_.style().details;
   const std::uint64_t revision = document_.revision(), epoch = settings_epoch_;
+  const int stride = preview_stride();
+  if (preview_gate_) preview_gate_->open();  // an older job's: nothing holds the new one back
+  preview_gate_ = stride > 0 ? std::make_shared<FrameGate>() : nullptr;
   // The strands last replaced on screen go with the job, to be written over (their
   // storage is already paged in: LiveHairstyle::update).
   const auto submitted = std::chrono::steady_clock::now();
-  worker_.submit([slot, head, settings, primitives, details, revision, epoch, submitted,
-                  spare = std::move(spare_strands_)]() mutable {
+  worker_.submit([slot, head, settings, primitives, details, revision, epoch, submitted, stride, gate = preview_gate_,
+                  worker = &worker_, spare = std::move(spare_strands_)]() mutable {
     const auto start = std::chrono::steady_clock::now();
     if (!slot->live || slot->epoch != epoch) {
       slot->live.reset();  // free the old solver before building the new one
       slot->live = std::make_unique<LiveHairstyle>(*head, settings);
       slot->epoch = epoch;
     }
+    const auto finish = [&](Regrowth& r) {
+      r.revision = revision;
+      r.settings_epoch = epoch;
+      r.grid = slot->live->grid();
+      r.field = std::make_shared<const Field>(slot->live->field());
+      r.finished = std::chrono::steady_clock::now();
+      r.worker_ms = std::chrono::duration<double, std::milli>(r.finished - start).count();
+      r.queued_ms = std::chrono::duration<double, std::milli>(start - submitted).count();
+    };
+    if (stride > 0) {
+      Regrowth preview;
+      preview.preview_stride = stride;
+      preview.update = slot->live->preview(primitives, details, stride);
+      finish(preview);
+      worker->post(std::move(preview));
+      gate->wait();
+    }
     Regrowth r;
-    r.revision = revision;
-    r.settings_epoch = epoch;
     r.update = slot->live->update(primitives, details, std::move(spare));
-    r.grid = slot->live->grid();
-    r.field = std::make_shared<const Field>(slot->live->field());
-    r.finished = std::chrono::steady_clock::now();
-    r.worker_ms = std::chrono::duration<double, std::milli>(r.finished - start).count();
-    r.queued_ms = std::chrono::duration<double, std::milli>(start - submitted).count();
+    finish(r);
     return r;
   });
+}
+
+void HairSketchApp::receive_preview(viewer::Viewer& v, Regrowth r) {
+  const double display_start = v.time();
+  update_strand_item(v, r.update.strands, r.preview_stride);
+  shown_preview_of_ = std::make_pair(r.revision, r.settings_epoch);
+  preview_drawn_in_frame_ = v.frame();
+  if (scene_held_since_ >= 0) end_scene_hold(v);  // the edit's curves with its strands, in one frame
+  if (r.revision == document_.revision() && last_edit_time_ > 0) {
+    edits_.push_back(stages(r, display_start, v.time()));
+    edits_.back().preview = true;
+    edit_drawn_in_frame_ = v.frame();
+  }
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
@@ -473,15 +526,37 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   }
   if (!r) return;
   engine_error_.clear();
+  if (r->preview_stride > 0) return receive_preview(v, std::move(*r));
   const double display_start = v.time();
-  update_strand_item(v, r->update.strands);
+  // After its preview, the whole set shows the same strands unless the stride moved on.
+  const bool previewed = shown_preview_of_ == std::make_pair(r->revision, r->settings_epoch);
+  const bool same_picture =
+      previewed && display_stride(r->update.strands, {.max_segments = static_cast<int>(strand_budget_.value()),
+                                                      .current_stride = shown_stride_}) == shown_stride_;
+  if (!same_picture) update_strand_item(v, r->update.strands);
+  shown_preview_of_.reset();
   if (r->revision == document_.revision() && last_edit_time_ > 0) {
-    edits_.push_back(stages(*r, display_start, v.time()));
-    edit_drawn_in_frame_ = v.frame();  // the frame's drawing is added once it is known
+    if (previewed && !edits_.empty() && edits_.back().preview && edits_.back().all_strands_ms == 0) {
+      EditStages& e = edits_.back();
+      e.rest_ms = r->update.growth_ms + r->update.detail_ms;
+      e.all_strands_ms = (v.time() - last_edit_time_) * 1000.0;
+      e.redrawn = !same_picture;
+    } else {
+      edits_.push_back(stages(*r, display_start, v.time()));
+      edits_.back().all_strands_ms = edits_.back().total_ms - edits_.back().display_ms;
+      edit_drawn_in_frame_ = v.frame();  // the frame's drawing is added once it is known
+    }
   }
   if (last_) spare_strands_ = std::move(last_->update.strands);
   last_ = std::move(r);
   if (show_glyphs_) update_glyph_item(v);
+}
+
+void HairSketchApp::on_frame_shown(viewer::Viewer& v) {
+  if (preview_gate_ && preview_drawn_in_frame_ >= 0 && v.frame() >= preview_drawn_in_frame_) {
+    preview_gate_->open();
+    preview_drawn_in_frame_ = -1;
+  }
 }
 
 void HairSketchApp::on_frame(viewer::Viewer& v) {
@@ -549,6 +624,10 @@ void HairSketchApp::benchmark_fields(nlohmann::json& j) const {
                           {"waiting_ms", e.waiting_ms},
                           {"queued_ms", e.queued_ms},
                           {"handover_ms", e.handover_ms},
+                          {"preview", e.preview},
+                          {"rest_ms", e.rest_ms},
+                          {"all_strands_ms", e.all_strands_ms},
+                          {"redrawn", e.redrawn},
                           {"solves", e.solves}});
   }
   j["edit_to_strands_ms"] = totals;

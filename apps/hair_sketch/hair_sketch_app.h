@@ -5,11 +5,14 @@
 #pragma once
 
 #include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lapis/hair_sketch/document.h"
@@ -41,6 +44,23 @@ struct Regrowth {
   double worker_ms = 0;                // the whole job on the worker
   double queued_ms = 0;                // from the request to the job's start
   std::chrono::steady_clock::time_point finished;
+  // > 0: a preview, the strands of every preview_stride-th root only (LiveHairstyle::preview):
+  // the strands the window draws. The job's whole result follows it.
+  int preview_stride = 0;
+};
+
+// Holds a job back until the window has shown its preview, so that the rest of the growth
+// does not compete with the preview's frame for the cores. Opens by itself after a while, so
+// nothing waits on a window that draws no more.
+class FrameGate {
+ public:
+  void open();
+  void wait();
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable opened_;
+  bool open_ = false;
 };
 
 // Where one edit's time went, from the stroke's release to its strands on screen (--benchmark).
@@ -57,6 +77,11 @@ struct EditStages {
   double waiting_ms = 0;   // the rest: queued behind an older job, the frame that hands over
   double queued_ms = 0;    // of it: from the request to the job's start
   double handover_ms = 0;  // of it: from the job's end to the frame that takes its strands
+  // With a preview, the strands drawn (total_ms) are those of every k-th root; then the rest grow.
+  bool preview = false;
+  double rest_ms = 0;         // the rest's growth and detail, after the preview's frame
+  double all_strands_ms = 0;  // release → every strand received (= total_ms less the drawing without a preview)
+  bool redrawn = false;       // the whole set showed other strands than the preview (a new stride)
 };
 
 // How strands are drawn: ribbons (tapered, anti-aliased, self-shadowed: the look of the
@@ -81,6 +106,7 @@ class HairSketchApp final : public viewer::ViewerApp {
   void on_start(viewer::Viewer& v) override;
   bool on_event(viewer::Viewer& v, const viewer::InputEvent& e) override;
   void on_frame(viewer::Viewer& v) override;
+  void on_frame_shown(viewer::Viewer& v) override;
   void on_gui(viewer::Viewer& v) override;
   void on_exit(viewer::Viewer& v) override;
   bool busy() const override;
@@ -123,7 +149,10 @@ class HairSketchApp final : public viewer::ViewerApp {
 
   // Drawing (hair_scene.cpp) and panels (hair_panels.cpp).
   void update_head_item(viewer::Viewer& v);
-  void update_strand_item(viewer::Viewer& v, const Strands& strands);
+  // `subset_stride` > 0: the strands are those of every subset_stride-th root (a preview).
+  void update_strand_item(viewer::Viewer& v, const Strands& strands, int subset_stride = 0);
+  int preview_stride() const;  // the preview's stride for the next regrowth; 0: none
+  void receive_preview(viewer::Viewer& v, Regrowth r);
   void update_curve_items(viewer::Viewer& v);
   void update_preview_item(viewer::Viewer& v);
   void update_glyph_item(viewer::Viewer& v);
@@ -165,6 +194,11 @@ class HairSketchApp final : public viewer::ViewerApp {
   // two seconds a frame. Headless runs (screenshots, demos) draw everything.
   viewer::AdaptiveBudget strand_budget_{100000};
   int shown_strands_ = 0;
+  int shown_stride_ = 0;  // every shown_stride_-th strand is drawn (display_stride)
+  // The revision and settings epoch whose preview is on screen, until the whole set arrives.
+  std::optional<std::pair<std::uint64_t, std::uint64_t>> shown_preview_of_;
+  std::shared_ptr<FrameGate> preview_gate_;  // the running job's, opened once its preview is shown
+  long preview_drawn_in_frame_ = -1;
   bool curves_dirty_ = true, head_dirty_ = true;
 
   // Worker: regrowth never blocks input; the previous strands stay until new ones arrive.

@@ -63,3 +63,43 @@ TEST_CASE("hair_app: display strands meet the budget with decimated, evenly spre
   CHECK_THROWS_AS(display_strands(s, {.max_segments = -1}), InvalidArgument);
   CHECK_THROWS_AS(display_strands(s, {.max_segments = 10, .max_points_per_strand = 1}), InvalidArgument);
 }
+
+TEST_CASE("hair_app: display strands are every k-th strand, so every k-th strand alone shows the same") {
+  // The app draws a preview of every k-th strand before the rest have grown: the picture must
+  // be the one the whole set gives.
+  const Strands s = random_strands(20000, 200, 3);
+  const StrandDisplayOptions options{.max_segments = 20000, .max_points_per_strand = 32};
+  const int k = display_stride(s, options);
+  CHECK(k > 20);
+  std::vector<int> kept;
+  const Strands all = display_strands(s, options, &kept);
+  REQUIRE(static_cast<int>(kept.size()) == (20000 + k - 1) / k);
+  for (int j = 0; j < static_cast<int>(kept.size()); ++j) CHECK(kept[static_cast<size_t>(j)] == j * k);
+  CHECK(all.segments() <= options.max_segments);
+
+  Strands every_kth;
+  for (int i = 0; i < s.count(); i += k) {
+    every_kth.points.insert(every_kth.points.end(), s.points.begin() + s.offsets[static_cast<size_t>(i)],
+                            s.points.begin() + s.offsets[static_cast<size_t>(i) + 1]);
+    every_kth.offsets.push_back(static_cast<int>(every_kth.points.size()));
+  }
+  StrandDisplayOptions subset = options;
+  subset.stride = 1;
+  const Strands shown = display_strands(every_kth, subset);
+  CHECK(shown.points == all.points);
+  CHECK(shown.offsets == all.offsets);
+
+  // The stride shown now is kept within one of the best, from 8 on; farther, the best is taken.
+  StrandDisplayOptions current = options;
+  for (int now : {k - 1, k + 1}) {
+    current.current_stride = now;
+    CHECK(display_stride(s, current) == now);
+  }
+  current.current_stride = k + 2;
+  CHECK(display_stride(s, current) == k);
+  current.max_segments = 200000;  // best stride 3: below 8, nothing is kept
+  current.current_stride = display_stride(s, current) + 1;
+  CHECK(display_stride(s, current) == current.current_stride - 1);
+  CHECK(display_stride(s, {.max_segments = 0}) == 1);
+  CHECK_THROWS_AS(display_strands(s, {.stride = -1}), InvalidArgument);
+}
