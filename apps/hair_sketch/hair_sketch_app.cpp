@@ -445,11 +445,10 @@ void FrameGate::wait() {
 
 // The window draws every k-th strand (display_stride): a regrowth shows those first, grown
 // alone, then grows the rest. Not for the first strands (no stride known yet), a window that
-// draws every strand, other settings (other roots) or details that need every strand.
+// draws every strand, or other settings (other roots).
 int HairSketchApp::preview_stride() const {
   const int budget = static_cast<int>(strand_budget_.value());
   if (!last_ || budget == 0 || last_->settings_epoch != settings_epoch_) return 0;
-  if (!LiveHairstyle::previewable(document_.style().details)) return 0;
   const int k = display_stride(last_->update.strands, {.max_segments = budget, .current_stride = shown_stride_});
   return k > 1 ? k : 0;
 }

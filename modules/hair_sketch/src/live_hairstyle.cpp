@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <variant>
@@ -101,19 +102,10 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
   return out;
 }
 
-bool LiveHairstyle::previewable(const std::vector<StrandDetail>& details) {
-  return std::none_of(details.begin(), details.end(),
-                      [](const StrandDetail& d) { return std::holds_alternative<ClumpDetail>(d.shape); });
-}
-
 LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
                                   const std::vector<StrandDetail>& details, int stride) {
   const std::string fn = "hair_sketch::LiveHairstyle::preview()";
   if (stride < 1) throw InvalidArgument(fn + ": the stride must be at least 1, got " + std::to_string(stride));
-  if (!previewable(details))
-    throw InvalidArgument(fn +
-                          ": a clump detail draws each strand toward a guide among all the strands; "
-                          "update() applies it");
   for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), fn);
   LiveUpdate out;
   const auto t0 = std::chrono::steady_clock::now();
@@ -122,9 +114,12 @@ LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
   out.solve_ms = ms_since(t0);
   out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
-  std::vector<int> subset;
-  for (int i = 0; i < static_cast<int>(roots_.size()); i += stride) subset.push_back(i);
   const SampledField sampled = sampled_field(details);
+  // The strands shown, and the clumps' guides they follow: `grown` holds strand subset[k].
+  std::vector<int> shown, subset;
+  for (int i = 0; i < static_cast<int>(roots_.size()); i += stride) shown.push_back(i);
+  const std::vector<int> guides = details.empty() ? std::vector<int>{} : detail_guides(details, detail_context_);
+  std::set_union(shown.begin(), shown.end(), guides.begin(), guides.end(), std::back_inserter(subset));
   Strands grown;
   if (grown_valid_) {  // already grown in this field: the subset of those
     for (const int i : subset) {
@@ -141,14 +136,20 @@ LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
   }
   out.growth_ms = ms_since(t1);
   const auto t2 = std::chrono::steady_clock::now();
+  Strands detailed;
   if (details.empty()) {
-    out.strands = std::move(grown);
+    detailed = std::move(grown);
   } else {
     DetailContext context = detail_context_;
-    context.root_vertex.clear();
-    for (const int i : subset) context.root_vertex.push_back(detail_context_.root_vertex[i]);
     context.strand_index = subset;
-    out.strands = apply_strand_detail(grown, details, context);
+    detailed = apply_strand_detail(grown, details, context);
+  }
+  for (std::size_t k = 0, j = 0; k < subset.size() && j < shown.size(); ++k) {  // the shown strands alone
+    if (subset[k] != shown[j]) continue;
+    ++j;
+    out.strands.points.insert(out.strands.points.end(), detailed.points.begin() + detailed.offsets[k],
+                              detailed.points.begin() + detailed.offsets[k + 1]);
+    out.strands.offsets.push_back(static_cast<int>(out.strands.points.size()));
   }
   out.detail_ms = ms_since(t2);
   out.total_ms = ms_since(t0);

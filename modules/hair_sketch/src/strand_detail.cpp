@@ -147,33 +147,68 @@ Strands pack(const std::vector<detail::Polyline>& polylines) {
   return s;
 }
 
-std::vector<int> affected_strands(const StrandDetail& d, const std::vector<detail::Polyline>& strands,
-                                  const DetailContext& context) {
-  std::vector<char> in_region;
-  if (!d.region.empty()) {
+int whole_index(const DetailContext& context, int i) {
+  return context.strand_index.empty() ? i : context.strand_index[static_cast<std::size_t>(i)];
+}
+
+// Whether strand i of the whole set is in the detail's region.
+class RegionTest {
+ public:
+  RegionTest(const StrandDetail& d, const DetailContext& context) : context_(context), everywhere_(d.region.empty()) {
+    if (everywhere_) return;
     int top = 0;
     for (const int v : context.root_vertex) top = std::max(top, v + 1);
-    in_region.assign(top, 0);
+    in_region_.assign(top, 0);
     for (const int v : d.region)
-      if (v < top) in_region[v] = 1;
+      if (v < top) in_region_[v] = 1;
   }
+  bool operator()(int whole) const { return everywhere_ || in_region_[context_.root_vertex[whole]]; }
+
+ private:
+  const DetailContext& context_;
+  bool everywhere_;
+  std::vector<char> in_region_;
+};
+
+std::vector<int> affected_strands(const StrandDetail& d, const std::vector<detail::Polyline>& strands,
+                                  const DetailContext& context) {
+  const RegionTest in_region(d, context);
   std::vector<int> out;
   for (int i = 0; i < static_cast<int>(strands.size()); ++i)
-    if (strands[i].size() >= 2 && (d.region.empty() || in_region[context.root_vertex[i]])) out.push_back(i);
+    if (strands[i].size() >= 2 && in_region(whole_index(context, i))) out.push_back(i);
   return out;
+}
+
+// A clump's guides in the whole set, chosen by the seed among every root in its region, grown
+// or not: a subset of the strands can then know them before the rest have grown.
+std::vector<int> clump_guides(const StrandDetail& d, const DetailContext& context) {
+  const RegionTest in_region(d, context);
+  std::vector<int> candidates;
+  for (int w = 0; w < static_cast<int>(context.root_vertex.size()); ++w)
+    if (in_region(w)) candidates.push_back(w);
+  return detail::choose_guides(candidates, std::get<ClumpDetail>(d.shape).clumps, d.seed);
 }
 
 void apply_one(const StrandDetail& d, std::vector<detail::Polyline>& strands, const DetailContext& context) {
   const std::vector<int> affected = affected_strands(d, strands, context);
   if (const auto* clump = std::get_if<ClumpDetail>(&d.shape)) {
-    detail::clump_strands(*clump, d.seed, affected, strands, context);
+    std::vector<int> guides = clump_guides(d, context);
+    if (!context.strand_index.empty())
+      for (int& g : guides) {  // to positions in the subset
+        const auto at = std::lower_bound(context.strand_index.begin(), context.strand_index.end(), g);
+        if (at == context.strand_index.end() || *at != g)
+          throw InvalidArgument("hair_sketch::apply_strand_detail(): the strands lack clump guide " +
+                                std::to_string(g) + " (detail_guides() lists what a subset needs)");
+        g = static_cast<int>(at - context.strand_index.begin());
+      }
+    detail::clump_strands(*clump, affected, guides, strands, context);
     return;
   }
   const auto n = static_cast<std::ptrdiff_t>(affected.size());
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::ptrdiff_t k = 0; k < n; ++k) {
     const int i = affected[k];
-    const int index = context.strand_index.empty() ? i : context.strand_index[i];  // the strand's streams
+    const int index = whole_index(context, i);  // the strand's random streams
     detail::Polyline& p = strands[i];
     std::visit(Overloaded{[&](const CurlDetail& c) { p = detail::curl_strand(c, d.seed, index, p, context); },
                           [&](const FrizzDetail& f) { p = detail::frizz_strand(f, d.seed, index, p, context); },
@@ -202,20 +237,33 @@ void keep_segments_outside(detail::Polyline& p, const DetailContext& context) {
 
 }  // namespace
 
+std::vector<int> detail_guides(const std::vector<StrandDetail>& details, const DetailContext& context) {
+  std::vector<int> out;
+  for (const auto& d : details)
+    if (std::holds_alternative<ClumpDetail>(d.shape)) {
+      const std::vector<int> g = clump_guides(d, context);
+      out.insert(out.end(), g.begin(), g.end());
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDetail>& details,
                             const DetailContext& context) {
   const std::string fn = "hair_sketch::apply_strand_detail()";
-  if (static_cast<int>(context.root_vertex.size()) != strands.count())
-    throw InvalidArgument(fn + ": the detail context is for " + std::to_string(context.root_vertex.size()) +
+  const std::size_t whole = context.root_vertex.size();
+  if (context.strand_index.empty() ? whole != static_cast<std::size_t>(strands.count())
+                                   : context.strand_index.size() != static_cast<std::size_t>(strands.count()))
+    throw InvalidArgument(fn + ": the detail context is for " +
+                          std::to_string(context.strand_index.empty() ? whole : context.strand_index.size()) +
                           " strands, not " + std::to_string(strands.count()));
-  if (!context.strand_index.empty() && context.strand_index.size() != context.root_vertex.size())
-    throw InvalidArgument(fn + ": the detail context has " + std::to_string(context.strand_index.size()) +
-                          " strand indices for " + std::to_string(context.root_vertex.size()) + " strands");
-  for (const auto& d : details) {
-    check_detail(d, std::numeric_limits<int>::max(), fn);
-    if (!context.strand_index.empty() && std::holds_alternative<ClumpDetail>(d.shape))
-      throw InvalidArgument(fn + ": a clump detail needs all the strands, not a subset");
-  }
+  for (std::size_t i = 0; i < context.strand_index.size(); ++i)
+    if (context.strand_index[i] < 0 || static_cast<std::size_t>(context.strand_index[i]) >= whole ||
+        (i > 0 && context.strand_index[i] <= context.strand_index[i - 1]))
+      throw InvalidArgument(fn + ": the detail context's strand indices must increase within the " +
+                            std::to_string(whole) + " strands");
+  for (const auto& d : details) check_detail(d, std::numeric_limits<int>::max(), fn);
   if (details.empty()) return strands;
   std::vector<detail::Polyline> polylines = unpack(strands);
   for (const auto& d : details) apply_one(d, polylines, context);

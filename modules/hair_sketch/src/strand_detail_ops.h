@@ -20,8 +20,12 @@ Polyline frizz_strand(const FrizzDetail& d, std::uint32_t seed, int index, const
 Polyline vary_length(const LengthDetail& d, std::uint32_t seed, int index, const Polyline& p);
 Polyline cut_strand(const CutDetail& d, const Polyline& p);
 
-// Draws the strands listed in `affected` toward their guides (chosen among them by the seed).
-void clump_strands(const ClumpDetail& d, std::uint32_t seed, const std::vector<int>& affected,
+// `count` distinct entries of `candidates`, by a partial Fisher–Yates shuffle of the seed.
+std::vector<int> choose_guides(const std::vector<int>& candidates, int count, std::uint32_t seed);
+
+// Draws the strands listed in `affected` toward their nearest guide (`guides`: positions in
+// `strands`; those of fewer than two points or no length guide nothing).
+void clump_strands(const ClumpDetail& d, const std::vector<int>& affected, const std::vector<int>& guides,
                    std::vector<Polyline>& strands, const DetailContext& context);
 
 }  // namespace lapis::hair_sketch::detail

@@ -49,13 +49,11 @@ class LiveHairstyle {
 
   // The strands of every `stride`-th root only (roots 0, stride, 2·stride, …), `details`
   // applied: what a view that draws only that subset shows, at a fraction of the growth's cost.
-  // Each is the strand update() gives for its root, point for point. Solves as update() does; a
-  // following update() with the same primitives then only grows the rest. Throws
-  // InvalidArgument for a stride below 1 and for a clump detail (a clump needs every strand's
-  // guide, previewable() says which details can be previewed), and as update() does.
+  // Each is the strand update() gives for its root, point for point (clumps' guides are grown
+  // too, detail_guides). Solves as update() does; a following update() with the same primitives
+  // then only grows the rest. Throws InvalidArgument for a stride below 1, and as update() does.
   LiveUpdate preview(const std::vector<StylePrimitive>& primitives, const std::vector<StrandDetail>& details,
                      int stride);
-  static bool previewable(const std::vector<StrandDetail>& details);
 
   const HairstyleSettings& settings() const { return settings_; }
   const hair_field::Grid& grid() const { return field_.grid(); }

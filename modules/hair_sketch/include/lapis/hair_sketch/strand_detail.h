@@ -40,7 +40,7 @@ struct CurlDetail {
 
 // Clumps: every strand is drawn toward its clump's guide (the guide strand whose root is
 // nearest), by the fraction c(t) = strength · t^profile of the distance to the guide's point at
-// the same t; guides are chosen among the affected strands by the seed.
+// the same t; guides are chosen among the roots in the region by the seed.
 struct ClumpDetail {
   int clumps = 80;        // guide strands
   double strength = 0.7;  // c(1): the fraction of the distance removed at the tip
@@ -88,8 +88,9 @@ struct DetailContext {
   Eigen::Vector3f center = Eigen::Vector3f::Zero();
   const HeadClearance* clearance = nullptr;  // null: offsets are not checked
   float min_clearance = 0;                   // offset points stay at least this far outside
-  // For a subset of the strands (LiveHairstyle::preview): per strand, the index in the whole set
-  // that its random streams are drawn for. Empty: the strands are the whole set.
+  // For a subset of the strands (LiveHairstyle::preview): per strand, in increasing order, its
+  // index in the whole set (root_vertex stays the whole set's), which its random streams are
+  // drawn for. Empty: the strands are the whole set.
   std::vector<int> strand_index;
 };
 // The context for strands grown from `roots` on `head`; clearance may be null.
@@ -97,10 +98,17 @@ struct DetailContext {
 DetailContext detail_context(const Head& head, const std::vector<Eigen::Vector3d>& roots,
                              const HeadClearance* clearance, double head_clearance = GrowthOptions{}.head_clearance);
 
-// Applies the details in order to `strands` (one per root, as grown). Strands with fewer than
-// two points are left alone. Throws InvalidArgument from check_detail, when the context
-// has a different strand count, and for a clump detail on a subset (context.strand_index).
+// Applies the details in order to `strands` (one per root, as grown, or the subset
+// context.strand_index names). Strands with fewer than two points are left alone. Each strand
+// comes out the same in a subset as in the whole set, provided the subset holds the clumps'
+// guides (detail_guides). Throws InvalidArgument from check_detail, when the context has a
+// different strand count, and when a subset lacks a guide.
 Strands apply_strand_detail(const Strands& strands, const std::vector<StrandDetail>& details,
                             const DetailContext& context);
+
+// The whole-set indices of the strands the details' clumps follow (ascending): chosen by each
+// clump's seed among the roots in its region, whether they grow or not (a guide that grows
+// nothing guides nothing).
+std::vector<int> detail_guides(const std::vector<StrandDetail>& details, const DetailContext& context);
 
 }  // namespace lapis::hair_sketch
