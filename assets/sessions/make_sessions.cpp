@@ -139,6 +139,9 @@ void smooth(Drawer& d) {
     // One more from the middle of the forehead.
     d.sweep(side * 0.3 * kPi, 0.62, side * 0.01 * kPi, 1.3, side * 0.52 * kPi, 90);
   }
+  // The middle of the hairline combed back: between the two sweeps the field has no side to
+  // take, and the hair there would fall straight over the face.
+  for (double phi : {-0.08 * kPi, 0.0, 0.08 * kPi}) d.sweep(0.25 * kPi, 0.95, phi, 0.3, phi, 0);
 }
 
 // Fig. 4.7: a parting from the forehead to the crown, seven stream curves flowing away from it.
