@@ -332,3 +332,43 @@ TEST_CASE("apps: hair app — a cut line drawn with xdotool (tool 7) ends the st
   CHECK(before > 100);
   CHECK(after == 0);
 }
+
+TEST_CASE("apps: hair app — an edit shows the strands on screen first, then grows the rest behind them") {
+  // Two downward strokes from the top of the head in the first view, each waiting for the
+  // last one's strands. The window draws every k-th strand (a pinned budget of 20K segments of
+  // 20K strands): each edit must show those first and keep that picture when the rest arrive.
+  nlohmann::json events = {{"format", "lapis-events"}, {"version", 1}, {"width", kWidth}, {"height", kHeight}};
+  int frame = 10;
+  for (const auto& [x0, y0] : {std::pair{506, 187}, std::pair{450, 175}}) {
+    events["events"].push_back({{"type", "move"}, {"frame", frame}, {"x", x0}, {"y", y0}});
+    events["events"].push_back(
+        {{"type", "button"}, {"frame", frame + 1}, {"x", x0}, {"y", y0}, {"button", 0}, {"action", 1}, {"mods", 0}});
+    for (int i = 1; i <= 18; ++i)
+      events["events"].push_back(
+          {{"type", "move"}, {"frame", frame + 1 + i / 2}, {"x", x0 + 2 * i}, {"y", y0 + 9 * i}});
+    events["events"].push_back({{"type", "button"},
+                                {"frame", frame + 11},
+                                {"x", x0 + 36},
+                                {"y", y0 + 162},
+                                {"button", 0},
+                                {"action", 0},
+                                {"mods", 0}});
+    events["events"].push_back({{"type", "idle"}, {"frame", frame + 12}});
+    frame += 20;
+  }
+  const fs::path replay = scratch_dir() / "preview_events.json", report = scratch_dir() / "preview_benchmark.json";
+  std::ofstream(replay) << events.dump();
+  REQUIRE(run_under_xvfb(kApp + " --roots 20000 --draw-segments 20000 --size 900x700 --replay " + replay.string() +
+                         " --exit-after-replay --benchmark " + report.string()) == 0);
+  nlohmann::json r;
+  std::ifstream(report) >> r;
+  REQUIRE(r["edits"].size() == 2);
+  for (const auto& e : r["edits"]) {
+    CHECK(e["preview"].get<bool>());
+    CHECK_FALSE(e["redrawn"].get<bool>());
+    // The preview grew a thirtieth of the strands; the rest came after the frame.
+    CHECK(e["rest_ms"].get<double>() > e["growth_ms"].get<double>());
+    CHECK(e["all_strands_ms"].get<double>() > e["total_ms"].get<double>() - e["draw_ms"].get<double>());
+  }
+  CHECK(r["strands"].get<int>() > 15000);  // every strand arrived in the end
+}
