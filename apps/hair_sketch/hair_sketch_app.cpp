@@ -493,6 +493,12 @@ void HairSketchApp::request_regrowth() {
       finish(preview);
       worker->post(std::move(preview));
       gate->wait();
+      if (worker->superseded()) {
+        Regrowth stopped;
+        stopped.superseded = true;
+        stopped.update.strands = std::move(spare);
+        return stopped;
+      }
     }
     Regrowth r;
     r.update = slot->live->update(primitives, details, std::move(spare));
@@ -526,6 +532,10 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   if (!r) return;
   engine_error_.clear();
   if (r->preview_stride > 0) return receive_preview(v, std::move(*r));
+  if (r->superseded) {  // the preview stays on screen until the newer edit's strands replace it
+    spare_strands_ = std::move(r->update.strands);
+    return;
+  }
   const double display_start = v.time();
   // After its preview, the whole set shows the same strands unless the stride moved on.
   const bool previewed = shown_preview_of_ == std::make_pair(r->revision, r->settings_epoch);

@@ -47,6 +47,9 @@ struct Regrowth {
   // > 0: a preview, the strands of every preview_stride-th root only (LiveHairstyle::preview):
   // the strands the window draws. The job's whole result follows it.
   int preview_stride = 0;
+  // The job stopped after its preview: a newer edit was waiting, and growing the rest for this
+  // one would only delay it. No strands; `update.strands` is the storage the job was given.
+  bool superseded = false;
 };
 
 // Holds a job back until the window has shown its preview, so that the rest of the growth

@@ -50,3 +50,27 @@ TEST_CASE("viewer: the latest worker hands a job's exception to take()") {
   worker.wait();
   CHECK(worker.take() == 7);
 }
+
+TEST_CASE("viewer: a latest worker job posts a first result before its own, and sees when a newer job waits") {
+  LatestWorker<int> worker;
+  std::atomic<bool> posted{false}, newer_submitted{false};
+  std::atomic<int> superseded_seen{-1};
+  worker.submit([&] {
+    worker.post(1);  // a preview
+    posted = true;
+    while (!newer_submitted) std::this_thread::sleep_for(1ms);
+    superseded_seen = worker.superseded() ? 1 : 0;
+    return 2;
+  });
+  while (!posted) std::this_thread::sleep_for(1ms);
+  CHECK(worker.busy());
+  CHECK(worker.take() == 1);  // the preview, while the job still runs
+  CHECK_FALSE(worker.superseded());
+  worker.submit([] { return 3; });
+  newer_submitted = true;
+  worker.wait();
+  CHECK(superseded_seen == 1);
+  CHECK(worker.take() == 3);  // the newest; the first job's own result was replaced
+  CHECK_FALSE(worker.superseded());
+  CHECK(worker.completed() == 2);
+}

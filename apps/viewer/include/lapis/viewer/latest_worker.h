@@ -60,6 +60,12 @@ class LatestWorker {
     return out;
   }
 
+  // True while a newer job waits for the running one (which may then stop early).
+  bool superseded() const {
+    std::lock_guard lock(mutex_);
+    return queued_.has_value();
+  }
+
   // True while a job is queued or running (replays wait for this before screenshots).
   bool busy() const {
     std::lock_guard lock(mutex_);
