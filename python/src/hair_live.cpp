@@ -41,6 +41,16 @@ py::dict solve_dict(const hair_field::FieldSolveReport& r) {
                   "total_ms"_a = r.total_ms);
 }
 
+py::dict update_dict(Live& l, LiveUpdate u) {
+  py::tuple strands = strands_to_numpy(std::move(u.strands), l.pool);
+  py::list solves;
+  for (const hair_field::FieldSolveReport& r : u.solves) solves.append(solve_dict(r));
+  return py::dict("points"_a = strands[0], "offsets"_a = strands[1], "constraints"_a = u.constraints,
+                  "solves"_a = solves, "regrown"_a = u.regrown,
+                  "timings_ms"_a = py::dict("solve"_a = u.solve_ms, "growth"_a = u.growth_ms, "detail"_a = u.detail_ms,
+                                            "total"_a = u.total_ms));
+}
+
 py::dict update(Live& l) {
   // Copied with the GIL held: another thread may edit the session while the field solves.
   const Hairstyle& style = l.session.cast<const Session&>().style;
@@ -52,13 +62,19 @@ py::dict update(Live& l) {
     py::gil_scoped_release release;
     u = l.live->update(primitives, details, std::move(reuse));
   }
-  py::tuple strands = strands_to_numpy(std::move(u.strands), l.pool);
-  py::list solves;
-  for (const hair_field::FieldSolveReport& r : u.solves) solves.append(solve_dict(r));
-  return py::dict("points"_a = strands[0], "offsets"_a = strands[1], "constraints"_a = u.constraints,
-                  "solves"_a = solves, "regrown"_a = u.regrown,
-                  "timings_ms"_a = py::dict("solve"_a = u.solve_ms, "growth"_a = u.growth_ms, "detail"_a = u.detail_ms,
-                                            "total"_a = u.total_ms));
+  return update_dict(l, std::move(u));
+}
+
+py::dict preview(Live& l, int stride) {
+  const Hairstyle& style = l.session.cast<const Session&>().style;
+  const std::vector<StylePrimitive> primitives = style.primitives;
+  const std::vector<StrandDetail> details = style.details;
+  LiveUpdate u;
+  {
+    py::gil_scoped_release release;
+    u = l.live->preview(primitives, details, stride);
+  }
+  return update_dict(l, std::move(u));
 }
 
 }  // namespace
@@ -84,6 +100,10 @@ changing them. Multigrid solves are iterative: after edits the field matches a f
 build() to the solver's tolerance, not bit for bit.)")
       .def(py::init(&make_live), "session"_a)
       .def("update", &update, "Brings the field and the strands up to date with the session's primitives.")
+      .def("preview", &preview, "stride"_a,
+           "The strands of every stride-th root only (0, stride, 2·stride, ...), details applied, as update() "
+           "grows them, point for point: what a view drawing that subset shows. Solves as update() does; the "
+           "next update() then only grows the rest. Same dict as update().")
       .def_property_readonly(
           "roots",
           [](const Live& l) {

@@ -164,3 +164,19 @@ def test_live_hairstyle_applies_the_session_details_without_regrowing_for_them()
     assert np.array_equal(again["points"], points)
     built = s.build()
     assert np.array_equal(built["points"], points)  # the same details as the one-shot build
+
+
+def test_live_hairstyle_previews_every_kth_strand_as_the_update_grows_it():
+    s = small(lapis.HairSession.load(str(SESSIONS / "wavy_long.json")))  # a clump, waves and frizz
+    live = lapis.LiveHairstyle(s)
+    p = live.preview(5)
+    assert len(p["solves"]) == 2
+    r = live.update()
+    assert r["solves"] == []  # the preview's solve holds
+    o = r["offsets"]
+    assert len(p["offsets"]) - 1 == (len(o) - 1 + 4) // 5
+    for k in range(len(p["offsets"]) - 1):
+        mine = p["points"][p["offsets"][k]:p["offsets"][k + 1]]
+        assert np.array_equal(mine, r["points"][o[5 * k]:o[5 * k + 1]])
+    with pytest.raises(lapis.InvalidArgument, match="stride must be at least 1"):
+        live.preview(0)
