@@ -101,8 +101,8 @@ void HairSketchApp::request_regrowth() {
 
 void HairSketchApp::receive_preview(viewer::Viewer& v, Regrowth r) {
   const double display_start = v.time();
-  update_strand_item(v, r.update.strands, r.preview_stride);
-  shown_preview_of_ = std::make_pair(r.revision, r.settings_epoch);
+  shown_preview_ = ShownPreview{r.revision, r.settings_epoch, std::move(r.update.strands), r.preview_stride};
+  update_strand_item(v, shown_preview_->strands, shown_preview_->stride);
   preview_drawn_in_frame_ = v.frame();
   if (scene_held_since_ >= 0) end_scene_hold(v);  // the edit's curves with its strands, in one frame
   if (r.revision == document_.revision() && last_edit_time_ > 0) {
@@ -110,6 +110,13 @@ void HairSketchApp::receive_preview(viewer::Viewer& v, Regrowth r) {
     edits_.back().preview = true;
     edit_drawn_in_frame_ = v.frame();
   }
+}
+
+void HairSketchApp::redraw_strands(viewer::Viewer& v) {
+  if (shown_preview_)
+    update_strand_item(v, shown_preview_->strands, shown_preview_->stride);
+  else if (last_)
+    update_strand_item(v, last_->update.strands);
 }
 
 void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
@@ -130,12 +137,13 @@ void HairSketchApp::receive_regrowth(viewer::Viewer& v) {
   }
   const double display_start = v.time();
   // After its preview, the whole set shows the same strands unless the stride moved on.
-  const bool previewed = shown_preview_of_ == std::make_pair(r->revision, r->settings_epoch);
+  const bool previewed =
+      shown_preview_ && shown_preview_->revision == r->revision && shown_preview_->settings_epoch == r->settings_epoch;
   const bool same_picture =
       previewed && display_stride(r->update.strands, {.max_segments = static_cast<int>(strand_budget_.value()),
                                                       .current_stride = shown_stride_}) == shown_stride_;
   if (!same_picture) update_strand_item(v, r->update.strands);
-  shown_preview_of_.reset();
+  shown_preview_.reset();
   if (r->revision == document_.revision() && last_edit_time_ > 0) {
     if (previewed && !edits_.empty() && edits_.back().preview && edits_.back().all_strands_ms == 0) {
       EditStages& e = edits_.back();

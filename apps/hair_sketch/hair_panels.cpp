@@ -173,7 +173,7 @@ void HairSketchApp::draw_settings_panel(viewer::Viewer& v) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("strands under other hair get less light (density-based occlusion)");
   if (ImGui::ColorEdit3("root colour", root_color_.data()) | ImGui::ColorEdit3("tip colour", tip_color_.data()) |
       ImGui::SliderFloat("strand width", &strand_width_, 0.5f, 4.0f) | budget_set | look_set | shadow_set) {
-    if (last_) update_strand_item(v, last_->update.strands);
+    redraw_strands(v);
     head_dirty_ = true;  // the scalp under the hair takes the root colour
   }
   if (ImGui::Checkbox("strands", &show_strands_))

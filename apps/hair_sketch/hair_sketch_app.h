@@ -154,7 +154,8 @@ class HairSketchApp final : public viewer::ViewerApp {
   void update_head_item(viewer::Viewer& v);
   // `subset_stride` > 0: the strands are those of every subset_stride-th root (a preview).
   void update_strand_item(viewer::Viewer& v, const Strands& strands, int subset_stride = 0);
-  int preview_stride() const;  // the preview's stride for the next regrowth; 0: none
+  int preview_stride() const;              // the preview's stride for the next regrowth; 0: none
+  void redraw_strands(viewer::Viewer& v);  // the strands on screen again (a new look or budget)
   void receive_preview(viewer::Viewer& v, Regrowth r);
   void update_curve_items(viewer::Viewer& v);
   void update_preview_item(viewer::Viewer& v);
@@ -198,8 +199,13 @@ class HairSketchApp final : public viewer::ViewerApp {
   viewer::AdaptiveBudget strand_budget_{100000};
   int shown_strands_ = 0;
   int shown_stride_ = 0;  // every shown_stride_-th strand is drawn (display_stride)
-  // The revision and settings epoch whose preview is on screen, until the whole set arrives.
-  std::optional<std::pair<std::uint64_t, std::uint64_t>> shown_preview_of_;
+  // The preview on screen until its whole set arrives: restyling redraws it, not the older set.
+  struct ShownPreview {
+    std::uint64_t revision = 0, settings_epoch = 0;
+    Strands strands;
+    int stride = 0;
+  };
+  std::optional<ShownPreview> shown_preview_;
   std::shared_ptr<FrameGate> preview_gate_;  // the running job's, opened once its preview is shown
   long preview_drawn_in_frame_ = -1;
   bool curves_dirty_ = true, head_dirty_ = true;
