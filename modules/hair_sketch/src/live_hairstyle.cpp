@@ -40,6 +40,17 @@ bool same_primitives(const std::vector<StylePrimitive>& a, const std::vector<Sty
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), same_primitive);
 }
 
+// The listed strands of `from`, in the order listed.
+Strands pick_strands(const Strands& from, const std::vector<int>& indices) {
+  Strands out;
+  for (const int i : indices) {
+    out.points.insert(out.points.end(), from.points.begin() + from.offsets[i],
+                      from.points.begin() + from.offsets[i + 1]);
+    out.offsets.push_back(static_cast<int>(out.points.size()));
+  }
+  return out;
+}
+
 // Copies `from` into `to`'s storage (a fresh allocation pays a page fault per 4 KB).
 void copy_into(const Strands& from, Strands& to) {
   to.points.assign(from.points.begin(), from.points.end());
@@ -64,30 +75,38 @@ void LiveHairstyle::solve(const std::vector<StylePrimitive>& primitives, LiveUpd
   solved_valid_ = true;
 }
 
-SampledField LiveHairstyle::sampled_field(const std::vector<StrandDetail>& details) {
-  const bool keep_outside = settings_.growth.keep_outside_head;
-  if (!clearance_ && (keep_outside || !details.empty())) {
+void LiveHairstyle::solve_if_changed(const std::vector<StylePrimitive>& primitives,
+                                     const std::vector<StrandDetail>& details, const char* fn, LiveUpdate& out) {
+  for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), fn);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!solved_valid_ || !same_primitives(primitives, solved_primitives_)) solve(primitives, out);
+  out.solve_ms = ms_since(t0);
+  out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
+}
+
+void LiveHairstyle::prepare_clearance(const std::vector<StrandDetail>& details) {
+  if (!clearance_ && (settings_.growth.keep_outside_head || !details.empty())) {
     clearance_ = std::make_unique<HeadClearance>(*head_, field_.grid());
     detail_context_ = detail_context(*head_, roots_, clearance_.get(), settings_.growth.head_clearance);
   }
-  return SampledField(field_.grid(), field(), keep_outside ? clearance_.get() : nullptr);
+}
+
+SampledField LiveHairstyle::sampled_field() const {
+  return SampledField(field_.grid(), field(), settings_.growth.keep_outside_head ? clearance_.get() : nullptr);
 }
 
 LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
                                  const std::vector<StrandDetail>& details, Strands reuse) {
-  for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), "hair_sketch::LiveHairstyle::update()");
   LiveUpdate out;
   out.strands = std::move(reuse);
   const auto t0 = std::chrono::steady_clock::now();
-  if (!solved_valid_ || !same_primitives(primitives, solved_primitives_)) solve(primitives, out);
+  solve_if_changed(primitives, details, "hair_sketch::LiveHairstyle::update()", out);
   out.regrown = !grown_valid_;
-  out.solve_ms = ms_since(t0);
-  out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
-  const SampledField sampled = sampled_field(details);
+  prepare_clearance(details);
   if (out.regrown) {
     grower_.set_options(settings_.growth);
-    grower_.grow(sampled, roots_, grown_);
+    grower_.grow(sampled_field(), roots_, grown_);
     grown_valid_ = true;
   }
   out.growth_ms = ms_since(t1);
@@ -104,17 +123,15 @@ LiveUpdate LiveHairstyle::update(const std::vector<StylePrimitive>& primitives,
 
 LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
                                   const std::vector<StrandDetail>& details, int stride) {
-  const std::string fn = "hair_sketch::LiveHairstyle::preview()";
-  if (stride < 1) throw InvalidArgument(fn + ": the stride must be at least 1, got " + std::to_string(stride));
-  for (const auto& d : details) check_detail(d, head_->mesh.num_vertices(), fn);
+  constexpr const char* fn = "hair_sketch::LiveHairstyle::preview()";
+  if (stride < 1)
+    throw InvalidArgument(std::string(fn) + ": the stride must be at least 1, got " + std::to_string(stride));
   LiveUpdate out;
   const auto t0 = std::chrono::steady_clock::now();
-  if (!solved_valid_ || !same_primitives(primitives, solved_primitives_)) solve(primitives, out);
+  solve_if_changed(primitives, details, fn, out);
   out.regrown = true;
-  out.solve_ms = ms_since(t0);
-  out.constraints = (avoided_used_ ? avoided_->constraints() : field_.constraints()).size();
   const auto t1 = std::chrono::steady_clock::now();
-  const SampledField sampled = sampled_field(details);
+  prepare_clearance(details);
   // The strands shown, and the clumps' guides they follow: `grown` holds strand subset[k].
   std::vector<int> shown, subset;
   for (int i = 0; i < static_cast<int>(roots_.size()); i += stride) shown.push_back(i);
@@ -122,34 +139,25 @@ LiveUpdate LiveHairstyle::preview(const std::vector<StylePrimitive>& primitives,
   std::set_union(shown.begin(), shown.end(), guides.begin(), guides.end(), std::back_inserter(subset));
   Strands grown;
   if (grown_valid_) {  // already grown in this field: the subset of those
-    for (const int i : subset) {
-      grown.points.insert(grown.points.end(), grown_.points.begin() + grown_.offsets[i],
-                          grown_.points.begin() + grown_.offsets[i + 1]);
-      grown.offsets.push_back(static_cast<int>(grown.points.size()));
-    }
+    grown = pick_strands(grown_, subset);
   } else {
     std::vector<Eigen::Vector3d> roots;
     roots.reserve(subset.size());
     for (const int i : subset) roots.push_back(roots_[i]);
     preview_grower_.set_options(settings_.growth);
-    preview_grower_.grow(sampled, roots, grown);
+    preview_grower_.grow(sampled_field(), roots, grown);
   }
   out.growth_ms = ms_since(t1);
   const auto t2 = std::chrono::steady_clock::now();
-  Strands detailed;
   if (details.empty()) {
-    detailed = std::move(grown);
+    out.strands = std::move(grown);  // no clumps, no guides: the subset is the shown strands
   } else {
     DetailContext context = detail_context_;
     context.strand_index = subset;
-    detailed = apply_strand_detail(grown, details, context);
-  }
-  for (std::size_t k = 0, j = 0; k < subset.size() && j < shown.size(); ++k) {  // the shown strands alone
-    if (subset[k] != shown[j]) continue;
-    ++j;
-    out.strands.points.insert(out.strands.points.end(), detailed.points.begin() + detailed.offsets[k],
-                              detailed.points.begin() + detailed.offsets[k + 1]);
-    out.strands.offsets.push_back(static_cast<int>(out.strands.points.size()));
+    std::vector<int> shown_at;  // where each shown strand is in the subset
+    for (const int i : shown)
+      shown_at.push_back(static_cast<int>(std::lower_bound(subset.begin(), subset.end(), i) - subset.begin()));
+    out.strands = pick_strands(apply_strand_detail(grown, details, context), shown_at);
   }
   out.detail_ms = ms_since(t2);
   out.total_ms = ms_since(t0);

@@ -62,11 +62,15 @@ class LiveHairstyle {
   const std::vector<Eigen::Vector3d>& roots() const { return roots_; }
 
  private:
-  // Brings the field up to date with `primitives` (both solves), recording them in `out`.
+  // Checks the details (naming fn), then brings the field up to date with `primitives` (both
+  // solves, where they changed), recording the solves, constraints and time in `out`.
+  void solve_if_changed(const std::vector<StylePrimitive>& primitives, const std::vector<StrandDetail>& details,
+                        const char* fn, LiveUpdate& out);
   void solve(const std::vector<StylePrimitive>& primitives, LiveUpdate& out);
-  // The field's sampled copy for growth, with the head's clearance where growth or detail
-  // needs it (made on first use).
-  SampledField sampled_field(const std::vector<StrandDetail>& details);
+  // Makes the head's clearance and the detail context where growth or detail first needs them.
+  void prepare_clearance(const std::vector<StrandDetail>& details);
+  // The field's sampled copy for growth (with the clearance when growth keeps out of the head).
+  SampledField sampled_field() const;
 
   const Head* head_;
   HairstyleSettings settings_;
