@@ -20,6 +20,7 @@ inline nlohmann::json seam_json(const mesh_merge::SeamQuality& q) {
           {"dihedral_mean_deg", q.seam_dihedral_mean_deg},
           {"dihedral_max_deg", q.seam_dihedral_max_deg},
           {"folded_edges", q.folded_seam_edges},
+          {"inherited_folds", q.inherited_folds},
           {"target_dihedral_mean_deg", q.target_dihedral_mean_deg},
           {"target_dihedral_p95_deg", q.target_dihedral_p95_deg}};
 }

@@ -299,6 +299,7 @@ void MergeApp::draw_result_panel(viewer::Viewer& v) {
   ImGui::Text("min strip angle %.1f deg", q.min_strip_angle_deg);
   ImGui::Text("seam dihedral mean %.1f / max %.1f deg", q.seam_dihedral_mean_deg, q.seam_dihedral_max_deg);
   ImGui::Text("folded seam edges (over %.0f deg) %d", geometry::kFoldedDihedralDeg, q.folded_seam_edges);
+  if (q.inherited_folds > 0) ImGui::Text("  and %d where the target folds already", q.inherited_folds);
   ImGui::Text("target dihedral mean %.1f / p95 %.1f deg", q.target_dihedral_mean_deg, q.target_dihedral_p95_deg);
   ImGui::Text("target moved outside the seam band: %.2g", q.max_target_displacement);
   ImGui::Text("detail: Laplacian residual %.3f", shown_->detail.laplacian_residual);

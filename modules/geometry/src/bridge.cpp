@@ -86,33 +86,66 @@ class StripTiling {
         beside_a_(faces_beside(mesh, a_)),
         beside_b_(faces_beside(mesh, b_)) {}
 
-  // The triangles of the best tiling, in strip order.
+  // The triangles of the best tiling, in strip order. The shortest tiling comes first; the
+  // tiling with the fewest folds is then sought among those whose path stays within
+  // kCorridor steps of it. Unbounded, avoiding one fold could be worth any length: on loops
+  // of uneven shape it bought fans of triangles reaching across the whole loop.
   Faces solve() const {
-    const size_t n = a_.size(), m = b_.size();
-    // came[(i·m + j)·2 + s]: the step (0 = along a, 1 = along b) before step s into (i, j).
-    std::vector<std::uint8_t> came(n * m * 2, 0);
-    std::vector<Cost> prev(m * 2, kUnreached), cur(m * 2, kUnreached);
-    for (size_t i = 0; i < n; ++i) {
-      std::fill(cur.begin(), cur.end(), kUnreached);
-      for (size_t j = 0; j < m; ++j) {
-        if (i > 0) relax(prev, i - 1, j, 0, cur[j * 2 + 0], came[(i * m + j) * 2 + 0]);
-        if (j > 0) relax(cur, i, j - 1, 1, cur[j * 2 + 1], came[(i * m + j) * 2 + 1]);
-      }
-      std::swap(prev, cur);
-    }
-    // prev now holds row n−1; walk back from the cheaper last step (along a on a tie).
-    int s = prev[(m - 1) * 2 + 1] < prev[(m - 1) * 2 + 0] ? 1 : 0;
-    Faces strip(static_cast<Eigen::Index>(n + m - 2), 3);
-    for (size_t i = n - 1, j = m - 1, t = n + m - 2; t-- > 0;) {
-      const int before = came[(i * m + j) * 2 + s];
-      s == 0 ? --i : --j;
-      strip.row(static_cast<Eigen::Index>(t)) = triangle(i, j, s);
-      s = before;
+    const std::vector<std::uint8_t> anywhere(a_.size() * b_.size(), 1);
+    const std::vector<std::uint8_t> steps = cheapest_path(corridor(cheapest_path(anywhere, false)), true);
+    Faces strip(static_cast<Eigen::Index>(steps.size()), 3);
+    size_t i = 0, j = 0;
+    for (size_t t = 0; t < steps.size(); ++t) {
+      strip.row(static_cast<Eigen::Index>(t)) = triangle(i, j, steps[t]);
+      steps[t] == 0 ? ++i : ++j;
     }
     return strip;
   }
 
  private:
+  static constexpr size_t kCorridor = 10;
+
+  // The cells (i, j) within kCorridor steps along a and along b of a cell of the path.
+  std::vector<std::uint8_t> corridor(const std::vector<std::uint8_t>& steps) const {
+    const size_t n = a_.size(), m = b_.size();
+    std::vector<std::uint8_t> inside(n * m, 0);
+    size_t i = 0, j = 0;
+    for (size_t t = 0; t <= steps.size(); ++t) {
+      for (size_t x = i - std::min(i, kCorridor); x <= std::min(n - 1, i + kCorridor); ++x)
+        for (size_t y = j - std::min(j, kCorridor); y <= std::min(m - 1, j + kCorridor); ++y) inside[x * m + y] = 1;
+      if (t < steps.size()) steps[t] == 0 ? ++i : ++j;
+    }
+    return inside;
+  }
+
+  // The steps (0 = along a, 1 = along b) of the cheapest monotone path from (0, 0) to
+  // (n−1, m−1) through the cells marked `allowed`: by length alone, or by folds first.
+  std::vector<std::uint8_t> cheapest_path(const std::vector<std::uint8_t>& allowed, bool count_folds) const {
+    const size_t n = a_.size(), m = b_.size();
+    // came[(i·m + j)·2 + s]: the step before step s into (i, j).
+    std::vector<std::uint8_t> came(n * m * 2, 0);
+    std::vector<Cost> prev(m * 2, kUnreached), cur(m * 2, kUnreached);
+    for (size_t i = 0; i < n; ++i) {
+      std::fill(cur.begin(), cur.end(), kUnreached);
+      for (size_t j = 0; j < m; ++j) {
+        if (!allowed[i * m + j]) continue;
+        if (i > 0) relax(prev, i - 1, j, 0, count_folds, cur[j * 2 + 0], came[(i * m + j) * 2 + 0]);
+        if (j > 0) relax(cur, i, j - 1, 1, count_folds, cur[j * 2 + 1], came[(i * m + j) * 2 + 1]);
+      }
+      std::swap(prev, cur);
+    }
+    // prev now holds row n−1; walk back from the cheaper last step (along a on a tie).
+    int s = prev[(m - 1) * 2 + 1] < prev[(m - 1) * 2 + 0] ? 1 : 0;
+    std::vector<std::uint8_t> steps(n + m - 2);
+    for (size_t i = n - 1, j = m - 1, t = n + m - 2; t-- > 0;) {
+      const int before = came[(i * m + j) * 2 + s];
+      steps[t] = static_cast<std::uint8_t>(s);
+      s == 0 ? --i : --j;
+      s = before;
+    }
+    return steps;
+  }
+
   // Vertices of the triangle stepping from (i, j) along a (s = 0) or along b (s = 1), wound as
   // it is added to the mesh.
   Eigen::RowVector3i triangle(size_t i, size_t j, int s) const {
@@ -125,8 +158,9 @@ class StripTiling {
 
   // Offers the path into (i, j) by step `last` (unless it is the start) continued by step s to
   // the state `into`; keeps it when cheaper (the earlier `last` wins a tie).
-  void relax(const std::vector<Cost>& row, size_t i, size_t j, int s, Cost& into, std::uint8_t& came) const {
-    const Eigen::Vector3d n = normal(triangle(i, j, s));
+  void relax(const std::vector<Cost>& row, size_t i, size_t j, int s, bool count_folds, Cost& into,
+             std::uint8_t& came) const {
+    const Eigen::Vector3d n = count_folds ? normal(triangle(i, j, s)) : Eigen::Vector3d::Zero();
     const Eigen::Vector3d& beside = s == 0 ? beside_a_[i] : beside_b_[j];
     const double diagonal = s == 0 ? (mesh_.V.row(a_[i + 1]) - mesh_.V.row(b_[j])).norm()
                                    : (mesh_.V.row(a_[i]) - mesh_.V.row(b_[j + 1])).norm();
@@ -137,10 +171,9 @@ class StripTiling {
       } else {
         c = row[j * 2 + last];
         if (c.folded == kUnreached.folded) continue;
-        const Eigen::Vector3d before = normal(triangle(last == 0 ? i - 1 : i, last == 0 ? j : j - 1, last));
-        c.folded += fold(n, before);
+        if (count_folds) c.folded += fold(n, normal(triangle(last == 0 ? i - 1 : i, last == 0 ? j : j - 1, last)));
       }
-      c.folded += fold(n, beside) + n.isZero();
+      if (count_folds) c.folded += fold(n, beside) + n.isZero();
       c.length += diagonal;
       if (c < into) into = c, came = static_cast<std::uint8_t>(last);
     }

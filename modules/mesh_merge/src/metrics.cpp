@@ -1,6 +1,7 @@
 #include "lapis/mesh_merge/metrics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -17,6 +18,33 @@ double deg(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// Folded strip edges that join two target vertices along an edge the target had, folded there
+// already: the strip face took the place of the target's face on that edge.
+int inherited_folds(const TriMesh& target, const MergeResult& r) {
+  std::vector<int> target_of(static_cast<size_t>(r.mesh.num_vertices()), -1);
+  for (int v = 0; v < target.num_vertices(); ++v)
+    if (r.target_map[v] >= 0) target_of[r.target_map[v]] = v;
+  const Connectivity conn(r.mesh), own(target);
+  const Vertices N = geometry::face_normals(r.mesh), own_normals = geometry::face_normals(target);
+  const auto folded = [](const Vertices& normals, std::array<int, 2> faces) {
+    return deg(angle_between(normals.row(faces[0]).transpose(), normals.row(faces[1]).transpose())) >
+           geometry::kFoldedDihedralDeg;
+  };
+  std::vector<char> counted(static_cast<size_t>(conn.num_edges()), 0);
+  int count = 0;
+  for (int f : r.strip_faces)
+    for (int k = 0; k < 3; ++k) {
+      const int e = conn.face_edge(f, k);
+      const auto [a, b] = conn.edges()[e];
+      if (counted[e] || conn.edge_face_count(e) != 2 || target_of[a] < 0 || target_of[b] < 0) continue;
+      counted[e] = 1;
+      const int was = own.find_edge(target_of[a], target_of[b]);
+      count += was >= 0 && own.edge_face_count(was) == 2 && folded(N, conn.edge_faces(e)) &&
+               folded(own_normals, own.edge_faces(was));
+    }
+  return count;
 }
 
 }  // namespace
@@ -84,8 +112,10 @@ SeamQuality seam_quality(const TriMesh& target, const MergeResult& r) {
     for (double a : seam) sum += a;
     q.seam_dihedral_mean_deg = sum / double(seam.size());
     q.seam_dihedral_max_deg = *std::max_element(seam.begin(), seam.end());
-    q.folded_seam_edges = static_cast<int>(
-        std::count_if(seam.begin(), seam.end(), [](double a) { return a > geometry::kFoldedDihedralDeg; }));
+    q.inherited_folds = inherited_folds(target, r);
+    q.folded_seam_edges = static_cast<int>(std::count_if(seam.begin(), seam.end(),
+                                                         [](double a) { return a > geometry::kFoldedDihedralDeg; })) -
+                          q.inherited_folds;
   }
   std::vector<double> own = dihedral_deviation_deg(target);
   if (!own.empty()) {

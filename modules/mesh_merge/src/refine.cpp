@@ -60,6 +60,27 @@ bool one_run(std::vector<int> positions, int n) {
   return gaps <= 1;
 }
 
+// How many separate sectors of faces touching a merging loop the faces around c form: two
+// or more, and removing the ring next to the loop leaves c on the inner loop twice, even where
+// c's loop neighbours are consecutive on the loop.
+template <class IsMerging>
+int touching_sectors(const geometry::TriMesh& mesh, const geometry::Connectivity& conn, int c,
+                     const IsMerging& is_merging) {
+  const auto touches = [&](int f) {
+    if (f < 0) return false;
+    for (int k = 0; k < 3; ++k)
+      if (is_merging(mesh.F(f, k))) return true;
+    return false;
+  };
+  int faces = 0, around = 0, joined = 0;
+  for (int f : conn.vertex_faces(c)) faces += touches(f), ++around;
+  for (int e : conn.vertex_edges(c)) {
+    const auto [f, g] = conn.edge_faces(e);
+    joined += touches(f) && touches(g);
+  }
+  return faces == around ? 1 : faces - joined;
+}
+
 // The edges whose split separates a pinch next to a merging loop: edges off the loops between
 // two loop vertices (of one loop, not neighbours on it, or of two loops, the mesh's other
 // boundary loops included), and the edges from the loops to a vertex whose loop neighbours are
@@ -99,7 +120,9 @@ std::vector<std::pair<int, int>> pinching_edges(const geometry::TriMesh& mesh,
       merging_near |= is_merging(w);
       positions.push_back(position[w]);
     }
-    if (!merging_near || (!pinched && one_run(positions, static_cast<int>(loops[loop].size())))) continue;
+    if (!merging_near || (!pinched && one_run(positions, static_cast<int>(loops[loop].size())) &&
+                          touching_sectors(mesh, conn, c, is_merging) <= 1))
+      continue;
     for (const int w : conn.vertex_neighbors(c))
       if (loop_of[w] >= 0) out.emplace_back(w, c);
   }

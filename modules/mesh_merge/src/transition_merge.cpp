@@ -306,18 +306,22 @@ ZipResult zip_kept_band(const TriMesh& src, const TriMesh& target, const Vertice
       seams[p].target_loop = b.target.loop;
     }
   }
+  // The zip removes the ring of its target argument next to each loop, which pinches where
+  // the loop passes within a triangle of itself: the edges there are split (refine.h) and the
+  // zip runs again.
+  TriMesh kept_mesh{kept, keep_source ? src.F : target.F};
+  TriMesh& ringed = keep_source ? rest_of_other : kept_mesh;
+  const auto zip = [&] {
+    return keep_source ? zip_seams(rest_of_other, kept_mesh, seams) : zip_seams(kept_mesh, rest_of_other, seams);
+  };
   ZipResult z;
   try {
-    z = keep_source ? zip_seams(rest_of_other, TriMesh{kept, src.F}, seams)
-                    : zip_seams(TriMesh{kept, target.F}, rest_of_other, seams);
+    z = zip();
   } catch (const InvalidArgument&) {
-    if (!keep_source) throw;
-    // The zip removes the target's ring next to each rim, which pinches where the rim passes
-    // within a triangle of itself: split the edges there (refine.h) and zip again.
-    std::vector<std::vector<int>> rims;
-    for (const auto& seam : seams) rims.push_back(seam.target_loop);
-    if (separate_loop_neighbourhoods(rest_of_other, rims) == 0) throw;
-    z = zip_seams(rest_of_other, TriMesh{kept, src.F}, seams);
+    std::vector<std::vector<int>> loops;
+    for (const auto& seam : seams) loops.push_back(seam.target_loop);
+    if (separate_loop_neighbourhoods(ringed, loops) == 0) throw;
+    z = zip();
   }
   r.target_map.assign(static_cast<size_t>(nt), -1);
   r.source_map.assign(static_cast<size_t>(ns), -1);

@@ -2,6 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <unordered_set>
+
+#include "conforming_zip.h"
 
 #include "lapis/geometry/mesh_edit.h"
 #include "lapis/mesh_merge/zip.h"
@@ -57,6 +60,9 @@ int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, do
     const Connectivity conn(mesh);
     int pass_flips = 0;
     std::vector<char> touched(static_cast<size_t>(mesh.num_faces()), 0);
+    // Diagonals this pass made, which `conn` does not know: flipping onto one of them would make
+    // two faces on the same three vertices.
+    std::unordered_set<std::uint64_t> made;
     for (int f : strip_faces)
       for (int j = 0; j < 3; ++j) {
         const int e = conn.face_edge(f, j);
@@ -69,7 +75,8 @@ int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, do
         int d = -1;
         for (int k = 0; k < 3; ++k)
           if (mesh.F(g, k) != x && mesh.F(g, k) != y) d = mesh.F(g, k);
-        if (d < 0 || d == b || conn.find_edge(b, d) >= 0) continue;
+        const std::uint64_t diagonal = detail::directed_edge(std::min(b, d), std::max(b, d));
+        if (d < 0 || d == b || conn.find_edge(b, d) >= 0 || made.count(diagonal)) continue;
         const Turn before = turn_of(mesh, conn, f, g, cos_fold);
         const Eigen::RowVector3i old_f = mesh.F.row(f), old_g = mesh.F.row(g);
         mesh.F.row(f) << x, d, b;
@@ -79,6 +86,7 @@ int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, do
           continue;
         }
         touched[static_cast<size_t>(f)] = touched[static_cast<size_t>(g)] = 1;
+        made.insert(diagonal);
         ++pass_flips;
         break;
       }

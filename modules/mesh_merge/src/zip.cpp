@@ -55,6 +55,10 @@ BandCut cut_bands(const TriMesh& target, const std::vector<BoundaryCorrespondenc
     if (p < 0) continue;  // another open boundary of the target, untouched
     for (int v : loop)
       if (inner_pair[v] != p) cut.problem[p] = "it runs into the band of another loop";
+    std::vector<int> sorted = loop;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+      cut.problem[p] = "removing it leaves an inner loop that passes through one vertex twice";
     ++found[p];
     cut.inner[p] = loop;
   }

@@ -23,6 +23,9 @@ struct SeamQuality {
   // Strip edges whose two faces turn by more than geometry::kFoldedDihedralDeg: a triangle
   // facing against the surface beside it (a spike or a notch), which no smooth seam has.
   int folded_seam_edges = 0;
+  // Folded strip edges on an edge where the target itself folds (a spike of a scan next to its
+  // loop): the target's, not the seam's, so not in folded_seam_edges.
+  int inherited_folds = 0;
   double target_dihedral_mean_deg = 0;  // the target's own interior edges, for comparison
   double target_dihedral_p95_deg = 0;
   bool valid() const {
