@@ -27,7 +27,8 @@ struct Outcome {
 double mean_loop_edge(const TriMesh& m) {
   const auto& loop = geometry::Connectivity(m).boundary_loops().at(0);
   double perimeter = 0;
-  for (size_t k = 0; k < loop.size(); ++k) perimeter += (m.V.row(loop[k]) - m.V.row(loop[(k + 1) % loop.size()])).norm();
+  for (size_t k = 0; k < loop.size(); ++k)
+    perimeter += (m.V.row(loop[k]) - m.V.row(loop[(k + 1) % loop.size()])).norm();
   return perimeter / double(loop.size());
 }
 
@@ -39,7 +40,8 @@ double source_drift(const TriMesh& source, const MergeResult& r) {
   double largest = 0;
   for (int v = 0; v < source.num_vertices(); ++v) {
     const int m = r.source_map[static_cast<size_t>(v)];
-    if (m >= 0 && !band[static_cast<size_t>(m)]) largest = std::max(largest, (r.mesh.V.row(m) - source.V.row(v)).norm());
+    if (m >= 0 && !band[static_cast<size_t>(m)])
+      largest = std::max(largest, (r.mesh.V.row(m) - source.V.row(v)).norm());
   }
   return largest / bbox_diagonal(source.V);
 }
@@ -52,7 +54,8 @@ Outcome merge_back(const PlaneCut& cut, const std::vector<LoopPair>& pairs, cons
   out.min_angle = q.min_strip_angle_deg;
   for (int f : r.strip_faces)
     for (int k = 0; k < 3; ++k)
-      out.longest = std::max(out.longest, (r.mesh.V.row(r.mesh.F(f, k)) - r.mesh.V.row(r.mesh.F(f, (k + 1) % 3))).norm());
+      out.longest =
+          std::max(out.longest, (r.mesh.V.row(r.mesh.F(f, k)) - r.mesh.V.row(r.mesh.F(f, (k + 1) % 3))).norm());
   out.longest /= mean_loop_edge(cut.below);
   out.drift = source_drift(cut.above, r);
   out.mesh_problem = geometry::validate(r.mesh).summary();
@@ -66,11 +69,11 @@ Outcome merge_back(const PlaneCut& cut, const std::vector<LoopPair>& pairs, cons
     const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
     moved.V = ((2.5 * cut.above.V * R.transpose()).rowwise() + Eigen::RowVector3d(3, -1, 7)).eval();
     const MergeResult m = merge(moved, cut.below, pairs, o);
-    out.moved = m.mesh.F == r.mesh.F ? (m.mesh.V - r.mesh.V).rowwise().norm().maxCoeff() / bbox_diagonal(r.mesh.V) : 1.0;
+    out.moved =
+        m.mesh.F == r.mesh.F ? (m.mesh.V - r.mesh.V).rowwise().norm().maxCoeff() / bbox_diagonal(r.mesh.V) : 1.0;
   }
   return out;
 }
-
 
 // Merges whose seam still folds (folded_seam_edges > 0, so valid() is false): a fold of the
 // cut's zig-zag rim that neither the strip's tiling, the flips nor the umbrella steps undo.
@@ -83,11 +86,16 @@ struct Case {
   bool operator==(const Case&) const = default;
 };
 const Case kStillFolding[] = {
-    {"mannequin-devil", 1, 0.5, "independent"},  {"mannequin-devil", 0, 0.3, "keep target"},
-    {"mannequin-devil", 1, 0.7, "keep source"},  {"lion-head", 1, 0.7, "keep source"},
-    {"lion-head", 1, 0.7, "keep target"},        {"cactus", 2, 0.7, "keep target"},
-    {"dino", 0, 0.5, "keep target"},             {"diplodocus", 2, 0.3, "keep source"},
-    {"diplodocus", 2, 0.3, "keep target"},       {"man", 1, 0.5, "keep source"},
+    {"mannequin-devil", 1, 0.5, "independent"},
+    {"mannequin-devil", 0, 0.3, "keep target"},
+    {"mannequin-devil", 1, 0.7, "keep source"},
+    {"lion-head", 1, 0.7, "keep source"},
+    {"lion-head", 1, 0.7, "keep target"},
+    {"cactus", 2, 0.7, "keep target"},
+    {"dino", 0, 0.5, "keep target"},
+    {"diplodocus", 2, 0.3, "keep source"},
+    {"diplodocus", 2, 0.3, "keep target"},
+    {"man", 1, 0.5, "keep source"},
     {"man", 1, 0.5, "keep target"},
 };
 
@@ -109,15 +117,16 @@ void check_case(const Case& c, const PlaneCut& cut, const std::vector<LoopPair>&
   CAPTURE(c.mode);
   Outcome out;
   REQUIRE_NOTHROW(out = merge_back(cut, pairs, options_for(c.mode, cut, pairs)));
-  std::printf("%-20s %d %.1f %-12s folds %2d (+%d inherited), min strip angle %7.3f, longest strip edge %5.2f loop edges, "
-              "drift %8.2e, placement %8.2e %s\n",
-              std::string(c.mesh).c_str(), c.axis, c.fraction, std::string(c.mode).c_str(), out.folds, out.inherited, out.min_angle, out.longest, out.drift, out.moved,
-              out.mesh_problem.c_str());
+  std::printf(
+      "%-20s %d %.1f %-12s folds %2d (+%d inherited), min strip angle %7.3f, longest strip edge %5.2f loop edges, "
+      "drift %8.2e, placement %8.2e %s\n",
+      std::string(c.mesh).c_str(), c.axis, c.fraction, std::string(c.mode).c_str(), out.folds, out.inherited,
+      out.min_angle, out.longest, out.drift, out.moved, out.mesh_problem.c_str());
   CHECK_MESSAGE(out.mesh_problem.empty(), out.mesh_problem);
   CHECK(out.moved < 1e-9);  // independent mode only; 0 otherwise
-  // A part merged back where it was cut off stays there (a coarse double torus bends most,
-  // by 6.5% of its diagonal); where the plane cut left the two loops different (a pinch
-  // traced two ways), the thesis' frames turn the part, which is not the zip's to fix.
+  // A part merged back where it was cut off stays there (the dino across z at 70% moves most,
+  // by 9.2% of its diagonal); where the plane cut left the two loops different, §3.3.1's
+  // frames (tangent and one-sided normal) turn the part by 20-35°: not the zip's to fix.
   if (same_loop && c.mode == "independent") CHECK(out.drift < 0.1);
   const bool listed = std::find(std::begin(kStillFolding), std::end(kStillFolding), c) != std::end(kStillFolding);
   if (!listed) CHECK(out.folds == 0);
