@@ -206,6 +206,7 @@ MergeResult Merger::merge(const TriMesh& target, const std::vector<LoopPair>& pa
     umbrella_smooth(r.mesh, r.smoothed, options_.smooth_iterations, options_.smooth_lambda);
     unfold_seam(r.mesh, r.strip_faces, r.smoothed);
   }
+  flip_thin_diagonals(r.mesh, r.strip_faces);
   r.timings.smooth_ms = ms_since(t0);
   r.timings.total_ms = ms_since(t_total);
   return r;

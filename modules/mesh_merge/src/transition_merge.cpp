@@ -461,6 +461,7 @@ MergeResult merge_with_transition(const TriMesh& source, const TriMesh& target_g
   for (int v : seam_band(z.mesh, z.seam_vertices, 1)) movable.push_back(v);
   const Vertices before = z.mesh.V;
   unfold_seam(z.mesh, z.strip_faces, movable);
+  flip_thin_diagonals(z.mesh, z.strip_faces);
   for (int v = 0; v < z.mesh.num_vertices(); ++v)
     if (z.mesh.V.row(v) != before.row(v)) r.smoothed.push_back(v);
   r.timings.smooth_ms = ms_since(t0);  // the band replaces the seam smoothing

@@ -48,4 +48,9 @@ void umbrella_smooth(TriMesh& mesh, const std::vector<int>& vertices, int iterat
 int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::vector<int>& movable,
                 int max_rounds = 50, double lambda = 0.5);
 
+// Flips an edge between two strip faces where the other diagonal makes the pair's smallest
+// angle larger without folding them or their neighbours more (the faces keep their indices).
+// Returns the flips.
+int flip_thin_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces);
+
 }  // namespace lapis::mesh_merge
