@@ -48,15 +48,38 @@ Turn turn_of(const TriMesh& m, const Connectivity& conn, int f, int g, double co
   return t;
 }
 
-// Flips the inner edge of two strip faces, f = (x, y, b) and g = (y, x, d) → (x, d, b),
-// (d, y, b), where that turns them and their neighbours by less than before. The strip's tiling
-// was chosen on the loops before smoothing, and a zig-zag left across a fold often has the
-// other diagonal flat. Vertices stay; each pass rebuilds the connectivity. Returns the flips.
-int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, double cos_fold) {
+// Whether a face across an outer edge of f or g was flipped in this pass: `conn` no longer
+// knows its edges, so turn_of() would not see how it meets f and g.
+bool neighbour_touched(const TriMesh& m, const Connectivity& conn, int f, int g, const std::vector<char>& touched) {
+  for (int h : {f, g})
+    for (int k = 0; k < 3; ++k) {
+      const int e = conn.find_edge(m.F(h, k), m.F(h, (k + 1) % 3));
+      if (e < 0) continue;
+      for (int x : conn.edge_faces(e))
+        if (x >= 0 && x != f && x != g && touched[static_cast<size_t>(x)]) return true;
+    }
+  return false;
+}
+
+// Two strip faces on one inner edge: f = (x, y, b) and g = (y, x, d); flipped, (x, d, b) and
+// (d, y, b), so both keep their indices.
+struct StripPair {
+  int f, g, x, y, b, d;
+  void flip(TriMesh& m) const { m.F.row(f) << x, d, b, m.F.row(g) << d, y, b; }
+};
+
+// Passes over the strip's inner edges, each on a fresh connectivity and flipping a face at
+// most once, offering every pair whose other diagonal is not an edge yet to
+// accept(conn, pair), which may flip it and says whether to keep that; otherwise the pair's
+// rows are restored. Stops after a pass without flips or max_passes passes; returns the flips.
+// skip_beside_flipped: pairs next to a face flipped in the same pass wait for the next one.
+template <class Accept>
+int flip_strip_pairs(TriMesh& mesh, const std::vector<int>& strip_faces, int max_passes, bool skip_beside_flipped,
+                     const Accept& accept) {
   std::vector<char> in_strip(static_cast<size_t>(mesh.num_faces()), 0);
   for (int f : strip_faces) in_strip[static_cast<size_t>(f)] = 1;
   int flips = 0;
-  for (int pass = 0; pass < 8; ++pass) {
+  for (int pass = 0; pass < max_passes; ++pass) {
     const Connectivity conn(mesh);
     int pass_flips = 0;
     std::vector<char> touched(static_cast<size_t>(mesh.num_faces()), 0);
@@ -64,36 +87,41 @@ int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, do
     // two faces on the same three vertices.
     std::unordered_set<std::uint64_t> made;
     for (int f : strip_faces)
-      for (int j = 0; j < 3; ++j) {
-        const int e = conn.face_edge(f, j);
-        const auto [p, q] = conn.edge_faces(e);
+      for (int j = 0; j < 3 && !touched[static_cast<size_t>(f)]; ++j) {
+        const auto [p, q] = conn.edge_faces(conn.face_edge(f, j));
         const int g = p == f ? q : p;
-        if (g < 0 || !in_strip[static_cast<size_t>(g)] || touched[static_cast<size_t>(f)] ||
-            touched[static_cast<size_t>(g)] || face_normal(mesh, f).dot(face_normal(mesh, g)) >= cos_fold)
-          continue;
-        const int x = mesh.F(f, j), y = mesh.F(f, (j + 1) % 3), b = mesh.F(f, (j + 2) % 3);
-        int d = -1;
+        if (g < 0 || !in_strip[static_cast<size_t>(g)] || touched[static_cast<size_t>(g)]) continue;
+        StripPair pair{f, g, mesh.F(f, j), mesh.F(f, (j + 1) % 3), mesh.F(f, (j + 2) % 3), -1};
         for (int k = 0; k < 3; ++k)
-          if (mesh.F(g, k) != x && mesh.F(g, k) != y) d = mesh.F(g, k);
-        const std::uint64_t diagonal = detail::directed_edge(std::min(b, d), std::max(b, d));
-        if (d < 0 || d == b || conn.find_edge(b, d) >= 0 || made.count(diagonal)) continue;
-        const Turn before = turn_of(mesh, conn, f, g, cos_fold);
+          if (mesh.F(g, k) != pair.x && mesh.F(g, k) != pair.y) pair.d = mesh.F(g, k);
+        if (pair.d < 0 || pair.d == pair.b || conn.find_edge(pair.b, pair.d) >= 0) continue;
+        const std::uint64_t diagonal = detail::directed_edge(std::min(pair.b, pair.d), std::max(pair.b, pair.d));
+        if (made.count(diagonal) || (skip_beside_flipped && neighbour_touched(mesh, conn, f, g, touched))) continue;
         const Eigen::RowVector3i old_f = mesh.F.row(f), old_g = mesh.F.row(g);
-        mesh.F.row(f) << x, d, b;
-        mesh.F.row(g) << d, y, b;
-        if (!turn_of(mesh, conn, f, g, cos_fold).better_than(before)) {
+        if (!accept(conn, pair)) {
           mesh.F.row(f) = old_f, mesh.F.row(g) = old_g;
           continue;
         }
         touched[static_cast<size_t>(f)] = touched[static_cast<size_t>(g)] = 1;
         made.insert(diagonal);
         ++pass_flips;
-        break;
       }
     flips += pass_flips;
     if (pass_flips == 0) break;
   }
   return flips;
+}
+
+// Flips a folded inner edge of the strip where the other diagonal turns the two faces and their
+// neighbours by less than before. The strip's tiling was chosen on the loops before smoothing,
+// and a zig-zag left across a fold often has the other diagonal flat. Returns the flips.
+int flip_folded_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces, double cos_fold) {
+  return flip_strip_pairs(mesh, strip_faces, 8, false, [&](const Connectivity& conn, const StripPair& p) {
+    if (face_normal(mesh, p.f).dot(face_normal(mesh, p.g)) >= cos_fold) return false;
+    const Turn before = turn_of(mesh, conn, p.f, p.g, cos_fold);
+    p.flip(mesh);
+    return turn_of(mesh, conn, p.f, p.g, cos_fold).better_than(before);
+  });
 }
 
 // Umbrella steps on the vertices of folded strip edges' faces that may move, at most
@@ -147,63 +175,18 @@ double smallest_angle(const TriMesh& m, int p, int q, int r) {
   return std::min({angle(b - a, c - a), angle(a - b, c - b), angle(a - c, b - c)});
 }
 
-// Whether a face across an outer edge of f or g was flipped in this pass: `conn` no longer
-// knows its edges, so turn_of() would not see how it meets f and g.
-bool neighbour_touched(const TriMesh& m, const Connectivity& conn, int f, int g, const std::vector<char>& touched) {
-  for (int h : {f, g})
-    for (int k = 0; k < 3; ++k) {
-      const int e = conn.find_edge(m.F(h, k), m.F(h, (k + 1) % 3));
-      if (e < 0) continue;
-      for (int x : conn.edge_faces(e))
-        if (x >= 0 && x != f && x != g && touched[static_cast<size_t>(x)]) return true;
-    }
-  return false;
-}
-
+// Flips an inner edge of the strip where the other diagonal raises the pair's smallest angle
+// by more than rounding (a tie stays, so a turned copy of the input tiles alike). Folds are
+// unfold_seam()'s: a pair beside one is left as it is, and no flip makes one.
 int flip_thin_pairs(TriMesh& mesh, const std::vector<int>& strip_faces) {
   const double cos_fold = std::cos(geometry::kFoldedDihedralDeg * std::numbers::pi / 180);
-  std::vector<char> in_strip(static_cast<size_t>(mesh.num_faces()), 0);
-  for (int f : strip_faces) in_strip[static_cast<size_t>(f)] = 1;
-  int flips = 0;
-  for (int pass = 0; pass < 16; ++pass) {
-    const Connectivity conn(mesh);
-    int pass_flips = 0;
-    std::vector<char> touched(static_cast<size_t>(mesh.num_faces()), 0);
-    std::unordered_set<std::uint64_t> made;
-    for (int f : strip_faces)
-      for (int j = 0; j < 3; ++j) {
-        if (touched[static_cast<size_t>(f)]) break;
-        const auto [p, q] = conn.edge_faces(conn.face_edge(f, j));
-        const int g = p == f ? q : p;
-        if (g < 0 || !in_strip[static_cast<size_t>(g)] || touched[static_cast<size_t>(g)]) continue;
-        const int x = mesh.F(f, j), y = mesh.F(f, (j + 1) % 3), b = mesh.F(f, (j + 2) % 3);
-        int d = -1;
-        for (int k = 0; k < 3; ++k)
-          if (mesh.F(g, k) != x && mesh.F(g, k) != y) d = mesh.F(g, k);
-        const std::uint64_t diagonal = detail::directed_edge(std::min(b, d), std::max(b, d));
-        if (d < 0 || d == b || conn.find_edge(b, d) >= 0 || made.count(diagonal) ||
-            neighbour_touched(mesh, conn, f, g, touched))
-          continue;
-        const double before = std::min(smallest_angle(mesh, x, y, b), smallest_angle(mesh, y, x, d));
-        const double after = std::min(smallest_angle(mesh, x, d, b), smallest_angle(mesh, d, y, b));
-        if (!(after > before * (1 + 1e-6))) continue;
-        const Turn turn_before = turn_of(mesh, conn, f, g, cos_fold);
-        const Eigen::RowVector3i old_f = mesh.F.row(f), old_g = mesh.F.row(g);
-        mesh.F.row(f) << x, d, b;
-        mesh.F.row(g) << d, y, b;
-        // Folds are unfold_seam()'s: a pair beside one is left as it is, and no flip makes one.
-        if (turn_before.folded > 0 || turn_of(mesh, conn, f, g, cos_fold).folded > 0) {
-          mesh.F.row(f) = old_f, mesh.F.row(g) = old_g;
-          continue;
-        }
-        touched[static_cast<size_t>(f)] = touched[static_cast<size_t>(g)] = 1;
-        made.insert(diagonal);
-        ++pass_flips;
-      }
-    flips += pass_flips;
-    if (pass_flips == 0) break;
-  }
-  return flips;
+  return flip_strip_pairs(mesh, strip_faces, 16, true, [&](const Connectivity& conn, const StripPair& p) {
+    const double before = std::min(smallest_angle(mesh, p.x, p.y, p.b), smallest_angle(mesh, p.y, p.x, p.d));
+    const double after = std::min(smallest_angle(mesh, p.x, p.d, p.b), smallest_angle(mesh, p.d, p.y, p.b));
+    if (!(after > before * (1 + 1e-6)) || turn_of(mesh, conn, p.f, p.g, cos_fold).folded > 0) return false;
+    p.flip(mesh);
+    return turn_of(mesh, conn, p.f, p.g, cos_fold).folded == 0;
+  });
 }
 
 // The strip faces and every face with a corner on them, as a mesh of their own: the flips
