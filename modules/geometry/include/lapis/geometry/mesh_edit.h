@@ -40,7 +40,7 @@ inline constexpr double kFoldedDihedralDeg = 120;
 // fewest folded edges (against the faces already on a's and b's edges, and between its own
 // triangles) and degenerate triangles, and among those the one with the shortest diagonals
 // in total. (Without the bound, avoiding one fold could buy a fan reaching across the whole
-// band.) O(|a|·|b|) time, 3·|a|·|b| bytes. With closed = true
+// band.) O(|a|·|b|) time, 4·|a|·|b| bytes. With closed = true
 // both are cycles and b is first rotated to start at its vertex nearest a[0]. The strip is
 // oriented to match the existing faces on a's edges when there are any; otherwise it lies to
 // the left of a walking forward, with b running the same way. Lengths within 1e-9

@@ -49,8 +49,9 @@ int unfold_seam(TriMesh& mesh, const std::vector<int>& strip_faces, const std::v
                 int max_rounds = 50, double lambda = 0.5);
 
 // Flips an edge between two strip faces where the other diagonal makes the pair's smallest
-// angle larger without folding them or their neighbours more (the faces keep their indices).
-// Returns the flips.
+// angle larger by more than rounding (a tie stays), unless the pair or a neighbour across its
+// outer edges folds before or after (folds are unfold_seam()'s). The faces keep their indices.
+// Works on the strip's faces and those touching them only. Returns the flips.
 int flip_thin_diagonals(TriMesh& mesh, const std::vector<int>& strip_faces);
 
 }  // namespace lapis::mesh_merge
