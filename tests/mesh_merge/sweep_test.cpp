@@ -75,9 +75,11 @@ Outcome merge_back(const PlaneCut& cut, const std::vector<LoopPair>& pairs, cons
   return out;
 }
 
-// Merges whose seam still folds (folded_seam_edges > 0, so valid() is false): a fold of the
-// cut's zig-zag rim that neither the strip's tiling, the flips nor the umbrella steps undo.
-// Listed so that any other case folding fails; one of these no longer folding is reported.
+// Merges whose seam still folds (folded_seam_edges > 0, so valid() is false), which neither the
+// strip's tiling, the flips nor the umbrella steps undo: in the independent one a target vertex
+// one ring in lies almost on the loop's edge; in the transition ones the strip is folded
+// already when zipped. Listed so that any other case folding fails; one of these no longer
+// folding is reported.
 struct Case {
   std::string_view mesh;
   int axis;
